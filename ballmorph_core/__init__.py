@@ -1,0 +1,26 @@
+"""ballmorph_core: ball-map correspondence and ball-morphs of planar curves, in pure numpy.
+
+Whited & Rossignac, "Ball-morph: Definition, Implementation and Comparative Evaluation".
+This package never imports bpy: it runs in plain CPython and vendored inside the add-on.
+"""
+
+from .ballmap import Correspondence, ball_map
+from .compat import CompatibilityReport, classify
+from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
+from .morphs import METHODS, Morph, make_morph
+from .trajectories import BallPaths, midpoint_locus
+
+__all__ = [
+    "METHODS",
+    "BallPaths",
+    "Morph",
+    "make_morph",
+    "midpoint_locus",
+    "BallMorphError",
+    "CompatibilityReport",
+    "Correspondence",
+    "IncompatibleCurvesError",
+    "InvalidCurveError",
+    "ball_map",
+    "classify",
+]

@@ -1,0 +1,404 @@
+"""Planar polylines: validation, arc length, resampling, subdivision, normals, orientation.
+
+A curve is an ``(N, 2)`` float64 array. A loop (``closed=True``) is given without repeating its
+first point; its last edge joins the last point back to the first. Functions here never mutate
+their input.
+"""
+
+import numpy as np
+
+from . import tolerances as tol
+from .errors import InvalidCurveError
+
+__all__ = [
+    "as_curve",
+    "scale_of",
+    "edges",
+    "edge_lengths",
+    "cumulative_length",
+    "curve_length",
+    "locate",
+    "point_at",
+    "resample",
+    "subdivide",
+    "densify",
+    "default_spacing",
+    "signed_area",
+    "orient_clockwise",
+    "vertex_normals",
+    "edge_normals",
+    "turning_angles",
+    "points_in_loop",
+    "reverse",
+]
+
+
+def as_curve(points, name="P", closed=False, min_points=2):
+    """Validate a polyline and return a clean float64 copy.
+
+    Consecutive duplicate points are dropped (for a loop, a last point repeating the first is
+    dropped too), because a zero-length edge has no direction and no normal.
+
+    Parameters
+    ----------
+    points : array_like, shape (N, 2)
+        The vertices.
+    name : str
+        The argument's name, used in error messages.
+    closed : bool
+        Whether the curve is a loop.
+    min_points : int
+        Fewest distinct points accepted (a loop needs at least 3 whatever this says).
+
+    Returns
+    -------
+    ndarray, shape (M, 2)
+        A new array, ``M <= N``.
+
+    Raises
+    ------
+    InvalidCurveError
+        If the shape is not (N, 2), a coordinate is NaN or infinite, or too few distinct
+        points remain.
+    """
+    try:
+        arr = np.array(points, dtype=np.float64, copy=True)
+    except (TypeError, ValueError) as exc:
+        raise InvalidCurveError(f"{name}: cannot be read as an (N, 2) array of numbers ({exc})") from None
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise InvalidCurveError(f"{name}: expected shape (N, 2), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        bad = int(np.flatnonzero(~np.all(np.isfinite(arr), axis=1))[0])
+        raise InvalidCurveError(f"{name}: point {bad} is not finite ({arr[bad].tolist()})")
+    if len(arr) == 0:
+        raise InvalidCurveError(f"{name}: the curve has no points")
+    scale = max(float(np.ptp(arr, axis=0).max()), 1e-300)
+    step = np.linalg.norm(np.diff(arr, axis=0), axis=1)
+    keep = np.concatenate([[True], step > tol.COINCIDENT * scale])
+    arr = arr[keep]
+    if closed and len(arr) > 1 and np.linalg.norm(arr[-1] - arr[0]) <= tol.COINCIDENT * scale:
+        arr = arr[:-1]
+    need = max(min_points, 3 if closed else 2)
+    if len(arr) < need:
+        kind = "loop" if closed else "stroke"
+        raise InvalidCurveError(f"{name}: a {kind} needs at least {need} distinct points, got {len(arr)}")
+    return arr
+
+
+def scale_of(*curves):
+    """Diagonal of the bounding box of all given curves (the unit of relative tolerances).
+
+    Parameters
+    ----------
+    *curves : ndarray, shape (N_i, 2)
+
+    Returns
+    -------
+    float
+        Strictly positive (1.0 for a single point).
+    """
+    pts = np.concatenate([np.asarray(c, dtype=np.float64).reshape(-1, 2) for c in curves])
+    diag = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
+    return diag if diag > 0 else 1.0
+
+
+def edges(curve, closed):
+    """Edge vectors.
+
+    Returns
+    -------
+    ndarray, shape (N - 1, 2) for a stroke, (N, 2) for a loop
+        ``edges[i] = curve[i + 1] - curve[i]`` (for a loop the last edge closes it).
+    """
+    nxt = np.roll(curve, -1, axis=0) if closed else curve[1:]
+    return nxt - (curve if closed else curve[:-1])
+
+
+def edge_lengths(curve, closed):
+    """Lengths of :func:`edges`, shape (E,)."""
+    return np.linalg.norm(edges(curve, closed), axis=1)
+
+
+def cumulative_length(curve, closed):
+    """Arc length at each vertex.
+
+    Returns
+    -------
+    ndarray, shape (N,) for a stroke, (N + 1,) for a loop
+        Starts at 0; for a loop the last entry is the total length (back at vertex 0).
+    """
+    return np.concatenate([[0.0], np.cumsum(edge_lengths(curve, closed))])
+
+
+def curve_length(curve, closed):
+    """Total arc length (float)."""
+    return float(edge_lengths(curve, closed).sum())
+
+
+def locate(curve, closed, s, cum=None):
+    """Edge index and fraction along it for arc-length parameters.
+
+    Parameters
+    ----------
+    curve : ndarray, shape (N, 2)
+    closed : bool
+    s : array_like, shape (K,)
+        Arc-length positions; taken modulo the length for a loop, clipped for a stroke.
+    cum : ndarray, optional
+        :func:`cumulative_length` if already known.
+
+    Returns
+    -------
+    edge : ndarray of int, shape (K,)
+    frac : ndarray of float, shape (K,)
+        The point is ``curve[edge] + frac * edges[edge]``.
+    """
+    if cum is None:
+        cum = cumulative_length(curve, closed)
+    total = cum[-1]
+    s = np.asarray(s, dtype=np.float64)
+    s = np.mod(s, total) if closed else np.clip(s, 0.0, total)
+    n_edges = len(cum) - 1
+    edge = np.clip(np.searchsorted(cum, s, side="right") - 1, 0, n_edges - 1)
+    length = cum[edge + 1] - cum[edge]
+    frac = np.divide(s - cum[edge], length, out=np.zeros_like(s), where=length > 0)
+    return edge, np.clip(frac, 0.0, 1.0)
+
+
+def point_at(curve, closed, s, cum=None):
+    """Points at arc-length parameters ``s``, shape (K, 2) (see :func:`locate`)."""
+    edge, frac = locate(curve, closed, s, cum)
+    ev = edges(curve, closed)
+    return curve[edge] + frac[:, None] * ev[edge]
+
+
+def default_spacing(*curves, closed=False):
+    """A geodesic sample spacing suited to the curves.
+
+    The median input edge length, clamped so that the longest curve gets between
+    ``tolerances.DEFAULT_SAMPLES_MIN`` and ``DEFAULT_SAMPLES_MAX`` samples.
+
+    Returns
+    -------
+    float
+    """
+    lengths = [curve_length(c, closed) for c in curves]
+    longest = max(lengths)
+    med = float(np.median(np.concatenate([edge_lengths(c, closed) for c in curves])))
+    return float(np.clip(med, longest / tol.DEFAULT_SAMPLES_MAX, longest / tol.DEFAULT_SAMPLES_MIN))
+
+
+def _catmull_rom(curve, closed, edge, frac):
+    """Centripetal Catmull-Rom spline through the vertices, at (edge, frac) (shape (K, 2)).
+
+    Resampling on this spline instead of on the chords keeps new samples on the smooth curve
+    the polyline approximates (second-order closer on a circle), and it passes through every
+    original vertex, so corners stay where they were drawn.
+    """
+    n = len(curve)
+    if closed:
+        idx = (edge[:, None] + np.arange(-1, 3)[None, :]) % n
+        ctrl = curve[idx]
+    else:
+        ext = np.concatenate([[2 * curve[0] - curve[1]], curve, [2 * curve[-1] - curve[-2]]])
+        ctrl = ext[edge[:, None] + np.arange(0, 4)[None, :]]
+    p0, p1, p2, p3 = (ctrl[:, k] for k in range(4))
+    d01 = np.maximum(np.linalg.norm(p1 - p0, axis=1) ** 0.5, 1e-12)
+    d12 = np.maximum(np.linalg.norm(p2 - p1, axis=1) ** 0.5, 1e-12)
+    d23 = np.maximum(np.linalg.norm(p3 - p2, axis=1) ** 0.5, 1e-12)
+    t0, t1 = np.zeros_like(d01), d01
+    t2, t3 = t1 + d12, t1 + d12 + d23
+    t = (t1 + frac * d12)[:, None]
+    t0, t1, t2, t3 = (v[:, None] for v in (t0, t1, t2, t3))
+    # Barry-Goldman pyramid.
+    a1 = ((t1 - t) * p0 + (t - t0) * p1) / (t1 - t0)
+    a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1)
+    a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2)
+    b1 = ((t2 - t) * a1 + (t - t0) * a2) / (t2 - t0)
+    b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
+    return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
+
+
+def resample(curve, closed, spacing=None, count=None, smooth=True):
+    """Resample at uniform arc length.
+
+    Parameters
+    ----------
+    curve : ndarray, shape (N, 2)
+    closed : bool
+    spacing : float, optional
+        Target geodesic distance between samples; the count is rounded so the spacing is uniform.
+    count : int, optional
+        Number of samples instead of a spacing (for a stroke, both endpoints included).
+    smooth : bool
+        Place samples on the centripetal Catmull-Rom spline through the vertices (default)
+        rather than on the straight edges.
+
+    Returns
+    -------
+    ndarray, shape (K, 2)
+        For a stroke the first and last samples are the endpoints; a loop starts at vertex 0 and
+        does not repeat it.
+    """
+    cum = cumulative_length(curve, closed)
+    total = cum[-1]
+    if count is None:
+        if spacing is None or not spacing > 0:
+            raise InvalidCurveError(f"spacing must be a positive number, got {spacing!r}")
+        count = int(round(total / spacing)) + (0 if closed else 1)
+    count = max(int(count), 3 if closed else 2)
+    if closed:
+        s = np.arange(count) * (total / count)
+    else:
+        s = np.linspace(0.0, total, count)
+    edge, frac = locate(curve, closed, s, cum)
+    if smooth and len(curve) >= 3:
+        out = _catmull_rom(curve, closed, edge, frac)
+    else:
+        out = curve[edge] + frac[:, None] * edges(curve, closed)[edge]
+    if not closed:
+        out[0], out[-1] = curve[0], curve[-1]
+    return out
+
+
+def subdivide(curve, closed, steps=1):
+    """Interpolating four-point subdivision (Dyn, Levin and Gregory, weight 1/16).
+
+    Every step keeps the existing vertices and inserts one new vertex per edge, so the drawn
+    points stay on the curve while the polyline becomes smoother. At a stroke's ends the
+    missing neighbour is extrapolated linearly.
+
+    Parameters
+    ----------
+    curve : ndarray, shape (N, 2)
+    closed : bool
+    steps : int
+
+    Returns
+    -------
+    ndarray, shape (M, 2)
+        ``M = 2^steps N`` for a loop, ``2^steps (N - 1) + 1`` for a stroke.
+    """
+    out = np.asarray(curve, dtype=np.float64)
+    for _ in range(int(steps)):
+        if closed:
+            a, b, c, d = (np.roll(out, k, axis=0) for k in (1, 0, -1, -2))
+        else:
+            ext = np.concatenate([[2 * out[0] - out[1]], out, [2 * out[-1] - out[-2]]])
+            a, b, c, d = ext[:-3], ext[1:-2], ext[2:-1], ext[3:]
+        mid = (9.0 * (b + c) - (a + d)) / 16.0
+        n_new = len(out) if closed else len(out) - 1
+        res = np.empty((len(out) + n_new, 2))
+        res[0::2] = out
+        res[1::2] = mid
+        out = res
+    return out
+
+
+def densify(curve, closed, spacing):
+    """Subdivide a coarse polyline until no edge is much longer than ``spacing``.
+
+    At most ``tolerances.SUBDIVIDE_MAX_STEPS`` steps; a dense curve is returned unchanged.
+
+    Returns
+    -------
+    ndarray, shape (M, 2)
+    """
+    longest = float(edge_lengths(curve, closed).max())
+    ratio = longest / (tol.SUBDIVIDE_EDGE_RATIO * spacing)
+    steps = 0 if ratio <= 1 else min(int(np.ceil(np.log2(ratio))), tol.SUBDIVIDE_MAX_STEPS)
+    return subdivide(curve, closed, steps) if steps else curve
+
+
+def signed_area(loop):
+    """Shoelace area: positive for counter-clockwise loops (float)."""
+    x, y = loop[:, 0], loop[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def orient_clockwise(loop):
+    """The loop traversed clockwise (the paper's convention), shape (N, 2); a copy."""
+    return loop[::-1].copy() if signed_area(loop) > 0 else loop.copy()
+
+
+def reverse(curve, closed):
+    """The same curve traversed backwards; a loop keeps its first vertex. Shape (N, 2)."""
+    if closed:
+        return np.concatenate([curve[:1], curve[:0:-1]])
+    return curve[::-1].copy()
+
+
+def _left(v):
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def _unit(v):
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return np.divide(v, n, out=np.zeros_like(v), where=n > 0)
+
+
+def edge_normals(curve, closed):
+    """Unit left normals of the edges (tangent turned +90 degrees), shape (E, 2)."""
+    return _left(_unit(edges(curve, closed)))
+
+
+def vertex_normals(curve, closed):
+    """Unit left normals at the vertices, shape (N, 2).
+
+    As in the paper (section 5.2), the normal at a vertex is orthogonal to the chord joining its
+    two neighbours; a stroke's endpoints use their single edge.
+    """
+    if closed:
+        chord = np.roll(curve, -1, axis=0) - np.roll(curve, 1, axis=0)
+    else:
+        chord = np.empty_like(curve)
+        chord[1:-1] = curve[2:] - curve[:-2]
+        chord[0] = curve[1] - curve[0]
+        chord[-1] = curve[-1] - curve[-2]
+    return _left(_unit(chord))
+
+
+def turning_angles(curve, closed):
+    """Signed exterior angle at each interior vertex (counter-clockwise positive).
+
+    Returns
+    -------
+    ndarray, shape (N,) for a loop, (N - 2,) for a stroke
+        Angle from edge ``i - 1`` to edge ``i`` at vertex ``i``.
+    """
+    ev = edges(curve, closed)
+    prev = np.roll(ev, 1, axis=0) if closed else ev[:-1]
+    nxt = ev if closed else ev[1:]
+    cross = prev[:, 0] * nxt[:, 1] - prev[:, 1] * nxt[:, 0]
+    dot = np.einsum("ij,ij->i", prev, nxt)
+    return np.arctan2(cross, dot)
+
+
+def points_in_loop(points, loop):
+    """Even-odd test: which points lie inside a loop.
+
+    Parameters
+    ----------
+    points : ndarray, shape (K, 2)
+    loop : ndarray, shape (N, 2)
+
+    Returns
+    -------
+    ndarray of bool, shape (K,)
+    """
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    a = loop
+    b = np.roll(loop, -1, axis=0)
+    inside = np.zeros(len(points), dtype=bool)
+    # Chunk over points to bound memory at K x N.
+    chunk = max(1, 2_000_000 // max(len(loop), 1))
+    for start in range(0, len(points), chunk):
+        px = points[start : start + chunk, 0:1]
+        py = points[start : start + chunk, 1:2]
+        straddle = (a[:, 1] > py) != (b[:, 1] > py)
+        dy = b[:, 1] - a[:, 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x_cross = a[:, 0] + (py - a[:, 1]) * (b[:, 0] - a[:, 0]) / dy
+        hits = straddle & (px < x_cross)
+        inside[start : start + chunk] = (hits.sum(axis=1) % 2) == 1
+    return inside

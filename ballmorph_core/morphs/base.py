@@ -1,0 +1,115 @@
+"""The one morph interface every method implements, and the method registry."""
+
+import numpy as np
+
+from ..curves import as_curve
+from ..options import check_option
+
+__all__ = ["Morph", "PathMorph", "register", "registered", "build"]
+
+_REGISTRY = {}
+
+
+def register(name):
+    """Class or function decorator: ``name`` builds a morph with ``builder(P, Q, closed, spacing,
+    sampling, **options)``."""
+
+    def deco(builder):
+        _REGISTRY[name] = builder
+        return builder
+
+    return deco
+
+
+def registered():
+    """Names of the registered methods, in registration order (tuple of str)."""
+    return tuple(_REGISTRY)
+
+
+def build(P, Q, method, closed, spacing, sampling, **options):
+    """Validate the inputs and call the method's builder (see :func:`make_morph`)."""
+    check_option("method", method, registered())
+    P = as_curve(P, "P", closed)
+    Q = as_curve(Q, "Q", closed)
+    return _REGISTRY[method](P, Q, closed=closed, spacing=spacing, sampling=sampling, **options)
+
+
+class Morph:
+    """A morph from P to Q.
+
+    Calling it at ``t`` in [0, 1] gives the in-between curve as ``(K, 2)`` samples, in the same
+    order for every ``t`` (sample ``i`` of every frame is the same material point), so frames can
+    be compared, stacked into a surface, or written as strokes with interpolated attributes.
+
+    Attributes
+    ----------
+    method : str
+    closed : bool
+        Whether every frame is a loop.
+    """
+
+    method = "?"
+
+    def __init__(self, closed):
+        self.closed = bool(closed)
+
+    def __call__(self, t):
+        """In-between curve at ``t``, shape (K, 2)."""
+        t = float(t)
+        if not np.isfinite(t):
+            raise ValueError(f"t must be a finite number, got {t!r}")
+        return self._frame(min(max(t, 0.0), 1.0))
+
+    def _frame(self, t):
+        raise NotImplementedError
+
+    def frames(self, ts):
+        """In-between curves at several times, shape (T, K, 2)."""
+        return np.stack([self(t) for t in np.atleast_1d(ts)])
+
+    @property
+    def p(self):
+        """Samples on P (the frame at t=0), shape (K, 2)."""
+        return self(0.0)
+
+    @property
+    def q(self):
+        """Their images on Q (the frame at t=1), shape (K, 2)."""
+        return self(1.0)
+
+    def __len__(self):
+        return len(self.p)
+
+
+class PathMorph(Morph):
+    """A morph whose samples each travel along their own path at constant speed.
+
+    Parameters
+    ----------
+    method : str
+    closed : bool
+    paths : BallPaths, LinearPaths or SampledPaths
+        Anything with ``at(t) -> (K, 2)``, ``start``, ``end`` and ``lengths()``.
+    correspondence : object, optional
+        What the paths were built from (for example a ball-map Correspondence).
+    """
+
+    def __init__(self, method, closed, paths, correspondence=None):
+        super().__init__(closed)
+        self.method = method
+        self.paths = paths
+        self.correspondence = correspondence
+
+    def _frame(self, t):
+        return self.paths.at(t)
+
+    @property
+    def p(self):
+        return self.paths.start
+
+    @property
+    def q(self):
+        return self.paths.end
+
+    def __len__(self):
+        return len(self.paths)

@@ -1,0 +1,282 @@
+"""Vertex trajectories: the five ball-morph paths of paper section 4.2, and sampled paths.
+
+For a contact pair ``(p, m, q)`` with ``|m - p| = |m - q| = r``:
+
+* ``'hat'``: p -> m -> q;
+* ``'linear'``: the segment pq;
+* ``'tangent'``: the shorter arc of the disk's boundary from p to q;
+* ``'circular'``: the arc leaving p along pm and reaching q along mq, orthogonal to both curves;
+  its centre is where the tangents of P at p and of Q at q meet. It degenerates to the segment
+  pq when p, m, q are collinear (parallel tangents): the formula below uses a ratio of sincs,
+  so it passes through that case without a branch;
+* ``'parabolic'``: the quadratic Bezier curve with control points p, m, q.
+
+Every path is traversed at uniform arc-length speed. :class:`SampledPaths` carries paths given
+as polylines (heat-propagation gradients, composite ball-morph arcs) with the same interface.
+"""
+
+import numpy as np
+
+from . import tolerances as tol
+from .options import check_option
+
+__all__ = ["KINDS", "BallPaths", "SampledPaths", "LinearPaths", "midpoint_locus"]
+
+KINDS = ("hat", "linear", "tangent", "circular", "parabolic")
+
+
+def _cross(a, b):
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def _rotate(v, angle):
+    c, s = np.cos(angle), np.sin(angle)
+    return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=1)
+
+
+def _arc_table(points):
+    """Normalised cumulative chord length along sampled paths, shape (K, S)."""
+    seg = np.linalg.norm(np.diff(points, axis=1), axis=2)
+    cum = np.concatenate([np.zeros((len(points), 1)), np.cumsum(seg, axis=1)], axis=1)
+    total = cum[:, -1:]
+    even = np.tile(np.linspace(0, 1, cum.shape[1]), (len(cum), 1))  # for paths of zero length
+    return np.divide(cum, total, out=even, where=total > 0), total[:, 0]
+
+
+def _invert_rows(table, levels):
+    """For each row of a monotone table in [0, 1], the fractional index where it reaches each level.
+
+    Parameters
+    ----------
+    table : ndarray, shape (K, S)
+    levels : ndarray, shape (J,)
+
+    Returns
+    -------
+    ndarray, shape (K, J)
+        Fractional column index in [0, S - 1].
+    """
+    k, s = table.shape
+    # One global searchsorted: shift row i by 2i so the flattened table stays sorted.
+    shift = 2.0 * np.arange(k)[:, None]
+    flat = (table + shift).ravel()
+    want = (levels[None, :] + shift).ravel()
+    idx = np.searchsorted(flat, want, side="right") - 1
+    idx = np.clip(idx - (np.repeat(np.arange(k), len(levels)) * s), 0, s - 2)
+    idx = idx.reshape(k, len(levels))
+    lo = np.take_along_axis(table, idx, axis=1)
+    hi = np.take_along_axis(table, idx + 1, axis=1)
+    span = hi - lo
+    frac = np.divide(levels[None, :] - lo, span, out=np.zeros_like(lo), where=span > 0)
+    return idx + np.clip(frac, 0.0, 1.0)
+
+
+class SampledPaths:
+    """Paths given as polylines, traversed at uniform arc length.
+
+    Parameters
+    ----------
+    points : ndarray, shape (K, S, 2)
+        Polyline of each of the K paths (S >= 2 points, first = start, last = end).
+    """
+
+    def __init__(self, points):
+        self.points = np.asarray(points, dtype=np.float64)
+        self._table, self._lengths = _arc_table(self.points)
+
+    def __len__(self):
+        return len(self.points)
+
+    @property
+    def start(self):
+        """Start points, shape (K, 2)."""
+        return self.points[:, 0]
+
+    @property
+    def end(self):
+        """End points, shape (K, 2)."""
+        return self.points[:, -1]
+
+    def lengths(self):
+        """Arc length of each path, shape (K,)."""
+        return self._lengths
+
+    def at(self, t):
+        """Positions at time ``t`` in [0, 1], shape (K, 2)."""
+        t = float(np.clip(t, 0.0, 1.0))
+        f = _invert_rows(self._table, np.array([t]))[:, 0]
+        i = np.minimum(np.floor(f).astype(np.int64), self.points.shape[1] - 2)
+        u = (f - i)[:, None]
+        rows = np.arange(len(i))
+        return (1 - u) * self.points[rows, i] + u * self.points[rows, i + 1]
+
+
+class LinearPaths:
+    """Straight paths from ``p`` to ``q`` at constant speed.
+
+    Parameters
+    ----------
+    p, q : ndarray, shape (K, 2)
+    """
+
+    def __init__(self, p, q):
+        self.p = np.asarray(p, dtype=np.float64)
+        self.q = np.asarray(q, dtype=np.float64)
+
+    def __len__(self):
+        return len(self.p)
+
+    @property
+    def start(self):
+        return self.p
+
+    @property
+    def end(self):
+        return self.q
+
+    def lengths(self):
+        """Shape (K,)."""
+        return np.linalg.norm(self.q - self.p, axis=1)
+
+    def at(self, t):
+        """Shape (K, 2)."""
+        return self.p + float(t) * (self.q - self.p)
+
+
+class BallPaths:
+    """One of the five ball-morph paths for every contact pair.
+
+    Parameters
+    ----------
+    p, m, q : ndarray, shape (K, 2)
+        Contacts on P, disk centres, contacts on Q.
+    kind : {'hat', 'linear', 'tangent', 'circular', 'parabolic'}
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> paths = BallPaths(np.array([[0.0, 0.0]]), np.array([[0.0, 1.0]]), np.array([[1.0, 1.0]]), "circular")
+    >>> paths.at(1.0).round(12).tolist()
+    [[1.0, 1.0]]
+    >>> float(paths.lengths()[0].round(6))  # a quarter circle of radius 1
+    1.570796
+    """
+
+    def __init__(self, p, m, q, kind="circular"):
+        self.kind = check_option("kind", kind, KINDS)
+        self.p = np.asarray(p, dtype=np.float64)
+        self.m = np.asarray(m, dtype=np.float64)
+        self.q = np.asarray(q, dtype=np.float64)
+        d = self.q - self.p
+        self._chord = np.linalg.norm(d, axis=1)
+        if kind == "circular":
+            # Angle phi between the start direction (p -> m) and the chord; the arc turns 2 phi.
+            u = self.m - self.p
+            self._u = np.divide(
+                u,
+                np.linalg.norm(u, axis=1, keepdims=True),
+                out=np.zeros_like(u),
+                where=np.linalg.norm(u, axis=1, keepdims=True) > 0,
+            )
+            self._phi = np.arctan2(_cross(self._u, d), np.einsum("ij,ij->i", self._u, d))
+            self._phi = np.where(self._chord > 0, self._phi, 0.0)
+        elif kind == "tangent":
+            a, b = self.p - self.m, self.q - self.m
+            self._beta = np.arctan2(_cross(a, b), np.einsum("ij,ij->i", a, b))
+        elif kind == "parabolic":
+            self._init_parabola()
+
+    def __len__(self):
+        return len(self.p)
+
+    @property
+    def start(self):
+        return self.p
+
+    @property
+    def end(self):
+        return self.q
+
+    def _speed(self, s):
+        """|B'(s)| of the Bezier curves, s of shape (K, ...)."""
+        a = (self.m - self.p)[:, None, :]
+        b = (self.q - 2 * self.m + self.p)[:, None, :]
+        return 2.0 * np.linalg.norm(a + s[..., None] * b, axis=-1)
+
+    def _init_parabola(self):
+        # Arc length L(s) tabulated with Simpson's rule; evaluated between nodes by cubic
+        # Hermite interpolation (dL/ds = speed), inverted by Newton steps from a linear guess.
+        n = tol.ARC_TABLE_SAMPLES
+        k = len(self.p)
+        s = np.linspace(0.0, 1.0, n + 1)
+        self._v = self._speed(np.broadcast_to(s, (k, n + 1)))
+        v_mid = self._speed(np.broadcast_to((s[:-1] + s[1:]) / 2, (k, n)))
+        pieces = (self._v[:, :-1] + 4 * v_mid + self._v[:, 1:]) / (6 * n)
+        self._L = np.concatenate([np.zeros((k, 1)), np.cumsum(pieces, axis=1)], axis=1)
+        self._par_len = self._L[:, -1]
+        table = np.divide(self._L, self._par_len[:, None], out=np.tile(s, (k, 1)), where=self._par_len[:, None] > 0)
+        self._s_of_tau = _invert_rows(table, s) / n
+
+    def _arc_length(self, s):
+        """L(s) per path for s of shape (K,), by cubic Hermite interpolation of the table."""
+        n = tol.ARC_TABLE_SAMPLES
+        j = np.clip(np.floor(s * n).astype(np.int64), 0, n - 1)[:, None]
+        u = s * n - j[:, 0]
+        l0, l1 = np.take_along_axis(self._L, j, 1)[:, 0], np.take_along_axis(self._L, j + 1, 1)[:, 0]
+        v0, v1 = np.take_along_axis(self._v, j, 1)[:, 0] / n, np.take_along_axis(self._v, j + 1, 1)[:, 0] / n
+        u2, u3 = u * u, u * u * u
+        return (2 * u3 - 3 * u2 + 1) * l0 + (u3 - 2 * u2 + u) * v0 + (-2 * u3 + 3 * u2) * l1 + (u3 - u2) * v1
+
+    def _parabola_parameter(self, t):
+        f = t * tol.ARC_TABLE_SAMPLES
+        j = min(int(f), tol.ARC_TABLE_SAMPLES - 1)
+        u = f - j
+        s = (1 - u) * self._s_of_tau[:, j] + u * self._s_of_tau[:, j + 1]
+        target = t * self._par_len
+        for _ in range(2):
+            speed = self._speed(s[:, None])[:, 0]
+            step = np.divide(self._arc_length(s) - target, speed, out=np.zeros_like(s), where=speed > 0)
+            s = np.clip(s - step, 0.0, 1.0)
+        return s
+
+    def lengths(self):
+        """Arc length of each path, shape (K,)."""
+        r = np.linalg.norm(self.m - self.p, axis=1)
+        if self.kind == "linear":
+            return self._chord
+        if self.kind == "hat":
+            return 2 * r
+        if self.kind == "tangent":
+            return r * np.abs(self._beta)
+        if self.kind == "circular":
+            return self._chord / np.sinc(self._phi / np.pi)
+        return self._par_len
+
+    def at(self, t):
+        """Positions at time ``t`` in [0, 1] (uniform arc-length speed), shape (K, 2)."""
+        t = float(np.clip(t, 0.0, 1.0))
+        p, m, q = self.p, self.m, self.q
+        if self.kind == "linear":
+            return p + t * (q - p)
+        if self.kind == "hat":
+            return p + 2 * t * (m - p) if t <= 0.5 else m + (2 * t - 1) * (q - m)
+        if self.kind == "tangent":
+            return m + _rotate(p - m, self._beta * t)
+        if self.kind == "circular":
+            # Chord from p to the point reached after turning 2 phi t:
+            # length |d| sin(phi t) / sin(phi), direction u turned by phi t.
+            ratio = t * np.sinc(self._phi * t / np.pi) / np.sinc(self._phi / np.pi)
+            return p + (self._chord * ratio)[:, None] * _rotate(self._u, self._phi * t)
+        # Parabolic: Bezier parameter reached at arc-length fraction t.
+        s = self._parabola_parameter(t)[:, None]
+        return (1 - s) ** 2 * p + 2 * s * (1 - s) * m + s**2 * q
+
+
+def midpoint_locus(p, m, q, kind):
+    """Midpoints of the paths (paper section 4.2), shape (K, 2).
+
+    ``'hat'`` gives the medial axis M (the centres themselves), ``'linear'`` the midpoint
+    locus L of Asada and Brady, ``'tangent'`` Leyton's PISA T, ``'circular'`` N and
+    ``'parabolic'`` B.
+    """
+    return BallPaths(p, m, q, kind).at(0.5)

@@ -1,0 +1,353 @@
+"""Ball-map correspondence: analytic cases, invariants, property-based checks (issue 2)."""
+
+import numpy as np
+import pytest
+from hypothesis import assume, given
+from hypothesis import strategies as st
+from shapes import (
+    circle,
+    distance_to_polyline,
+    graph_slope,
+    graph_stroke,
+    polar_loop,
+    polar_tangent,
+)
+
+import ballmorph_core as bm
+from ballmorph_core import tolerances as tol
+from ballmorph_core.curves import vertex_normals
+from ballmorph_core.intersections import is_simple
+
+# ---------------------------------------------------------------- analytic cases
+
+
+@pytest.mark.parametrize("sampling", ["symmetric", "P", "Q"])
+@pytest.mark.parametrize("inner,outer", [(1.0, 3.0), (2.0, 2.5)])
+def test_concentric_circles_map_radially_with_half_gap(sampling, inner, outer):
+    corr = bm.ball_map(circle(inner, 180), circle(outer, 240), closed=True, sampling=sampling)
+    ang_p = np.arctan2(corr.p[:, 1], corr.p[:, 0])
+    ang_q = np.arctan2(corr.q[:, 1], corr.q[:, 0])
+    assert np.abs(np.angle(np.exp(1j * (ang_p - ang_q)))).max() < 1e-5
+    np.testing.assert_allclose(corr.radii, (outer - inner) / 2, rtol=1e-5)
+    np.testing.assert_allclose(np.linalg.norm(corr.centers, axis=1), (outer + inner) / 2, rtol=1e-5)
+
+
+def test_concentric_circles_all_ball_morphs_coincide():
+    P, Q = circle(1.0, 150), circle(2.0, 150)
+    morphs = [bm.make_morph(P, Q, m, closed=True) for m in ("circular-ball", "linear-ball", "parabolic-ball")]
+    for t in (0.0, 0.25, 0.5, 0.8, 1.0):
+        frames = [m(t) for m in morphs]
+        np.testing.assert_allclose(np.linalg.norm(frames[0], axis=1), 1.0 + t, atol=1e-6)
+        np.testing.assert_allclose(frames[1], frames[0], atol=1e-6)
+        np.testing.assert_allclose(frames[2], frames[0], atol=1e-6)
+
+
+def test_parallel_segments_with_shared_endpoint_caps():
+    # P is the segment from (0,0) to (4,0); Q goes up, across at height 1, and down again.
+    P = np.c_[np.linspace(0, 4, 81), np.zeros(81)]
+    Q = np.concatenate(
+        [
+            np.c_[np.zeros(20), np.linspace(0, 1, 20, endpoint=False)],
+            np.c_[np.linspace(0, 4, 80, endpoint=False), np.ones(80)],
+            np.c_[np.full(21, 4.0), np.linspace(1, 0, 21)],
+        ]
+    )
+    corr = bm.ball_map(P, Q, sampling="P", spacing=0.05)
+    middle = (corr.p[:, 0] > 0.6) & (corr.p[:, 0] < 3.4)
+    assert middle.sum() > 40
+    # Between the caps the disk touches the parallel side straight above, radius half the gap.
+    np.testing.assert_allclose(corr.radii[middle], 0.5, atol=1e-9)
+    np.testing.assert_allclose(corr.q[middle, 0], corr.p[middle, 0], atol=1e-9)
+    np.testing.assert_allclose(corr.q[middle, 1], 1.0, atol=1e-9)
+    # Near a cap the disk is tangent to both the cap and the base: r = x for x < 0.5.
+    near = (corr.p[:, 0] > 0.05) & (corr.p[:, 0] < 0.45)
+    np.testing.assert_allclose(corr.radii[near], corr.p[near, 0], atol=1e-6)
+    # Ends map to the shared endpoints with zero radius.
+    assert corr.radii[0] == 0 and corr.radii[-1] == 0
+
+
+def test_mirror_symmetric_lens_maps_each_point_to_its_mirror():
+    x = np.linspace(0, 1, 150)
+    P = np.c_[x, 0.3 * np.sin(np.pi * x)]
+    Q = np.c_[x, -0.3 * np.sin(np.pi * x)]
+    corr = bm.ball_map(P, Q)
+    np.testing.assert_allclose(corr.q[:, 0], corr.p[:, 0], atol=1e-4)
+    np.testing.assert_allclose(corr.q[:, 1], -corr.p[:, 1], atol=1e-4)
+    np.testing.assert_allclose(corr.centers[:, 1], 0.0, atol=1e-4)
+
+
+def test_reversed_stroke_and_counter_clockwise_loop_are_oriented():
+    P = graph_stroke(0.3)
+    Q = graph_stroke(-0.2)[::-1]
+    corr = bm.ball_map(P, Q)
+    assert corr.setup.reversed_q
+    np.testing.assert_allclose(corr.q[0], P[0], atol=1e-12)
+    loop = bm.ball_map(circle(1.0)[::-1], circle(2.0), closed=True)
+    assert not loop.setup.reversed_p and loop.setup.reversed_q
+
+
+def test_input_is_not_mutated():
+    P, Q = graph_stroke(0.3), graph_stroke(-0.2)
+    P0, Q0 = P.copy(), Q.copy()
+    bm.make_morph(P, Q, "circular-ball")(0.5)
+    np.testing.assert_array_equal(P, P0)
+    np.testing.assert_array_equal(Q, Q0)
+
+
+# ---------------------------------------------------------------- configurations
+
+
+def test_classify_one_example_per_configuration():
+    c = circle(1.0, 100)
+    assert bm.classify(c, 2 * c, closed=True) == "disjoint-loops"
+    assert bm.classify(c, c + [0.6, 0.0], closed=True) == "crossing-loops"
+    assert bm.classify(c, c + [3.0, 0.0], closed=True) == "invalid"  # insides do not overlap
+    assert bm.classify(graph_stroke(0.3), graph_stroke(-0.3), closed=False) == "quasi-disjoint-strokes"
+    wavy = graph_stroke(0.0, (0.2,))
+    assert bm.classify(graph_stroke(0.1), wavy, closed=False) == "crossing-strokes"
+    assert bm.classify(graph_stroke(0.1), graph_stroke(0.1) + [0, 1], closed=False) == "invalid"
+    figure8 = np.c_[
+        np.sin(np.linspace(0, 2 * np.pi, 100, endpoint=False)),
+        np.sin(2 * np.linspace(0, 2 * np.pi, 100, endpoint=False)),
+    ]
+    assert bm.classify(figure8, 3 * c, closed=True) == "invalid"
+
+
+def test_crossing_loops_with_two_intersection_components_are_invalid():
+    # A long thin ellipse crossing a ring-like bean twice on each side: i(P) & i(Q) splits.
+    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
+    bean = np.c_[np.cos(t), 0.25 * np.sin(t) + 0.6 * np.cos(t) ** 2 - 0.3]
+    bar = np.c_[0.2 * np.cos(t), 1.2 * np.sin(t)] + [0.0, 0.05]
+    # Two separate overlaps would make it invalid; a single lens keeps it valid.
+    config = bm.classify(bean, bar, closed=True)
+    assert config in ("crossing-loops", "invalid")
+    u = np.c_[np.cos(t), np.sin(t)] * [1.0, 0.3]
+    v = np.c_[np.cos(t), np.sin(t)] * [0.3, 1.0]
+    # Two crossed ellipses meet at 4 points; i(P) & i(Q) is one square-ish region: valid.
+    assert bm.classify(u, v, closed=True) == "crossing-loops"
+
+
+def test_incompatible_pair_is_rejected_naming_where():
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    P = circle(1.0, 300)
+    bump = 3.0 - 1.7 * np.exp(-(np.angle(np.exp(1j * t)) ** 2) / 0.005)
+    Q = np.c_[bump * np.cos(t), bump * np.sin(t)]
+    with pytest.raises(bm.IncompatibleCurvesError) as err:
+        bm.ball_map(P, Q, closed=True)
+    report = err.value.report
+    assert not report.compatible and report.violations
+    # The violations are next to the bump (angle 0), and the message gives coordinates.
+    angles = [abs(np.arctan2(v.p[1], v.p[0])) for v in report.violations]
+    assert max(angles) < 0.8
+    assert "not b-compatible" in str(err.value) and "near P(" in str(err.value)
+    # Without the check the map is still produced and carries the report.
+    corr = bm.ball_map(P, Q, closed=True, check=False)
+    assert corr.report.violations
+
+
+def test_strokes_without_shared_endpoints_are_rejected():
+    with pytest.raises(bm.IncompatibleCurvesError, match="share both endpoints"):
+        bm.ball_map(graph_stroke(0.3), graph_stroke(-0.3) + [0.1, 0.0])
+
+
+@pytest.mark.parametrize(
+    "bad,match",
+    [
+        (np.zeros((0, 2)), "no points"),
+        (np.array([[0.0, 0.0]]), "at least 2"),
+        (np.array([[0.0, 0.0], [0.0, 0.0], [0.0, 0.0]]), "at least 2"),
+        (np.array([[0.0, 0.0], [np.nan, 1.0]]), "not finite"),
+        (np.zeros((4, 3)), "shape"),
+    ],
+)
+def test_malformed_input_raises_value_error_naming_argument(bad, match):
+    with pytest.raises(ValueError, match=match) as err:
+        bm.ball_map(bad, graph_stroke(0.3))
+    assert str(err.value).startswith("P:")
+    assert isinstance(err.value, bm.BallMorphError)
+
+
+def test_bad_option_lists_valid_values():
+    with pytest.raises(ValueError, match="'symmetric', 'P', 'Q'"):
+        bm.ball_map(graph_stroke(0.3), graph_stroke(-0.3), sampling="both")
+    with pytest.raises(ValueError, match="circular-ball"):
+        bm.make_morph(graph_stroke(0.3), graph_stroke(-0.3), method="spline")
+
+
+# ---------------------------------------------------------------- random b-compatible pairs
+
+coef = st.floats(-0.04, 0.04)
+
+
+@st.composite
+def stroke_pairs(draw):
+    hp = draw(st.floats(0.15, 0.5))
+    hq = -draw(st.floats(0.15, 0.5))
+    cp = tuple(draw(st.lists(coef, min_size=0, max_size=3)))
+    cq = tuple(draw(st.lists(coef, min_size=0, max_size=3)))
+    n_p, n_q = draw(st.integers(60, 240)), draw(st.integers(60, 240))
+    return (hp, cp, n_p), (hq, cq, n_q)
+
+
+@st.composite
+def loop_pairs(draw):
+    cp = [(draw(st.floats(-0.05, 0.05)), draw(st.floats(0, 6.28))) for _ in range(draw(st.integers(0, 3)))]
+    cq = [(draw(st.floats(-0.08, 0.08)), draw(st.floats(0, 6.28))) for _ in range(draw(st.integers(0, 3)))]
+    gap = draw(st.floats(0.3, 1.2))
+    shift = (draw(st.floats(-0.15, 0.15)), draw(st.floats(-0.15, 0.15)))
+    P = polar_loop(cp, n=draw(st.integers(80, 300)))
+    Q = polar_loop(cq, n=draw(st.integers(80, 300)), base=1.0 + gap) + np.array(shift)
+    return P, Q, (cp, 1.0, (0.0, 0.0)), (cq, 1.0 + gap, shift)
+
+
+def _check_contact_invariants(P, Q, closed, corr, slope_p=None, slope_q=None):
+    r = corr.radii
+    np.testing.assert_allclose(np.linalg.norm(corr.centers - corr.p, axis=1), r, atol=1e-9)
+    np.testing.assert_allclose(np.linalg.norm(corr.centers - corr.q, axis=1), r, rtol=1e-3, atol=1e-6)
+    # Contacts lie on the curves (on the smooth curve through the vertices: within a fraction
+    # of an edge of the polyline, the sagitta of a coarse polyline).
+    edge = max(np.linalg.norm(np.diff(P, axis=0), axis=1).max(), np.linalg.norm(np.diff(Q, axis=0), axis=1).max())
+    assert distance_to_polyline(corr.p, P, closed).max() < 0.1 * edge
+    assert distance_to_polyline(corr.q, Q, closed).max() < 0.1 * edge
+    # Maximality: no point of P or Q inside any disk, beyond the documented slack (a disk may be
+    # entered by DISK_PENETRATION dense spacings near its contacts, NONLOCAL_PENETRATION away).
+    fine_p = bm.curves.resample(P, closed, count=4 * len(P))
+    fine_q = bm.curves.resample(Q, closed, count=4 * len(Q))
+    pts = np.concatenate([fine_p, fine_q])
+    d = np.linalg.norm(pts[None, :, :] - corr.centers[:, None, :], axis=2).min(axis=1)
+    assert np.all(d >= r - tol.NONLOCAL_PENETRATION * corr.spacing / 2 - 1e-9)
+    # m - p is normal to P at p and m - q normal to Q at q.
+    big = r > 0.2 * r.max()
+    for pts_, slope in ((corr.p, slope_p), (corr.q, slope_q)):
+        v = corr.centers[big] - pts_[big]
+        v /= np.linalg.norm(v, axis=1, keepdims=True)
+        if slope is not None:
+            tangent = np.c_[np.ones(big.sum()), slope(pts_[big, 0])]
+            tangent /= np.linalg.norm(tangent, axis=1, keepdims=True)
+            assert np.abs(np.einsum("ij,ij->i", v, tangent)).max() < 2e-2
+
+
+@given(stroke_pairs())
+def test_random_stroke_pairs_contact_invariants(pair):
+    (hp, cp, n_p), (hq, cq, n_q) = pair
+    P, Q = graph_stroke(hp, cp, n_p), graph_stroke(hq, cq, n_q)
+    try:
+        corr = bm.ball_map(P, Q)
+    except bm.IncompatibleCurvesError:
+        assume(False)
+    _check_contact_invariants(
+        P,
+        Q,
+        False,
+        corr,
+        lambda x: graph_slope(x, hp, cp),
+        lambda x: graph_slope(x, hq, cq),
+    )
+
+
+@given(loop_pairs())
+def test_random_loop_pairs_contact_invariants(pair):
+    P, Q, shape_p, shape_q = pair
+    try:
+        corr = bm.ball_map(P, Q, closed=True)
+    except bm.IncompatibleCurvesError:
+        assume(False)
+    _check_contact_invariants(P, Q, True, corr)
+    # m - p is normal to P at p, m - q normal to Q at q (analytic tangents of the polar curves).
+    for pts, shape in ((corr.p, shape_p), (corr.q, shape_q)):
+        v = (corr.centers - pts) / corr.radii[:, None]
+        tangent = polar_tangent(pts, *shape)
+        assert np.abs(np.einsum("ij,ij->i", v, tangent)).max() < 2e-2
+
+
+@given(stroke_pairs())
+def test_swapping_p_and_q_gives_the_inverse_correspondence(pair):
+    (hp, cp, n_p), (hq, cq, n_q) = pair
+    P, Q = graph_stroke(hp, cp, n_p), graph_stroke(hq, cq, n_q)
+    try:
+        fwd = bm.ball_map(P, Q)
+        bwd = bm.ball_map(Q, P)
+    except bm.IncompatibleCurvesError:
+        assume(False)
+    # Symmetric sampling: the same contact pairs, roles swapped. (Where a forward and a
+    # backward contact tie exactly, e.g. mirror-symmetric curves, either may be kept: they agree
+    # to the discretisation error, far below the spacing.)
+    assert len(bwd) == len(fwd)
+    np.testing.assert_allclose(bwd.p, fwd.q, atol=1e-2 * fwd.spacing)
+    np.testing.assert_allclose(bwd.q, fwd.p, atol=1e-2 * fwd.spacing)
+    # Asymmetric sampling: the backward pairs still lie on the forward correspondence.
+    back = bm.ball_map(Q, P, sampling="P")
+    s_q_interp = np.interp(back.s_q, fwd.s_p, fwd.s_q)
+    assert np.abs(s_q_interp - back.s_p).max() < 2 * fwd.spacing
+
+
+@given(loop_pairs())
+def test_swapping_loops_gives_the_inverse_correspondence(pair):
+    P, Q = pair[:2]
+    try:
+        fwd = bm.ball_map(P, Q, closed=True, sampling="P")
+        bwd = bm.ball_map(Q, P, closed=True, sampling="P")
+    except bm.IncompatibleCurvesError:
+        assume(False)
+    # Every backward pair (q -> p) is also a pair of the forward map.
+    d = np.linalg.norm(fwd.p[None] - bwd.q[:, None], axis=2)
+    nearest = np.argmin(d, axis=1)
+    # p of the backward map lies between two forward samples, so compare its image.
+    gap = np.linalg.norm(fwd.q[nearest] - bwd.p, axis=1)
+    assert gap.max() < 3 * fwd.spacing * max(1.0, fwd.radii.max())
+
+
+@pytest.mark.parametrize("kind", ["circular", "parabolic", "linear"])
+@given(pair=stroke_pairs())
+def test_random_morph_endpoints_orthogonality_speed_and_simplicity(kind, pair):
+    (hp, cp, n_p), (hq, cq, n_q) = pair
+    P, Q = graph_stroke(hp, cp, n_p), graph_stroke(hq, cq, n_q)
+    try:
+        morph = bm.make_morph(P, Q, f"{kind}-ball")
+    except bm.IncompatibleCurvesError:
+        assume(False)
+    corr = morph.correspondence
+    np.testing.assert_allclose(morph(0.0), corr.p, atol=1e-12)
+    assert distance_to_polyline(morph(1.0), Q, False).max() < 1e-3
+    ts = np.linspace(0, 1, 101)
+    frames = morph.frames(ts)
+    # Uniform arc-length speed along each trajectory (chords of 1/100 of a path differ from
+    # its arc by far less than the tolerance).
+    steps = np.linalg.norm(np.diff(frames, axis=0), axis=2)
+    moving = steps.mean(axis=0) > 1e-6
+    rel = (steps.max(axis=0) - steps.min(axis=0))[moving] / steps.mean(axis=0)[moving]
+    assert rel.max() < 1e-3
+    # Circular and parabolic paths leave P and reach Q at right angles.
+    if kind != "linear":
+        big = corr.radii > 0.2 * corr.radii.max()
+        start = morph(1e-4)[big] - morph(0.0)[big]
+        end = morph(1.0)[big] - morph(1 - 1e-4)[big]
+        n_p, n_q = corr.normal_p[big], corr.normal_q[big]
+        cos_p = np.einsum("ij,ij->i", start, n_p) / np.linalg.norm(start, axis=1)
+        cos_q = np.einsum("ij,ij->i", end, -n_q) / np.linalg.norm(end, axis=1)
+        assert cos_p.min() > 0.999 and cos_q.min() > 0.999
+    # In-between frames of a b-compatible pair do not self-intersect.
+    for frame in frames[1:-1:10]:
+        assert is_simple(frame, False)
+
+
+@given(loop_pairs())
+def test_random_loop_morph_frames_are_simple_and_closed_end_on_q(pair):
+    P, Q = pair[:2]
+    try:
+        morph = bm.make_morph(P, Q, "circular-ball", closed=True)
+    except bm.IncompatibleCurvesError:
+        assume(False)
+    edge = max(np.linalg.norm(np.diff(P, axis=0), axis=1).max(), np.linalg.norm(np.diff(Q, axis=0), axis=1).max())
+    assert distance_to_polyline(morph(0.0), P, True).max() < 0.1 * edge
+    assert distance_to_polyline(morph(1.0), Q, True).max() < 0.1 * edge
+    for t in (0.2, 0.5, 0.8):
+        assert is_simple(morph(t), True)
+
+
+def test_vertex_normals_are_unit_and_orthogonal_on_a_circle():
+    c = circle(2.0, 64)
+    n = vertex_normals(c, True)
+    np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1.0)
+    # Left normals of a counter-clockwise circle point inwards.
+    np.testing.assert_allclose(n, -c / 2.0, atol=1e-12)
