@@ -345,7 +345,8 @@ def _refine(x, n, dst, closed, pos, r, eps):
         cy = (ab[:, 0] * ac2 - ac[:, 0] * ab2) / det
     centre = a + np.stack([cx, cy], axis=1)
     rad = np.hypot(cx, cy)
-    ok &= np.abs(det) > 1e-9 * ab2 + 1e-300
+    # Nearly straight: the polyline contact is already right, and the circle would cancel badly.
+    ok &= (np.abs(det) > 1e-9 * ab2 + 1e-300) & (np.hypot(cx, cy) < 1e4 * np.sqrt(ac2))
     w = x - centre
     wn = np.einsum("ij,ij->i", w, n)
     inside = np.einsum("ij,ij->i", dst.vnormals[j0], centre - b) > 0
@@ -370,14 +371,24 @@ def _one_way(src, dst, closed, eps):
     ((r, pos),) = lace([(src.pts, src.vnormals, dst.pts, dst.enormals, closed)], eps)
     q, s_dst, n_edge = _contacts(dst, closed, pos)
     better, r_new, q_new, s_new = _refine(src.pts, src.vnormals, dst, closed, pos, r, eps)
-    r = np.where(better, r_new, r)
-    q = np.where(better[:, None], q_new, q)
     if closed:
         lap = np.floor(s_dst / dst.length)
         s_new = np.mod(s_new, dst.length) + lap * dst.length
         # A refined contact near the seam may land on the other side of it.
         s_new = np.where(s_new - s_dst > dst.length / 2, s_new - dst.length, s_new)
         s_new = np.where(s_dst - s_new > dst.length / 2, s_new + dst.length, s_new)
+    # Refining must not break the monotone order lacing produced: where refined neighbours
+    # would step back, both fall back to their polyline contacts (which are in order).
+    for _ in range(8):
+        s_try = np.where(better, s_new, s_dst)
+        steps = np.diff(np.r_[s_try, s_try[0] + dst.length] if closed else s_try)
+        back = np.flatnonzero(steps < 0)
+        if len(back) == 0:
+            break
+        better[back] = False
+        better[(back + 1) % len(better)] = False
+    r = np.where(better, r_new, r)
+    q = np.where(better[:, None], q_new, q)
     s_dst = np.where(better, s_new, s_dst)
     ok = np.isfinite(r)
     rr = np.where(ok, r, 0.0)
@@ -411,8 +422,14 @@ def _flip(d):
     )
 
 
-def _merge(fwd, bwd, spacing, closed, len_p, len_q):
-    """Thin the union of both one-way maps into symmetric samples (paper approach 3)."""
+def _merge(fwd, bwd, spacing, closed, len_p, len_q, dense_spacing, report):
+    """Thin the union of both one-way maps into symmetric samples (paper approach 3).
+
+    The union, ordered by ``s_p + s_q``, must be a monotone chain. Pairs that step back by round-off
+    are dropped; a pair that steps back by more than ``tolerances.MAP_DISAGREEMENT`` dense
+    spacings means the forward and backward maps disagree: a maximal disk touches a curve at
+    two places (paper section 3.4), which is reported as a violation.
+    """
     bwd = _flip(bwd)  # now read from P to Q like fwd
     if closed:
         # Bring the backward pairs into the forward map's unwrapped frame.
@@ -424,9 +441,25 @@ def _merge(fwd, bwd, spacing, closed, len_p, len_q):
     allp = {k: np.concatenate([fwd[k], bwd[k]]) for k in keys}
     order = np.argsort(allp["s_src"] + allp["s_dst"], kind="stable")
     allp = {k: v[order] for k, v in allp.items()}
-    # Keep a monotone chain: drop pairs that step back on either curve (round-off zigzags).
     sp, sq = allp["s_src"], allp["s_dst"]
-    mono = (sp >= np.maximum.accumulate(sp) - 1e-12 * len_p) & (sq >= np.maximum.accumulate(sq) - 1e-12 * len_q)
+    back_p = np.maximum.accumulate(sp) - sp
+    back_q = np.maximum.accumulate(sq) - sq
+    for k in np.flatnonzero(np.maximum(back_p, back_q) > tol.MAP_DISAGREEMENT * dense_spacing):
+        curve = "P" if back_p[k] >= back_q[k] else "Q"
+        report.violations.append(
+            Violation(
+                "P+Q",
+                int(k),
+                allp["src"][k],
+                allp["dst"][k],
+                float(np.mod(sp[k], len_p) if closed else sp[k]),
+                float(np.mod(sq[k], len_q) if closed else sq[k]),
+                curve,
+                allp["src"][k] if curve == "P" else allp["dst"][k],
+                float(max(back_p[k], back_q[k])),
+            )
+        )
+    mono = (back_p <= 1e-12 * len_p) & (back_q <= 1e-12 * len_q)
     allp = {k: v[mono] for k, v in allp.items()}
     sp, sq = allp["s_src"], allp["s_dst"]
     step = np.maximum(np.abs(np.diff(sp)), np.abs(np.diff(sq)))
@@ -567,7 +600,7 @@ def ball_map(P, Q, closed=False, spacing=None, sampling="symmetric", check=True)
     elif sampling == "Q":
         out = _flip(bwd)
     else:
-        out = _merge(fwd, bwd, spacing, closed, sp.length, sq.length)
+        out = _merge(fwd, bwd, spacing, closed, sp.length, sq.length, dense_spacing, report)
     if check and report.violations:
         raise IncompatibleCurvesError(report.describe(), report)
     return Correspondence(

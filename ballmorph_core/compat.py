@@ -239,7 +239,8 @@ class Violation:
     Attributes
     ----------
     driver : str
-        ``'P'`` if the disk is that of a dense sample of P mapped to Q, ``'Q'`` for the reverse.
+        ``'P'`` if the disk is that of a dense sample of P mapped to Q, ``'Q'`` for the reverse,
+        ``'P+Q'`` where the two one-way maps disagree (a disk touching a curve twice).
     sample : int
         Index of that dense sample on its curve.
     p, q : ndarray, shape (2,)
@@ -249,9 +250,9 @@ class Violation:
     witness_curve : str
         ``'P'`` (the disk touches P twice) or ``'Q'`` (it touches Q twice).
     witness : ndarray, shape (2,)
-        A point of that curve inside the disk.
+        A point of that curve inside the disk (or touched a second time).
     depth : float
-        How far inside the disk the witness lies.
+        How far inside the disk the witness lies (or how far the two maps disagree).
     """
 
     driver: str
@@ -326,5 +327,5 @@ class CompatibilityReport:
         n = len(self.violations)
         return (
             f"not b-compatible: {n} of {self.samples} maximal disks are entered by the curves "
-            "(the medial axis of the gap bifurcates): " + "; ".join(parts) + tail
+            "or touched twice (the medial axis of the gap bifurcates): " + "; ".join(parts) + tail
         )

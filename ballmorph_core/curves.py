@@ -317,8 +317,9 @@ def signed_area(loop):
 
 
 def orient_clockwise(loop):
-    """The loop traversed clockwise (the paper's convention), shape (N, 2); a copy."""
-    return loop[::-1].copy() if signed_area(loop) > 0 else loop.copy()
+    """The loop traversed clockwise (the paper's convention), starting at the same vertex,
+    shape (N, 2); a copy."""
+    return reverse(loop, True) if signed_area(loop) > 0 else loop.copy()
 
 
 def reverse(curve, closed):

@@ -110,9 +110,15 @@ def self_crossings(curve, closed):
     Returns
     -------
     Crossings
-        ``s_a`` and ``s_b`` are the two arc-length positions of each self-intersection.
+        ``s_a`` and ``s_b`` are the two arc-length positions of each self-intersection; edge
+        indices refer to the polyline without repeated consecutive points.
     """
     scale = scale_of(curve)
+    # Repeated points (a fan of trajectories leaving one corner) are not crossings.
+    step = np.linalg.norm(np.diff(curve, axis=0), axis=1)
+    curve = curve[np.r_[True, step > tol.COINCIDENT * scale]]
+    if closed and len(curve) > 1 and np.linalg.norm(curve[-1] - curve[0]) <= tol.COINCIDENT * scale:
+        curve = curve[:-1]
     e = edges(curve, closed)
     n = len(e)
     c0 = curve[:n]
@@ -135,6 +141,7 @@ def is_simple(curve, closed):
     if len(self_crossings(curve, closed)):
         return False
     e = edges(curve, closed)
+    e = e[np.linalg.norm(e, axis=1) > 0]
     prev = np.roll(e, 1, axis=0) if closed else e[:-1]
     nxt = e if closed else e[1:]
     cross = prev[:, 0] * nxt[:, 1] - prev[:, 1] * nxt[:, 0]

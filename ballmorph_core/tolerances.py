@@ -35,6 +35,11 @@ DISK_PENETRATION = 0.05
 LOCAL_WINDOW = 16
 NONLOCAL_PENETRATION = 1.0
 
+#: In symmetric sampling, the forward (P -> Q) and backward (Q -> P) maps may disagree by this
+#: many dense spacings before the pair counts as not b-compatible there (a disk touching a curve
+#: at two places makes them disagree by much more).
+MAP_DISAGREEMENT = 1.0
+
 #: Default geodesic sample spacing: the median input edge length, clamped to
 #: [scale / DEFAULT_SAMPLES_MAX, scale / DEFAULT_SAMPLES_MIN] where scale is the longer curve.
 DEFAULT_SAMPLES_MIN = 48

@@ -13,7 +13,7 @@ echo "== lint (ruff)"
 "$bin/ruff" format --check .
 
 echo "== core tests (plain CPython, no bpy imported)"
-timeout 1200 "$py" -m pytest -q tests/core ballmorph_core
+timeout 1200 "$py" -m pytest -q tests/core
 
 echo "== extension: validate and build with Blender's own tool"
 tools/build_extension.sh

@@ -3,7 +3,7 @@
 Each module registers its methods; importing them here fixes the order of ``METHODS``.
 """
 
-from . import ball  # noqa: F401  (registers the ball-morphs)
+from . import ball, linear  # noqa: F401  (each registers its methods)
 from .base import Morph, PathMorph, build, registered
 
 __all__ = ["METHODS", "Morph", "PathMorph", "make_morph"]

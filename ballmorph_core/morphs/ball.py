@@ -3,6 +3,7 @@
 import numpy as np
 
 from ..ballmap import ball_map
+from ..curves import curve_length
 from ..trajectories import BallPaths
 from .base import PathMorph, register
 
@@ -30,11 +31,38 @@ def _in_input_order(corr, values):
     return values[::-1]
 
 
+def input_fractions(s, dense, closed, reversed_):
+    """Arc-length fractions along a curve as given, from positions on its oriented dense copy.
+
+    Parameters
+    ----------
+    s : ndarray, shape (K,)
+        Arc length on the oriented dense polyline (unwrapped for loops).
+    dense : ndarray, shape (M, 2)
+    closed, reversed_ : bool
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        In [0, 1] (loops: [0, 1), from the first vertex; oriented loops keep it, see
+        :func:`~ballmorph_core.curves.orient_clockwise`).
+    """
+    u = s / curve_length(dense, closed)
+    if closed:
+        u = np.mod(-u if reversed_ else u, 1.0)
+    elif reversed_:
+        u = 1.0 - u
+    return np.clip(u, 0.0, 1.0)
+
+
 def _builder(kind):
     def build(P, Q, closed, spacing, sampling, check=True):
         corr = ball_map(P, Q, closed=closed, spacing=spacing, sampling=sampling, check=check)
         p, m, q = (_in_input_order(corr, v) for v in (corr.p, corr.centers, corr.q))
-        return BallMorph(f"{kind}-ball", closed, BallPaths(p, m, q, kind), corr)
+        u_p = input_fractions(corr.s_p, corr.dense_p, closed, corr.setup.reversed_p)
+        u_q = input_fractions(corr.s_q, corr.dense_q, closed, corr.setup.reversed_q)
+        u_p, u_q = _in_input_order(corr, u_p), _in_input_order(corr, u_q)
+        return BallMorph(f"{kind}-ball", closed, BallPaths(p, m, q, kind), u_p, u_q, corr)
 
     return build
 

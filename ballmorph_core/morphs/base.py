@@ -46,9 +46,15 @@ class Morph:
     method : str
     closed : bool
         Whether every frame is a loop.
+    u_p, u_q : ndarray, shape (K,)
+        Where each sample comes from on P and goes to on Q, as arc-length fractions in [0, 1]
+        along the curves *as given* (from their first point, in their own direction). Used to
+        carry per-point attributes (radius, opacity, colour) along the correspondence.
     """
 
     method = "?"
+    u_p = None
+    u_q = None
 
     def __init__(self, closed):
         self.closed = bool(closed)
@@ -90,14 +96,18 @@ class PathMorph(Morph):
     closed : bool
     paths : BallPaths, LinearPaths or SampledPaths
         Anything with ``at(t) -> (K, 2)``, ``start``, ``end`` and ``lengths()``.
+    u_p, u_q : array_like, shape (K,)
+        See :class:`Morph`.
     correspondence : object, optional
         What the paths were built from (for example a ball-map Correspondence).
     """
 
-    def __init__(self, method, closed, paths, correspondence=None):
+    def __init__(self, method, closed, paths, u_p, u_q, correspondence=None):
         super().__init__(closed)
         self.method = method
         self.paths = paths
+        self.u_p = np.asarray(u_p, dtype=np.float64)
+        self.u_q = np.asarray(u_q, dtype=np.float64)
         self.correspondence = correspondence
 
     def _frame(self, t):

@@ -5,13 +5,16 @@ repository (a symlink to this checkout), and disables it afterwards: bpy 4.5 han
 exit while a Python operator class is still registered.
 """
 
+import importlib
 import os
 import sys
 import tempfile
 
-import addon_utils
 import bpy
 import pytest
+
+# Blender's own script modules are importable once bpy is.
+addon_utils = importlib.import_module("addon_utils")
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ADDON_ID = "ballmorph_inbetween"

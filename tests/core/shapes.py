@@ -64,3 +64,14 @@ def polar_tangent(points, coeffs, base=1.0, shift=(0.0, 0.0)):
         dr -= a * k * np.sin(k * t + b)
     tan = np.c_[dr * np.cos(t) - r * np.sin(t), dr * np.sin(t) + r * np.cos(t)]
     return tan / np.linalg.norm(tan, axis=1, keepdims=True)
+
+
+def graph_min_curvature_radius(height, coeffs=(), n=2000):
+    """Smallest radius of curvature of :func:`graph_stroke`'s curve (float)."""
+    x = np.linspace(0.0, 1.0, n)
+    d1 = graph_slope(x, height, coeffs)
+    d2 = -height * np.pi**2 * np.sin(np.pi * x)
+    for k, a in enumerate(coeffs, start=2):
+        d2 = d2 - a * (k * np.pi) ** 2 * np.sin(k * np.pi * x)
+    kappa = np.abs(d2) / (1 + d1**2) ** 1.5
+    return 1.0 / max(kappa.max(), 1e-12)

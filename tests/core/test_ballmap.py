@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 from shapes import (
     circle,
     distance_to_polyline,
+    graph_min_curvature_radius,
     graph_slope,
     graph_stroke,
     polar_loop,
@@ -176,16 +177,22 @@ def test_bad_option_lists_valid_values():
 
 # ---------------------------------------------------------------- random b-compatible pairs
 
-coef = st.floats(-0.04, 0.04)
+small_coef = st.floats(-0.015, 0.015)
 
 
 @st.composite
 def stroke_pairs(draw):
-    hp = draw(st.floats(0.15, 0.5))
-    hq = -draw(st.floats(0.15, 0.5))
-    cp = tuple(draw(st.lists(coef, min_size=0, max_size=3)))
-    cq = tuple(draw(st.lists(coef, min_size=0, max_size=3)))
+    """Strokes y = f(x) above and below [0, 1], b-compatible with a margin: the largest maximal
+    disk is at most 0.8 of either curve's smallest radius of curvature (near the boundary of
+    b-compatibility, at focal points, the smooth ball-map itself degenerates)."""
+    hp = draw(st.floats(0.08, 0.3))
+    hq = -draw(st.floats(0.08, 0.3))
+    cp = tuple(draw(st.lists(small_coef, min_size=0, max_size=2)))
+    cq = tuple(draw(st.lists(small_coef, min_size=0, max_size=2)))
     n_p, n_q = draw(st.integers(60, 240)), draw(st.integers(60, 240))
+    # Largest disk: at most half the largest vertical gap.
+    gap = (graph_stroke(hp, cp, 400)[:, 1] - graph_stroke(hq, cq, 400)[:, 1]).max()
+    assume(gap / 2 < 0.8 * min(graph_min_curvature_radius(hp, cp), graph_min_curvature_radius(hq, cq)))
     return (hp, cp, n_p), (hq, cq, n_q)
 
 
@@ -202,8 +209,8 @@ def loop_pairs(draw):
 
 def _check_contact_invariants(P, Q, closed, corr, slope_p=None, slope_q=None):
     r = corr.radii
-    np.testing.assert_allclose(np.linalg.norm(corr.centers - corr.p, axis=1), r, atol=1e-9)
-    np.testing.assert_allclose(np.linalg.norm(corr.centers - corr.q, axis=1), r, rtol=1e-3, atol=1e-6)
+    np.testing.assert_allclose(np.linalg.norm(corr.centers - corr.p, axis=1), r, rtol=1e-4, atol=1e-9)
+    np.testing.assert_allclose(np.linalg.norm(corr.centers - corr.q, axis=1), r, rtol=1e-4, atol=1e-9)
     # Contacts lie on the curves (on the smooth curve through the vertices: within a fraction
     # of an edge of the polyline, the sagitta of a coarse polyline).
     edge = max(np.linalg.norm(np.diff(P, axis=0), axis=1).max(), np.linalg.norm(np.diff(Q, axis=0), axis=1).max())
@@ -275,10 +282,11 @@ def test_swapping_p_and_q_gives_the_inverse_correspondence(pair):
     assert len(bwd) == len(fwd)
     np.testing.assert_allclose(bwd.p, fwd.q, atol=1e-2 * fwd.spacing)
     np.testing.assert_allclose(bwd.q, fwd.p, atol=1e-2 * fwd.spacing)
-    # Asymmetric sampling: the backward pairs still lie on the forward correspondence.
+    # Asymmetric sampling: the backward pairs still lie on the forward correspondence graph
+    # (distance in the (s_p, s_q) plane; the graph may be steep where a fan leaves a point).
     back = bm.ball_map(Q, P, sampling="P")
-    s_q_interp = np.interp(back.s_q, fwd.s_p, fwd.s_q)
-    assert np.abs(s_q_interp - back.s_p).max() < 2 * fwd.spacing
+    graph = np.c_[fwd.s_p, fwd.s_q]
+    assert distance_to_polyline(np.c_[back.s_q, back.s_p], graph, False).max() < fwd.spacing
 
 
 @given(loop_pairs())

@@ -1,0 +1,84 @@
+"""The drawing plane: strokes live in 3D, morphs happen in the plane that fits both keys.
+
+Grease Pencil strokes are usually drawn on a canvas plane (Blender's front view: XZ). We fit
+the plane through all points of both keys, morph the projected 2D curves, and lift the result
+back. Each point's small offset from the plane is kept and interpolated like any attribute, so
+slightly non-planar strokes lose nothing; strokes far from planar are reported by the caller.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Plane", "fit_plane"]
+
+
+@dataclass
+class Plane:
+    """An orthonormal frame ``(origin, u, v, normal)``.
+
+    Attributes
+    ----------
+    origin, u, v, normal : ndarray, shape (3,)
+    """
+
+    origin: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    normal: np.ndarray
+
+    def to_2d(self, points):
+        """Project points, shape (N, 3) -> coordinates (N, 2) and offsets along the normal (N,)."""
+        rel = np.asarray(points, dtype=np.float64).reshape(-1, 3) - self.origin
+        return np.stack([rel @ self.u, rel @ self.v], axis=1), rel @ self.normal
+
+    def to_3d(self, coords, offsets=None):
+        """Lift coordinates (N, 2) (and optional normal offsets (N,)) back to 3D, shape (N, 3)."""
+        coords = np.asarray(coords, dtype=np.float64).reshape(-1, 2)
+        out = self.origin + coords[:, :1] * self.u + coords[:, 1:] * self.v
+        if offsets is not None:
+            out = out + np.asarray(offsets, dtype=np.float64).reshape(-1, 1) * self.normal
+        return out
+
+
+# World-axis frames, preferred when the fitted plane is (nearly) one of them, so a drawing on
+# Blender's front canvas (XZ) maps to plain (x, z) coordinates.
+_AXIS_FRAMES = (
+    (np.array([1.0, 0, 0]), np.array([0, 0, 1.0]), np.array([0, -1.0, 0])),  # front XZ
+    (np.array([1.0, 0, 0]), np.array([0, 1.0, 0]), np.array([0, 0, 1.0])),  # top XY
+    (np.array([0, 1.0, 0]), np.array([0, 0, 1.0]), np.array([1.0, 0, 0])),  # side YZ
+)
+
+
+def fit_plane(points, axis_tolerance=1e-6):
+    """Least-squares plane through points.
+
+    Parameters
+    ----------
+    points : array_like, shape (N, 3)
+    axis_tolerance : float
+        If the fitted normal is within this (1 - |cos|) of a world axis, that axis' frame is
+        used exactly.
+
+    Returns
+    -------
+    Plane
+        For fewer than three non-collinear points the front (XZ) frame through their centroid.
+    """
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    origin = pts.mean(axis=0) if len(pts) else np.zeros(3)
+    if len(pts) >= 3:
+        _, sing, vt = np.linalg.svd(pts - origin, full_matrices=False)
+        planar_enough = sing[1] > 1e-12 * max(sing[0], 1e-300)
+    else:
+        planar_enough = False
+    if not planar_enough:
+        u, v, n = _AXIS_FRAMES[0]
+        return Plane(origin, u, v, n)
+    normal = vt[2]
+    for u, v, n in _AXIS_FRAMES:
+        if 1.0 - abs(float(normal @ n)) <= axis_tolerance:
+            return Plane(origin, u, v, n)
+    u = vt[0]
+    v = np.cross(normal, u)
+    return Plane(origin, u, v, normal)
