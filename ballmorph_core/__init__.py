@@ -8,6 +8,7 @@ from .ballmap import Correspondence, ball_map
 from .compat import CompatibilityReport, classify
 from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from .inbetween import InbetweenResult, StrokeSet, inbetween
+from .measures import measure
 from .morphs import METHODS, Morph, make_morph
 from .trajectories import BallPaths, midpoint_locus
 
@@ -19,6 +20,7 @@ __all__ = [
     "BallPaths",
     "Morph",
     "make_morph",
+    "measure",
     "midpoint_locus",
     "BallMorphError",
     "CompatibilityReport",

@@ -53,7 +53,7 @@ from .errors import IncompatibleCurvesError, InvalidCurveError
 from .options import check_option
 from .spatial import PointTree, ragged_arange
 
-__all__ = ["Correspondence", "ball_map", "SAMPLINGS", "lace"]
+__all__ = ["Correspondence", "ball_map", "SAMPLINGS", "lace", "DenseMaps", "dense_maps", "disk_between"]
 
 SAMPLINGS = ("symmetric", "P", "Q")
 
@@ -408,6 +408,59 @@ def _one_way(src, dst, closed, eps):
     )
 
 
+def _full_search(x, n, dst, closed, eps, budget=2_000_000):
+    """Smallest disk at each sample over *all* target edges (no lacing window), chunked.
+
+    Returns r (inf where none) and positions in [0, E).
+    """
+    n_edges = len(dst.enormals)
+    a = dst.pts[:n_edges]
+    b = np.roll(dst.pts, -1, axis=0)[:n_edges] if closed else dst.pts[1:]
+    r = np.full(len(x), np.inf)
+    pos = np.zeros(len(x))
+    chunk = max(1, budget // max(n_edges, 1))
+    for start in range(0, len(x), chunk):
+        sl = slice(start, start + chunk)
+        k = len(x[sl])
+        owner = np.repeat(np.arange(k), n_edges)
+        e = np.tile(np.arange(n_edges), k)
+        rr, uu = _candidates(x[sl][owner], n[sl][owner], a[e], b[e], dst.enormals[e], eps)
+        best = _segment_argmin(rr, owner, k)
+        r[sl], pos[sl] = rr[best], e[best] + uu[best]
+    return r, pos
+
+
+def _repair(one_way, src, dst, closed, eps):
+    """Redo the samples whose lacing result failed the check with an unwindowed search.
+
+    On a pair that is not b-compatible, a wrong contact at one bisection level narrows the
+    windows of the samples between it and the next anchor; those samples then fail too,
+    although their true maximal disks are fine. Searching them over the whole target curve
+    restores them, so reports and the composite ball-morph see only the real trouble.
+    """
+    idx = np.flatnonzero(one_way["bad"])
+    if len(idx) == 0:
+        return
+    x, n = src.pts[idx], src.vnormals[idx]
+    r, pos = _full_search(x, n, dst, closed, eps)
+    q, s_dst, n_edge = _contacts(dst, closed, pos)
+    better, r_new, q_new, s_new = _refine(x, n, dst, closed, pos, r, eps)
+    r = np.where(better, r_new, r)
+    q = np.where(better[:, None], q_new, q)
+    s_dst = np.where(better, s_new, s_dst)
+    if closed:
+        # Put each repaired contact on the lap nearest its old (unwrapped) position.
+        old = one_way["s_dst"][idx]
+        s_dst = s_dst + dst.length * np.round((old - s_dst) / dst.length)
+    ok = np.isfinite(r)
+    rr = np.where(ok, r, 0.0)
+    m = x + rr[:, None] * n
+    with np.errstate(invalid="ignore", divide="ignore"):
+        n_dst = np.where((rr > eps)[:, None], (m - q) / rr[:, None], n_edge)
+    for key, val in (("dst", q), ("m", m), ("r", rr), ("ok", ok), ("s_dst", s_dst), ("n_dst", n_dst)):
+        one_way[key][idx] = val
+
+
 def _flip(d):
     return dict(
         src=d["dst"],
@@ -506,6 +559,7 @@ def _check(one_way, src, dst, closed, spacing, eps, driver, report):
     depth[k[deeper]], witness[k[deeper]] = far[deeper], pi[deeper]
     bad[k] = True
     bad &= ok
+    one_way["bad"] = bad | ~ok
     other = "Q" if driver == "P" else "P"
     names = np.where(witness < len(src.pts), driver, other)
     s_src = np.mod(one_way["s_src"], src.length) if closed else one_way["s_src"]
@@ -529,6 +583,121 @@ def _check(one_way, src, dst, closed, spacing, eps, driver, report):
                 float(depth[k]) if found else float("inf"),
             )
         )
+
+
+@dataclass
+class DenseMaps:
+    """Both one-way ball-maps of a pair at the dense spacing (for the composite ball-morph).
+
+    Attributes
+    ----------
+    setup : PairSetup
+    side_p, side_q : _Side
+        Dense samples of the oriented P and Q (``pts``, ``cum``, ``length``, normals).
+    fwd, bwd : dict of ndarray
+        P -> Q and Q -> P maps: ``src``, ``dst``, ``m``, ``r``, ``s_src``, ``s_dst``,
+        ``n_src``, ``n_dst``, and ``bad`` (the sample's disk is entered or missing).
+    spacing : float
+        The dense spacing.
+    eps : float
+    report : CompatibilityReport
+    """
+
+    setup: PairSetup
+    side_p: _Side
+    side_q: _Side
+    fwd: dict
+    bwd: dict
+    spacing: float
+    eps: float
+    report: CompatibilityReport
+
+
+def dense_maps(P, Q, closed, spacing, setup=None):
+    """Compute both one-way maps of validated curves at ``spacing`` and check them (DenseMaps).
+
+    Unlike :func:`ball_map` this never raises for incompatibility: ``report`` and the ``bad``
+    masks say where the disks fail.
+    """
+    setup = orient_pair(P, Q, closed) if setup is None else setup
+    eps = tol.COINCIDENT * scale_of(P, Q)
+    sp = _prepare(setup.P, closed, setup.side_p, spacing)
+    sq = _prepare(setup.Q, closed, setup.side_q, spacing)
+    fwd = _one_way(sp, sq, closed, eps)
+    bwd = _one_way(sq, sp, closed, eps)
+    report = _checked(((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")), closed, spacing, eps)
+    return DenseMaps(setup, sp, sq, fwd, bwd, spacing, eps, report)
+
+
+def _checked(maps, closed, spacing, eps):
+    """Check one-way maps, repair lacing failures, check again (CompatibilityReport)."""
+    config = "disjoint-loops" if closed else "quasi-disjoint-strokes"
+    report = CompatibilityReport(config)
+    for one_way, src, dst, driver in maps:
+        _check(one_way, src, dst, closed, spacing, eps, driver, report)
+    if not report.violations:
+        report.samples = sum(len(m[0]["r"]) for m in maps)
+        return report
+    report = CompatibilityReport(config, samples=sum(len(m[0]["r"]) for m in maps))
+    for one_way, src, dst, driver in maps:
+        _repair(one_way, src, dst, closed, eps)
+        _check(one_way, src, dst, closed, spacing, eps, driver, report)
+    return report
+
+
+def disk_between(x0, n0, x1, n1, a, b, N, window_a, window_b, eps, iterations=40):
+    """Disks tangent to a curve between two samples that touch two other edge windows equally.
+
+    For each row, the tangent point moves along the segment from ``x0`` to ``x1`` (normal
+    interpolated) until the smallest disk touching edges ``window_a`` equals the smallest one
+    touching ``window_b`` (bisection): the maximal disk that touches the other curve twice,
+    used to bridge an incompatible stretch (paper section 7, relative blending).
+
+    Parameters
+    ----------
+    x0, n0, x1, n1 : ndarray, shape (J, 2)
+        The two samples and their unit gap normals.
+    a, b, N : ndarray, shape (E, 2)
+        Edges ``a -> b`` of the other curve with their gap normals.
+    window_a, window_b : list of ndarray of int
+        Edge indices per row.
+    eps : float
+    iterations : int
+
+    Returns
+    -------
+    x, n, r : ndarray, shapes (J, 2), (J, 2), (J,)
+        Tangent point, normal and radius of each disk.
+    qa, qb : ndarray, shape (J, 2)
+        Its contacts in the two windows.
+    """
+    lo = np.zeros(len(x0))
+    hi = np.ones(len(x0))
+
+    def evaluate(lam):
+        x = x0 + lam[:, None] * (x1 - x0)
+        n = n0 + lam[:, None] * (n1 - n0)
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
+        out = []
+        for window in (window_a, window_b):
+            counts = np.array([len(w) for w in window])
+            owner, local = ragged_arange(counts)
+            e = np.concatenate(window)
+            rr, uu = _candidates(x[owner], n[owner], a[e], b[e], N[e], eps)
+            best = _segment_argmin(rr, owner, len(x))
+            q = a[e[best]] + uu[best][:, None] * (b[e[best]] - a[e[best]])
+            out.append((rr[best], q))
+        return x, n, out
+
+    for _ in range(iterations):
+        mid = (lo + hi) / 2
+        _, _, ((ra, _), (rb, _)) = evaluate(mid)
+        # Window a is touched first at lo (ra < rb), window b first at hi.
+        first_a = ra < rb
+        lo = np.where(first_a, mid, lo)
+        hi = np.where(first_a, hi, mid)
+    x, n, ((ra, qa), (rb, qb)) = evaluate((lo + hi) / 2)
+    return x, n, np.minimum(ra, rb), qa, qb
 
 
 def ball_map(P, Q, closed=False, spacing=None, sampling="symmetric", check=True):
@@ -587,14 +756,10 @@ def ball_map(P, Q, closed=False, spacing=None, sampling="symmetric", check=True)
     sq = _prepare(setup.Q, closed, setup.side_q, dense_spacing)
     if setup.coincident:
         return _static(setup, sp, sq, spacing)
-    config = "disjoint-loops" if closed else "quasi-disjoint-strokes"
     fwd = _one_way(sp, sq, closed, eps) if sampling in ("P", "symmetric") else None
     bwd = _one_way(sq, sp, closed, eps) if sampling in ("Q", "symmetric") else None
-    report = CompatibilityReport(config)
-    for one_way, src, dst, driver in ((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")):
-        if one_way is not None:
-            report.samples += len(one_way["r"])
-            _check(one_way, src, dst, closed, dense_spacing, eps, driver, report)
+    maps = [(m, a, b, d) for m, a, b, d in ((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")) if m is not None]
+    report = _checked(maps, closed, dense_spacing, eps)
     if sampling == "P":
         out = fwd
     elif sampling == "Q":

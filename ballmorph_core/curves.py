@@ -30,6 +30,7 @@ __all__ = [
     "turning_angles",
     "points_in_loop",
     "reverse",
+    "subcurve",
 ]
 
 
@@ -403,3 +404,39 @@ def points_in_loop(points, loop):
         hits = straddle & (px < x_cross)
         inside[start : start + chunk] = (hits.sum(axis=1) % 2) == 1
     return inside
+
+
+def subcurve(curve, closed, s0, s1, cum=None):
+    """The part of a curve between two arc-length positions, as a stroke.
+
+    Parameters
+    ----------
+    curve : ndarray, shape (N, 2)
+    closed : bool
+    s0, s1 : float
+        Start and end positions. For a loop, ``s1 < s0`` (or ``s1 > length``) wraps past the
+        first vertex; ``s1 = s0 + length`` is the whole loop.
+    cum : ndarray, optional
+        :func:`cumulative_length` if already known.
+
+    Returns
+    -------
+    ndarray, shape (K, 2)
+        The point at ``s0``, the vertices strictly between, the point at ``s1``.
+    """
+    if cum is None:
+        cum = cumulative_length(curve, closed)
+    total = cum[-1]
+    if closed:
+        s0 = float(np.mod(s0, total))
+        s1 = float(s0 + np.mod(s1 - s0, total)) if not np.isclose(s1 - s0, total) else s0 + total
+        # Vertex positions over two laps, so a wrapped range is a plain slice.
+        verts = np.concatenate([curve, curve, curve[:1]])
+        vs = np.concatenate([cum[:-1], cum[:-1] + total, [2 * total]])
+    else:
+        s0, s1 = float(np.clip(s0, 0, total)), float(np.clip(s1, 0, total))
+        verts, vs = curve, cum
+    inner = (vs > s0) & (vs < s1)
+    start = point_at(curve, closed, np.array([s0]), cum)
+    end = point_at(curve, closed, np.array([s1]), cum)
+    return np.concatenate([start, verts[inner], end])

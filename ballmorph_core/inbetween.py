@@ -17,11 +17,25 @@ import numpy as np
 from . import tolerances as tol
 from .curves import as_curve, cumulative_length
 from .errors import BallMorphError, InvalidCurveError
+from .matching import MODES as MATCHINGS
+from .matching import match_strokes
 from .morphs import make_morph
 from .options import check_option
+from .pair import morph_pair
 from .plane import fit_plane
+from .registration import CARRIERS
 
-__all__ = ["StrokeSet", "Message", "PairReport", "InbetweenResult", "inbetween", "FALLBACK_METHOD"]
+__all__ = [
+    "StrokeSet",
+    "Message",
+    "PairReport",
+    "InbetweenResult",
+    "inbetween",
+    "FALLBACK_METHOD",
+    "CARRIERS",
+    "MATCHINGS",
+    "UNMATCHED",
+]
 
 #: The morph used when the requested one cannot handle a stroke pair.
 FALLBACK_METHOD = "linear-interpolation"
@@ -245,6 +259,16 @@ class _Stroke:
         self.color = strokes.vertex_color[sl]
         self.u = _fractions(self.xy, self.closed)
 
+    def reversed(self):
+        """The same stroke traversed backwards (a loop keeps its first point)."""
+        out = object.__new__(_Stroke)
+        out.__dict__.update(self.__dict__)
+        order = np.r_[0, np.arange(len(self.xy) - 1, 0, -1)] if self.closed else np.arange(len(self.xy))[::-1]
+        for name in ("xy", "depth", "radius", "opacity", "color"):
+            setattr(out, name, getattr(self, name)[order])
+        out.u = _fractions(out.xy, out.closed)
+        return out
+
     def attributes_at(self, u):
         return (
             _sample(self.depth, self.u, u, self.closed),
@@ -252,27 +276,6 @@ class _Stroke:
             _sample(self.opacity, self.u, u, self.closed),
             _sample(self.color, self.u, u, self.closed),
         )
-
-
-def _morph_pair(a, b, method, spacing):
-    """Build the morph for one pair, falling back when the requested one cannot.
-
-    Returns (morph, method_used, reason).
-    """
-    closed = a.closed and b.closed
-    reason = ""
-    try:
-        P = as_curve(a.xy, f"stroke {a.index}", closed)
-        Q = as_curve(b.xy, f"stroke {b.index}", closed)
-    except InvalidCurveError as exc:
-        return None, "dot", str(exc)
-    if a.closed != b.closed:
-        reason = "one key's stroke is cyclic and the other's is not: morphed as open strokes"
-    try:
-        return make_morph(P, Q, method, closed=closed, spacing=spacing), method, reason
-    except BallMorphError as exc:
-        reason = str(exc)
-    return make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing), FALLBACK_METHOD, reason
 
 
 def _dot_frames(a, b, times):
@@ -283,7 +286,50 @@ def _dot_frames(a, b, times):
     return [(1 - t) * xa + t * xb for t in times], u, u
 
 
-def inbetween(key_a, key_b, times, method="circular-ball", spacing=None, unmatched="MIDDLE"):
+def _pair_frames(a, b, times, method, carrier, spacing):
+    """Frames, attribute fractions and report of one stroke pair; never raises BallMorphError.
+
+    Returns (frames, u_a, u_b, closed, used, notes).
+    """
+    closed = a.closed and b.closed
+    notes = []
+    if a.closed != b.closed:
+        notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
+    try:
+        P = as_curve(a.xy, "P", closed)
+        Q = as_curve(b.xy, "Q", closed)
+    except InvalidCurveError as exc:
+        frames, ua, ub = _dot_frames(a, b, times)
+        return frames, ua, ub, False, "straight point motion", [f"too few distinct points ({exc})"]
+    try:
+        outcome = morph_pair(P, Q, closed, method, carrier, spacing)
+        morph, used = outcome.morph, outcome.used
+        notes += outcome.notes
+    except BallMorphError as exc:  # the fallback itself failed: never lose the pair
+        morph = make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing)
+        used = FALLBACK_METHOD
+        notes.append(str(exc))
+    frames = [morph(t) for t in times]
+    if not all(np.all(np.isfinite(f)) for f in frames):
+        frames, ua, ub = _dot_frames(a, b, times)
+        return frames, ua, ub, False, "straight point motion", notes + ["the morph produced non-finite points"]
+    return frames, morph.u_p, morph.u_q, morph.closed, used, notes
+
+
+#: What happens to a stroke without a partner in the other key.
+UNMATCHED = ("MIDDLE", "HOLD")
+
+
+def inbetween(
+    key_a,
+    key_b,
+    times,
+    method="circular-ball",
+    carrier="SIMILARITY",
+    matching="AUTO",
+    unmatched="MIDDLE",
+    spacing=None,
+):
     """In-between drawings of two keys.
 
     Parameters
@@ -294,11 +340,16 @@ def inbetween(key_a, key_b, times, method="circular-ball", spacing=None, unmatch
         Morph times in [0, 1] (already eased).
     method : str
         A method of :data:`~ballmorph_core.METHODS`.
-    spacing : float, optional
-        Geodesic sample spacing for every pair (default: each pair's own).
+    carrier : {'SIMILARITY', 'RIGID', 'NONE'}
+        Carrier motion for strokes that do not share endpoints (see
+        :mod:`~ballmorph_core.registration`); 'NONE' is the paper's pure ball-morph.
+    matching : {'AUTO', 'INDEX'}
+        How strokes of the two keys are paired (see :mod:`~ballmorph_core.matching`).
     unmatched : {'MIDDLE', 'HOLD'}
         A stroke without a partner appears (or disappears) at t = 0.5 ('MIDDLE'), or is held
         on every in-between ('HOLD').
+    spacing : float, optional
+        Geodesic sample spacing for every pair (default: each pair's own).
 
     Returns
     -------
@@ -306,42 +357,48 @@ def inbetween(key_a, key_b, times, method="circular-ball", spacing=None, unmatch
 
     Notes
     -----
-    Strokes are paired by index (what Blender's own interpolation does); extra strokes of the
-    key with more strokes have no partner.
+    Strokes are paired by :func:`~ballmorph_core.matching.match_strokes` (by index when the
+    counts agree and the shapes fit, as Blender does; otherwise by an optimal assignment on a
+    shape distance); a stroke of the second key running the other way is flipped first. Each
+    pair goes through :func:`~ballmorph_core.pair.morph_pair` (carrier, crossing splits,
+    composite and linear fallbacks), so a pair never aborts the others.
     """
     from .morphs import METHODS  # local: the registry is complete once the package is imported
 
     check_option("method", method, METHODS)
-    check_option("unmatched", unmatched, ("MIDDLE", "HOLD"))
+    check_option("carrier", carrier, CARRIERS)
+    check_option("matching", matching, MATCHINGS)
+    check_option("unmatched", unmatched, UNMATCHED)
     times = np.asarray(times, dtype=np.float64).reshape(-1)
     if not np.all(np.isfinite(times)):
         raise InvalidCurveError("times: must be finite numbers in [0, 1]")
     plane = fit_plane(np.concatenate([key_a.positions, key_b.positions]))
     result = InbetweenResult(frames=[[] for _ in times])
-    n_pairs = min(len(key_a), len(key_b))
-    for i in range(n_pairs):
-        a, b = _Stroke(key_a, i, plane), _Stroke(key_b, i, plane)
-        _emit_pair(result, a, b, times, method, spacing, plane)
-    extra_key, extra_is_a = (key_a, True) if len(key_a) > len(key_b) else (key_b, False)
-    for i in range(n_pairs, len(extra_key)):
-        stroke = _Stroke(extra_key, i, plane)
-        _emit_unmatched(result, stroke, extra_is_a, times, unmatched, plane)
+    strokes_a = [_Stroke(key_a, i, plane) for i in range(len(key_a))]
+    strokes_b = [_Stroke(key_b, i, plane) for i in range(len(key_b))]
+    pairing = match_strokes(
+        [s.xy for s in strokes_a],
+        [s.xy for s in strokes_b],
+        np.array([s.closed for s in strokes_a], dtype=bool),
+        np.array([s.closed for s in strokes_b], dtype=bool),
+        mode=matching,
+    )
+    if pairing.method != "index" or pairing.unmatched_a or pairing.unmatched_b:
+        result.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
+    for i, j, flip in pairing.pairs:
+        b = strokes_b[j].reversed() if flip else strokes_b[j]
+        _emit_pair(result, strokes_a[i], b, times, method, carrier, spacing, plane, flip)
+    for i in pairing.unmatched_a:
+        _emit_unmatched(result, strokes_a[i], True, times, unmatched, plane)
+    for j in pairing.unmatched_b:
+        _emit_unmatched(result, strokes_b[j], False, times, unmatched, plane)
     _check_planarity(result, key_a, key_b, plane)
     result.frames = [_assemble(parts) for parts in result.frames]
     return result
 
 
-def _emit_pair(result, a, b, times, method, spacing, plane):
-    if len(a.xy) and len(b.xy):
-        morph, used, reason = _morph_pair(a, b, method, spacing)
-    else:
-        morph, used, reason = None, "dot", "empty stroke"
-    if morph is None:
-        frames, ua, ub = _dot_frames(a, b, times)
-        closed = False
-    else:
-        frames, ua, ub = [morph(t) for t in times], morph.u_p, morph.u_q
-        closed = morph.closed
+def _emit_pair(result, a, b, times, method, carrier, spacing, plane, flipped):
+    frames, ua, ub, closed, used, notes = _pair_frames(a, b, times, method, carrier, spacing)
     da, ra, oa, ca = a.attributes_at(ua)
     db, rb, ob, cb = b.attributes_at(ub)
     for k, t in enumerate(times):
@@ -355,10 +412,13 @@ def _emit_pair(result, a, b, times, method, spacing, plane):
                 (1 - t) * ca + t * cb,
             )
         )
-    result.pairs.append(PairReport(a.index, b.index, used, reason))
-    if reason:
-        level = "INFO" if used == method else "WARNING"
-        result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {used} ({reason})"))
+    result.pairs.append(PairReport(a.index, b.index, used, "; ".join(notes)))
+    if flipped:
+        notes = ["the second key's stroke runs the other way: flipped", *notes]
+    fell_back = used.startswith(FALLBACK_METHOD) or used == "straight point motion"
+    for note in notes:
+        level = "WARNING" if fell_back and note is notes[-1] else "INFO"
+        result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {note}"))
 
 
 def _emit_unmatched(result, stroke, from_a, times, unmatched, plane):

@@ -58,3 +58,86 @@ ARC_TABLE_SAMPLES = 64
 #: Strokes whose points lie farther than this (times scale) from the fitted drawing plane are
 #: reported as non-planar.
 PLANARITY = 1e-3
+
+#: Stroke matching (ballmorph_core.matching). Costs are root-mean-square distances between
+#: corresponding arc-length samples of two strokes, once the keys' overall motion is removed,
+#: relative to the drawing size (the smaller of the two keys' bounding-box diagonals).
+#: Samples per stroke in the matching descriptor.
+MATCH_SAMPLES = 32
+#: A pair costing this much or more is never formed: both strokes stay unmatched (they appear
+#: or disappear) rather than morphing across the drawing. Equivalent to padding the
+#: assignment with dummy partners costing half of this each.
+MATCH_MAX_COST = 0.5
+#: Added to the cost of a pair where one stroke is cyclic and the other is not.
+MATCH_CYCLIC_PENALTY = 0.1
+#: 'AUTO' keeps the drawing order (pairing by index) when the counts agree, every index pair
+#: costs less than MATCH_INDEX_MAX_COST, and the index pairing's total is within
+#: MATCH_INDEX_FACTOR of the optimal assignment's.
+MATCH_INDEX_MAX_COST = 0.25
+MATCH_INDEX_FACTOR = 1.25
+#: Per pair, totals closer than this are equal (round-off of the Gram-matrix cost evaluation).
+MATCH_ROUNDOFF = 1e-6
+#: Alternations of (assign strokes, re-fit the keys' overall translation) per starting guess.
+MATCH_MOTION_ITERATIONS = 3
+
+#: Default number of time steps ``T`` (``eps = 1 / T``) at which the quality measures sample a
+#: morph (paper section 6).
+MEASURE_STEPS = 40
+
+#: Default sample count of the quality measures along the longer curve (their geodesic spacing
+#: is its length over this), independent of how densely the input was drawn.
+MEASURE_SAMPLES = 200
+
+#: Acceleration measure: a local frame triangle (sample, neighbour now, neighbour next) whose
+#: sine of its angle at the sample is below this is degenerate (the neighbour does not move, or
+#: moves along the edge) and gives no barycentric coordinates.
+DEGENERATE_FRAME = 1e-6
+
+#: Comparison morphs (ballmorph_core.morphs.closest, curvature, laplace, heat).
+#: Closest projection: consecutive samples whose closest points step backwards along the other
+#: curve by more than this many sample spacings make the projection non-monotone.
+PROJECTION_REVERSAL = 0.01
+#: Closest projection: a vertex of the other curve passed over between two consecutive samples'
+#: closest points lying farther than both samples' distances by this many sample spacings means
+#: the closest point jumped (a point in between has two closest projections). A continuous
+#: projection passes over vertices only O(h^2 curvature) farther.
+PROJECTION_BULGE = 0.25
+#: At most this many places are listed in an incompatibility message.
+DEFECTS_LISTED = 3
+#: Closest projection: three dense vertices with |2 cross| below this times their squared span
+#: are straight: the foot on the chord is kept instead of the foot on their circle.
+PROJECTION_STRAIGHT = 1e-9
+
+#: Composite ball-morph: incompatible stretches separated by at most this many good dense
+#: samples are bridged as one (a notch's walls and lips are one feature).
+COMPOSITE_MERGE_GAP = 6
+#: Curvature interpolation: an edge's closure weight L_AB is at least this fraction of the mean
+#: edge length (Sederberg's L_tol), so edges whose length does not change still take a share.
+CURVATURE_LENGTH_FLOOR = 1e-3
+#: Heat propagation: default grid cells along the longer side of the pair's bounding box, and
+#: stored levels per trajectory (frames interpolate linearly between levels).
+HEAT_GRID = 256
+HEAT_LEVELS = 64
+#: Heat propagation: empty cells around the curves' bounding box (room for the extension past
+#: the curves), and how many node layers the field is extended by past the first ghost layer.
+HEAT_GRID_PAD = 6
+HEAT_EXTENSION_LAYERS = 3
+#: Heat propagation: the solve starts from the solution on a grid half as fine, recursively
+#: down to this many cells (the smallest grid accepted).
+HEAT_COARSEST_GRID = 16
+#: Heat propagation: conjugate gradients stop at this relative residual, or after this many
+#: iterations per grid cell along the longer side.
+HEAT_CG_RTOL = 1e-9
+HEAT_CG_MAX_ITER_PER_CELL = 8
+#: Heat propagation: a curve cutting a grid edge closer than this fraction of the edge to a node
+#: is put at this fraction (keeps the Dirichlet weight 1/theta finite).
+HEAT_MIN_THETA = 1e-3
+#: Heat propagation: a gradient smaller than this (times 1 / extent of the pair) is a stall.
+HEAT_MIN_GRADIENT = 1e-6
+#: Heat propagation: a tracing step longer than this fraction of the pair's extent is a failure.
+HEAT_MAX_STEP = 0.25
+#: Heat propagation: a traced path ending farther than this many cells from the other curve
+#: failed; samples closer than HEAT_THIN_GAP cells to the other curve are not traced. Both move
+#: straight to their closest point instead.
+HEAT_END_MISS_CELLS = 2.0
+HEAT_THIN_GAP = 1.5

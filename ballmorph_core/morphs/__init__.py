@@ -3,7 +3,8 @@
 Each module registers its methods; importing them here fixes the order of ``METHODS``.
 """
 
-from . import ball, linear  # noqa: F401  (each registers its methods)
+from . import ball, linear, closest, curvature, laplace, heat  # noqa: F401  # isort: skip  (import order = METHODS order)
+from . import composite  # noqa: F401  (after the morphs its extensions fall back to)
 from .base import Morph, PathMorph, build, registered
 
 __all__ = ["METHODS", "Morph", "PathMorph", "make_morph"]

@@ -1,0 +1,546 @@
+"""Stroke matching: which stroke of one key morphs into which stroke of the other.
+
+Two keys rarely list their strokes in the same order with the same count: the animator adds a
+line, redraws an eye first, draws a loop the other way round. Blender's own interpolation pairs
+strokes by index and drops the surplus; :func:`match_strokes` keeps that pairing when it fits
+the drawings and otherwise solves an optimal assignment on a shape distance.
+
+Shape distance
+--------------
+Every stroke is resampled to ``tolerances.MATCH_SAMPLES`` points at uniform arc length (on its
+chords: the samples only describe the shape). The cost of pairing stroke ``i`` of key A with
+stroke ``j`` of key B is the root-mean-square distance between corresponding samples,
+
+    cost_ij = sqrt(mean_k |a_ik - (b_jk - tau)|^2) / scale  (+ MATCH_CYCLIC_PENALTY if mixed),
+
+minimised over B's direction (open strokes) or over B's direction and cyclic shift (when both are
+loops). ``tau`` is the keys' overall translation (the character moved between the keys) and
+``scale`` the drawing size: the smaller of the two keys' bounding-box diagonals, so a far-off
+stroke that exists in one key only does not loosen every threshold. Loops start anywhere, so a
+loop pair's cost carries up to about half a sample spacing of phase error (the samples of the
+two loops need not line up); the thresholds are far above it.
+
+The root-mean-square (rather than plain mean) distance is chosen because it splits exactly into
+a shape part and a position part: with ``~`` marking samples centred on their stroke's own
+centroid ``c``,
+
+    mean_k |a_k - b_k + tau|^2 = mean_k |~a_k - ~b_k|^2 + |c_a - c_b + tau|^2,
+
+and reversing or cyclically shifting ``b`` changes neither centroid. So the expensive part
+(directions and shifts: Gram matrices, ``S_a x S_b x m`` work, chunked) is computed once, and
+trying another overall translation costs only ``S_a x S_b`` operations. It is also the criterion
+of :func:`~ballmorph_core.morphs.linear.best_cyclic_alignment`, which decides the direction of
+loop pairs, so the reported flag agrees with the alignment the loop morphs use.
+
+Overall motion
+--------------
+``tau`` is estimated by alternating (assign, fit ``tau`` to the pairs by least squares) from
+three starting guesses: no motion, the difference of the keys' ink centroids, and the
+difference of the coordinate-wise medians of the stroke centroids (robust to a minority of
+strokes present in one key only). The guess whose assignment has the lowest total is kept.
+Scale changes between keys are not modelled: the two keys of a tight in-between are drawn at
+the same size, and a size estimate is easily upset by a stroke present in one key only.
+
+Unmatched strokes
+-----------------
+The assignment is rectangular and a pair costing ``MATCH_MAX_COST`` or more is never formed.
+This is the classic padding with dummy rows and columns (every stroke may instead take a dummy
+partner costing ``MATCH_MAX_COST / 2``, so a real pair is worth forming only below
+``MATCH_MAX_COST``), solved without enlarging the matrix: clipping the costs at
+``MATCH_MAX_COST``, solving the rectangular problem and dropping the clipped pairs has the same
+optimum. What becomes of an unmatched stroke (appear or disappear at the middle of the
+in-between range, or hold) is the caller's choice (:func:`~ballmorph_core.inbetween.inbetween`).
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import tolerances as tol
+from .curves import as_curve, curve_length, resample
+from .errors import InvalidCurveError
+from .morphs.linear import best_cyclic_alignment
+from .options import check_option
+
+__all__ = ["MODES", "Matching", "match_strokes", "solve_assignment"]
+
+#: Valid values of ``match_strokes(mode=...)``.
+MODES = ("AUTO", "INDEX")
+
+# Elements per block when a product would otherwise allocate S_a x S_b x m at once (memory only).
+_CHUNK = 2_000_000
+
+
+@dataclass
+class Matching:
+    """How the strokes of two keys are paired.
+
+    Attributes
+    ----------
+    pairs : list of (int, int, bool)
+        ``(i, j, reverse)``: stroke ``i`` of key A morphs into stroke ``j`` of key B, sorted by
+        ``i``. ``reverse`` is True when B's stroke runs opposite to A's, so the caller reverses
+        B's stroke before morphing. Open strokes (and mixed pairs, which are morphed as open
+        strokes along their vertex order): reversing B's point order makes the two run the same
+        way. Two loops: B's loop has the opposite orientation (the direction found by
+        :func:`~ballmorph_core.morphs.linear.best_cyclic_alignment`; for simple loops the signs
+        of their signed areas differ).
+    unmatched_a, unmatched_b : list of int
+        Strokes with no partner, sorted.
+    method : str
+        ``'index'`` (paired by drawing order) or ``'assignment'`` (optimal assignment).
+    reason : str
+        Why, in a short sentence for the animator.
+    costs : list of float
+        The cost of each pair (root-mean-square distance over the drawing size, see the module
+        notes); ``inf`` for a pair involving a stroke with no points.
+    motion : ndarray, shape (2,)
+        The keys' overall translation used (key B is about key A moved by ``motion``).
+    """
+
+    pairs: list
+    unmatched_a: list
+    unmatched_b: list
+    method: str
+    reason: str
+    costs: list = field(default_factory=list)
+    motion: np.ndarray = field(default_factory=lambda: np.zeros(2))
+
+
+def solve_assignment(cost):
+    """Minimum-cost assignment of rows to columns (rectangular allowed).
+
+    Shortest augmenting paths with dual potentials (the Hungarian method in the Jonker-Volgenant
+    form, rectangular variant as described by Crouse, "On implementing 2D rectangular
+    assignment algorithms", IEEE TAES 2016). Each Dijkstra step is one vectorised update over
+    all columns; a row-reduction start assigns every row whose cheapest column is still free.
+
+    Parameters
+    ----------
+    cost : array_like, shape (R, C)
+        Finite costs.
+
+    Returns
+    -------
+    rows, cols : ndarray of int, shape (min(R, C),)
+        Row ``rows[k]`` is assigned column ``cols[k]``; rows sorted. The sum of
+        ``cost[rows, cols]`` is minimal over all assignments of ``min(R, C)`` distinct rows to
+        distinct columns.
+
+    Raises
+    ------
+    InvalidCurveError
+        If ``cost`` is not a 2-D array of finite numbers.
+
+    Examples
+    --------
+    >>> rows, cols = solve_assignment([[4.0, 1.0, 3.0], [2.0, 0.0, 5.0], [3.0, 2.0, 2.0]])
+    >>> rows.tolist(), cols.tolist()
+    ([0, 1, 2], [1, 0, 2])
+    """
+    c = np.array(cost, dtype=np.float64)
+    if c.ndim != 2:
+        raise InvalidCurveError(f"cost: expected a 2-D array, got shape {c.shape}")
+    if not np.all(np.isfinite(c)):
+        raise InvalidCurveError("cost: every entry must be finite")
+    transposed = c.shape[0] > c.shape[1]
+    if transposed:
+        c = c.T
+    n_rows, n_cols = c.shape
+    if n_rows == 0:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+
+    # Row reduction: u_i = min_j c_ij, v = 0 is dual feasible (c_ij - u_i - v_j >= 0, v <= 0),
+    # and a row sitting on its cheapest column has zero reduced cost, so that partial
+    # assignment already satisfies complementary slackness.
+    u = c.min(axis=1)
+    v = np.zeros(n_cols)
+    row4col = np.full(n_cols, -1, np.int64)
+    col4row = np.full(n_rows, -1, np.int64)
+    cheapest = np.argmin(c, axis=1)
+    taken, first_row = np.unique(cheapest, return_index=True)
+    row4col[taken] = first_row
+    col4row[first_row] = taken
+
+    for cur in np.flatnonzero(col4row < 0):
+        shortest = np.full(n_cols, np.inf)
+        path = np.full(n_cols, -1, np.int64)
+        scanned = np.zeros(n_cols, bool)
+        visited_rows = []
+        i, min_val = int(cur), 0.0
+        while True:
+            visited_rows.append(i)
+            reduced = min_val + c[i] - u[i] - v
+            better = ~scanned & (reduced < shortest)
+            path[better] = i
+            shortest[better] = reduced[better]
+            remaining = np.where(scanned, np.inf, shortest)
+            min_val = remaining.min()
+            ties = remaining == min_val
+            free_ties = ties & (row4col < 0)
+            # Prefer a free column among equals: it ends the search at once.
+            j = int(np.argmax(free_ties)) if free_ties.any() else int(np.argmax(ties))
+            scanned[j] = True
+            if row4col[j] < 0:
+                break
+            i = int(row4col[j])
+        # Update the potentials so reduced costs stay >= 0 and the new path is tight.
+        u[cur] += min_val
+        others = np.asarray(visited_rows[1:], np.int64)
+        u[others] += min_val - shortest[col4row[others]]
+        v[scanned] -= min_val - shortest[scanned]
+        # Augment along the path back to the current row.
+        while True:
+            i = int(path[j])
+            row4col[j] = i
+            col4row[i], j = j, int(col4row[i])
+            if i == cur:
+                break
+
+    rows = np.arange(n_rows)
+    if transposed:
+        order = np.argsort(col4row)
+        return col4row[order], rows[order]
+    return rows, col4row.copy()
+
+
+def _clean(points, name, closed):
+    """Distinct points of one stroke: shape (K, 2) with K >= 2, (1, 2) for a dot, None if empty.
+
+    A loop with fewer than three distinct points is kept as the open polyline it is.
+    """
+    try:
+        return as_curve(points, name, closed)
+    except InvalidCurveError as exc:
+        error = exc
+    try:
+        arr = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise error from None
+    if arr.size == 0 and (arr.ndim == 1 or arr.shape[-1] == 2):
+        return None
+    if arr.ndim != 2 or arr.shape[1] != 2 or not np.all(np.isfinite(arr)):
+        raise error
+    if closed and len(arr) > 1:
+        try:
+            return as_curve(arr, name, False)
+        except InvalidCurveError:
+            pass
+    return arr[:1].copy()  # every point coincides: a dot
+
+
+class _Key:
+    """Matching descriptors of the strokes of one key.
+
+    Attributes
+    ----------
+    loop : ndarray of bool, shape (S,)
+        The cyclic flags as given.
+    open : ndarray, shape (S, m, 2)
+        Arc-length samples along each stroke's vertices, closing edge excluded (how a loop is
+        morphed when its partner is open); a dot repeats its point.
+    ring : ndarray, shape (S, m, 2)
+        For loops, samples around the whole loop; for open strokes the same as ``open``.
+    valid : ndarray of bool, shape (S,)
+        False for strokes with no points.
+    length : ndarray, shape (S,)
+    diagonal : float
+        Bounding-box diagonal of all the key's points (0 when none).
+    """
+
+    def __init__(self, strokes, closed, name, closed_name, m):
+        strokes = list(strokes)
+        s = len(strokes)
+        closed = np.asarray(closed, dtype=bool).reshape(-1)
+        if len(closed) != s:
+            raise InvalidCurveError(f"{closed_name}: expected one flag per stroke ({s}), got {len(closed)}")
+        self.count = s
+        self.loop = closed
+        self.open = np.zeros((s, m, 2))
+        self.ring = np.zeros((s, m, 2))
+        self.valid = np.zeros(s, bool)
+        self.length = np.zeros(s)
+        lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
+        for i, points in enumerate(strokes):
+            clean = _clean(points, f"{name}[{i}]", bool(closed[i]))
+            if clean is None:
+                continue
+            self.valid[i] = True
+            lo, hi = np.minimum(lo, clean.min(axis=0)), np.maximum(hi, clean.max(axis=0))
+            if len(clean) == 1:
+                self.open[i] = self.ring[i] = clean[0]
+                continue
+            self.open[i] = resample(clean, False, count=m, smooth=False)
+            self.ring[i] = resample(clean, True, count=m, smooth=False) if closed[i] else self.open[i]
+            self.length[i] = curve_length(clean, bool(closed[i]))
+        self.diagonal = float(np.linalg.norm(hi - lo)) if self.valid.any() else 0.0
+
+    def centroids(self):
+        """Sample centroid of each stroke's own descriptor (ring for loops), shape (S, 2)."""
+        return np.where(self.loop[:, None], self.ring.mean(axis=1), self.open.mean(axis=1))
+
+    def ink_centroid(self):
+        """Length-weighted mean of the stroke centroids, shape (2,) (dots weigh in if no ink)."""
+        ctr, w = self.centroids()[self.valid], self.length[self.valid]
+        if w.sum() <= 0:
+            w = np.ones(len(ctr))
+        return (w[:, None] * ctr).sum(axis=0) / w.sum()
+
+    def median_centroid(self):
+        """Coordinate-wise median of the stroke centroids, shape (2,)."""
+        return np.median(self.centroids()[self.valid], axis=0)
+
+
+def _open_shape(a, b):
+    """Shape part of the open-stroke cost for every pair.
+
+    Parameters
+    ----------
+    a : ndarray, shape (S_a, m, 2)
+    b : ndarray, shape (S_b, m, 2)
+        Samples centred on their own centroids.
+
+    Returns
+    -------
+    sq : ndarray, shape (S_a, S_b)
+        ``min(mean_k |a_k - b_k|^2, mean_k |a_k - b_(m-1-k)|^2)``.
+    reverse : ndarray of bool, shape (S_a, S_b)
+        Where the reversed direction is the smaller.
+    """
+    m = a.shape[1]
+    fa, fb, fr = a.reshape(len(a), 2 * m), b.reshape(len(b), 2 * m), b[:, ::-1].reshape(len(b), 2 * m)
+    norms = (fa * fa).sum(axis=1)[:, None] + (fb * fb).sum(axis=1)[None, :]
+    # Gram expansion |x - y|^2 = |x|^2 + |y|^2 - 2 x.y: two matrix products instead of S_a x S_b x m.
+    fwd = norms - 2.0 * fa @ fb.T
+    bwd = norms - 2.0 * fa @ fr.T
+    return np.maximum(np.minimum(fwd, bwd), 0.0) / m, bwd < fwd
+
+
+def _loop_shape(a, b):
+    """Shape part of the loop cost: minimum over B's cyclic shift and direction.
+
+    Parameters
+    ----------
+    a : ndarray, shape (L_a, m, 2)
+    b : ndarray, shape (L_b, m, 2)
+        Loop samples centred on their own centroids.
+
+    Returns
+    -------
+    ndarray, shape (L_a, L_b)
+        ``min over shift s, direction d of mean_k |a_k - b^d_(k+s)|^2`` (``b^d`` reversed keeping
+        its first sample, as :func:`~ballmorph_core.curves.reverse` does).
+    """
+    m = a.shape[1]
+    shifts = (np.arange(m)[:, None] + np.arange(m)[None, :]) % m  # [s, k] -> k + s
+    backwards = np.concatenate([b[:, :1], b[:, :0:-1]], axis=1)
+    # Every shifted copy of every B loop, both directions, as rows: (L_b * 2 * m, 2 m).
+    copies = np.stack([b[:, shifts], backwards[:, shifts]], axis=1).reshape(-1, 2 * m)
+    fa = a.reshape(len(a), 2 * m)
+    best = np.empty((len(a), len(b)))
+    step = max(1, _CHUNK // len(copies))
+    for start in range(0, len(a), step):
+        dots = fa[start : start + step] @ copies.T
+        best[start : start + step] = dots.reshape(len(dots), len(b), 2 * m).max(axis=2)
+    norms = (fa * fa).sum(axis=1)[:, None] + (b * b).sum(axis=(1, 2))[None, :]
+    return np.maximum(norms - 2.0 * best, 0.0) / m
+
+
+class _CostTable:
+    """Pair costs of two keys, for any overall translation (see the module notes).
+
+    Attributes
+    ----------
+    shape : ndarray, shape (S_a, S_b)
+        Translation-free squared part.
+    offset : ndarray, shape (S_a, S_b, 2)
+        ``c_a - c_b`` (stroke centroids of the descriptors each pair uses).
+    reverse_open : ndarray of bool, shape (S_a, S_b)
+        Direction of open and mixed pairs.
+    """
+
+    def __init__(self, key_a, key_b, scale):
+        self.scale = scale
+        ca, cb = key_a.centroids(), key_b.centroids()
+        both_loops = key_a.loop[:, None] & key_b.loop[None, :]
+        self.mixed = key_a.loop[:, None] != key_b.loop[None, :]
+        self.valid = key_a.valid[:, None] & key_b.valid[None, :]
+        oa, ob = key_a.open.mean(axis=1), key_b.open.mean(axis=1)
+        self.shape, self.reverse_open = _open_shape(key_a.open - oa[:, None], key_b.open - ob[:, None])
+        self.offset = oa[:, None, :] - ob[None, :, :]
+        la, lb = np.flatnonzero(key_a.loop), np.flatnonzero(key_b.loop)
+        if la.size and lb.size:
+            ring_a = key_a.ring[la] - ca[la, None]
+            ring_b = key_b.ring[lb] - cb[lb, None]
+            self.shape[np.ix_(la, lb)] = _loop_shape(ring_a, ring_b)
+            self.offset[both_loops] = (ca[:, None, :] - cb[None, :, :])[both_loops]
+
+    def costs(self, motion):
+        """Pair costs with key B moved back by ``motion`` (shape (2,)), shape (S_a, S_b)."""
+        d = self.offset + motion
+        c = np.sqrt(self.shape + (d * d).sum(axis=2)) / self.scale + tol.MATCH_CYCLIC_PENALTY * self.mixed
+        return np.where(self.valid, c, np.inf)
+
+    def fit_motion(self, rows, cols):
+        """Least-squares overall translation for given pairs, shape (2,) (zero if none)."""
+        keep = self.valid[rows, cols]
+        if not keep.any():
+            return np.zeros(2)
+        return -self.offset[rows[keep], cols[keep]].mean(axis=0)
+
+
+def _assign_within(costs):
+    """Optimal pairs among those cheaper than MATCH_MAX_COST (rows, cols, each shape (K,))."""
+    if not np.any(costs < tol.MATCH_MAX_COST):
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    rows, cols = solve_assignment(np.minimum(costs, tol.MATCH_MAX_COST))
+    keep = costs[rows, cols] < tol.MATCH_MAX_COST
+    return rows[keep], cols[keep]
+
+
+def _padded_total(pair_costs, n_a, n_b):
+    """Total of a matching with every unmatched stroke paying MATCH_MAX_COST / 2 (float)."""
+    unmatched = n_a + n_b - 2 * len(pair_costs)
+    return float(np.sum(pair_costs)) + 0.5 * tol.MATCH_MAX_COST * unmatched
+
+
+def _best_assignment(table, key_a, key_b):
+    """Alternate assignment and motion fit from each starting guess; keep the cheapest.
+
+    Returns
+    -------
+    total : float
+    rows, cols : ndarray of int
+    motion : ndarray, shape (2,)
+    """
+    guesses = [np.zeros(2)]
+    if key_a.valid.any() and key_b.valid.any():
+        guesses += [
+            key_b.ink_centroid() - key_a.ink_centroid(),
+            key_b.median_centroid() - key_a.median_centroid(),
+        ]
+    best, tried = None, []
+    for motion in guesses:
+        for _ in range(tol.MATCH_MOTION_ITERATIONS):
+            # A motion already evaluated (the previous pairs refit to the same motion, or another
+            # guess led here) would give the same assignment: this guess has converged.
+            if any(np.linalg.norm(motion - t) <= tol.MATCH_ROUNDOFF * table.scale for t in tried):
+                break
+            tried.append(motion)
+            costs = table.costs(motion)
+            rows, cols = _assign_within(costs)
+            total = _padded_total(costs[rows, cols], key_a.count, key_b.count)
+            if best is None or total < best[0]:
+                best = (total, rows, cols, motion)
+            if not len(rows):
+                break
+            motion = table.fit_motion(rows, cols)
+    return best
+
+
+def _reverse_flag(key_a, key_b, table, i, j):
+    """Whether B's stroke j runs opposite to A's stroke i (see :class:`Matching`)."""
+    if not table.valid[i, j]:
+        return False
+    if key_a.loop[i] and key_b.loop[j]:
+        return bool(best_cyclic_alignment(key_a.ring[i], key_b.ring[j])[1])
+    return bool(table.reverse_open[i, j])
+
+
+def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
+    costs = table.costs(motion)[rows, cols]
+    return Matching(
+        pairs=[(int(i), int(j), _reverse_flag(key_a, key_b, table, i, j)) for i, j in zip(rows, cols)],
+        unmatched_a=sorted(set(range(key_a.count)) - {int(i) for i in rows}),
+        unmatched_b=sorted(set(range(key_b.count)) - {int(j) for j in cols}),
+        method=method,
+        reason=reason,
+        costs=[float(c) for c in costs],
+        motion=np.asarray(motion, dtype=np.float64),
+    )
+
+
+def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="AUTO"):
+    """Pair the strokes of two keys.
+
+    Parameters
+    ----------
+    strokes_a, strokes_b : sequence of array_like, each shape (n_i, 2)
+        The strokes of each key in the drawing plane, in drawing order. A stroke may have one
+        point, repeated points or no point at all; a stroke with no point is never paired by
+        'AUTO'.
+    closed_a, closed_b : array_like of bool, shape (S_a,), (S_b,)
+        Cyclic flags.
+    mode : {'AUTO', 'INDEX'}
+        'INDEX' pairs stroke ``i`` with stroke ``i`` for ``i < min(S_a, S_b)`` (what Blender's
+        interpolation does) and leaves the extra strokes unmatched. 'AUTO' does the same when
+        the counts agree and the drawing order fits (every index pair costs less than
+        ``MATCH_INDEX_MAX_COST`` and their total is within ``MATCH_INDEX_FACTOR`` of the
+        optimal assignment's), which keeps the animator's order when it is right; otherwise it
+        returns the optimal assignment, where no pair costs ``MATCH_MAX_COST`` or more.
+        Either way each pair's direction is checked.
+
+    Returns
+    -------
+    Matching
+
+    Raises
+    ------
+    InvalidCurveError
+        For a malformed stroke (named ``strokes_a[i]``), flags of the wrong length, or an
+        unknown ``mode``.
+
+    Notes
+    -----
+    The cost is described in the module notes. Work: ``O(S_a S_b m)`` for the costs (``m`` is
+    ``MATCH_SAMPLES``, times ``m`` again for loop pairs' shifts), plus the assignment.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> line = np.array([[0.0, 0.0], [1.0, 0.0]])
+    >>> hook = np.array([[0.0, 1.0], [0.5, 1.5], [1.0, 1.0]])
+    >>> m = match_strokes([line, hook], [hook[::-1], line], [False, False], [False, False])
+    >>> m.pairs, m.method
+    ([(0, 1, False), (1, 0, True)], 'assignment')
+    """
+    check_option("mode", mode, MODES)
+    m = tol.MATCH_SAMPLES
+    key_a = _Key(strokes_a, closed_a, "strokes_a", "closed_a", m)
+    key_b = _Key(strokes_b, closed_b, "strokes_b", "closed_b", m)
+    diagonals = [d for d in (key_a.diagonal, key_b.diagonal) if d > 0]
+    table = _CostTable(key_a, key_b, min(diagonals) if diagonals else 1.0)
+    n_a, n_b = key_a.count, key_b.count
+    index = np.arange(min(n_a, n_b))
+
+    if mode == "INDEX":
+        extra = f"; {abs(n_a - n_b)} extra stroke(s) of key {'A' if n_a > n_b else 'B'} unmatched" if n_a != n_b else ""
+        motion = table.fit_motion(index, index)
+        reason = f"paired by drawing order (mode 'INDEX'){extra}"
+        return _matching(key_a, key_b, table, index, index, motion, "index", reason)
+    if n_a == n_b == 0:
+        return _matching(key_a, key_b, table, index, index, np.zeros(2), "index", "neither key has strokes")
+
+    total, rows, cols, motion = _best_assignment(table, key_a, key_b)
+    if n_a != n_b:
+        reason = f"stroke counts differ ({n_a} vs {n_b}): optimal assignment"
+        return _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)
+
+    index_motion = table.fit_motion(index, index)
+    index_costs = table.costs(index_motion)[index, index]
+    worst = int(np.argmax(index_costs))
+    index_total = _padded_total(index_costs, n_a, n_b)
+    if index_costs[worst] >= tol.MATCH_INDEX_MAX_COST:
+        reason = (
+            f"drawing order does not fit: stroke {worst} -> {worst} costs {index_costs[worst]:.3g} of the "
+            f"drawing size (limit {tol.MATCH_INDEX_MAX_COST:g}): optimal assignment"
+        )
+    elif index_total > tol.MATCH_INDEX_FACTOR * total + tol.MATCH_ROUNDOFF * n_a:
+        reason = (
+            f"drawing order costs {index_total:.3g} against {total:.3g} for the optimal assignment "
+            f"(limit {tol.MATCH_INDEX_FACTOR:g} times): optimal assignment"
+        )
+    else:
+        reason = "same stroke count and the drawing order fits"
+        return _matching(key_a, key_b, table, index, index, index_motion, "index", reason)
+    return _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)

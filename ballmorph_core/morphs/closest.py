@@ -1,0 +1,412 @@
+"""Closest-projection morph (paper sections 2 and 3.5): every sample moves straight to its closest
+point on the other curve.
+
+The morph needs the pair to be *c-compatible* (paper section 3.5): every point of P or Q has a
+single closest projection on the other curve, so that projecting is a homeomorphism. Both
+projections (P onto Q and Q onto P) are checked, whichever one the morph uses, because the
+paper's definition is symmetric; where it fails the error says where.
+
+:class:`Projector` (closest points on a polyline for many query points at once) is also used by
+the heat-propagation morph.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import tolerances as tol
+from ..ballmap import SAMPLINGS
+from ..compat import orient_pair
+from ..curves import as_curve, curve_length, default_spacing, densify, edges, resample, reverse, scale_of
+from ..errors import IncompatibleCurvesError, InvalidCurveError
+from ..options import check_option
+from ..spatial import PointTree, ragged_arange
+from ..trajectories import LinearPaths
+from .base import PathMorph, register
+
+__all__ = ["Projector", "Projection", "ProjectionDefect", "check_spacing", "c_compatibility"]
+
+
+def check_spacing(P, Q, closed, spacing):
+    """The sample spacing to use: ``spacing`` if valid, else the default for the pair (float)."""
+    if spacing is None:
+        return default_spacing(P, Q, closed=closed)
+    if not (np.isfinite(spacing) and spacing > 0):
+        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
+    return float(spacing)
+
+
+@dataclass
+class Projection:
+    """Closest points of query points on a curve.
+
+    Attributes
+    ----------
+    foot : ndarray, shape (K, 2)
+        The closest points.
+    pos : ndarray, shape (K,)
+        Their positions on the projector's dense polyline, in edge units: ``edge + fraction``.
+    dist : ndarray, shape (K,)
+        Distance from each query point to its closest point.
+    """
+
+    foot: np.ndarray
+    pos: np.ndarray
+    dist: np.ndarray
+
+
+class Projector:
+    """Closest points on one curve, for many query points at once.
+
+    Parameters
+    ----------
+    curve : ndarray, shape (N, 2)
+        The target curve (validated).
+    closed : bool
+    spacing : float
+        The morph's sample spacing; the curve is densified and resampled (on its centripetal
+        Catmull-Rom spline, like every sampling of the core) at half of it.
+
+    Attributes
+    ----------
+    dense : ndarray, shape (M, 2)
+        The resampled polyline the projections land on.
+
+    Notes
+    -----
+    A k-d tree over the dense vertices gives, for each query, an upper bound ``d`` on its
+    distance to the curve (greedy descent to one leaf); then every vertex within
+    ``sqrt(d^2 + (e/2)^2)`` (``e`` the longest dense edge) is fetched in one batched disk
+    query. The closest point lies on an edge with an endpoint among them, so only those edges
+    are tested: the cost grows with the number of nearby vertices, not with ``K x M``.
+    """
+
+    def __init__(self, curve, closed, spacing):
+        step = 0.5 * float(spacing)
+        self.closed = bool(closed)
+        self.dense = resample(densify(curve, closed, step), closed, step)
+        self.edges = edges(self.dense, closed)
+        self.n_edges = len(self.edges)
+        lengths = np.linalg.norm(self.edges, axis=1)
+        self.mean_edge = float(lengths.mean())
+        self._half_edge = 0.5 * float(lengths.max())
+        self._tree = PointTree(self.dense)
+
+    def _upper_bound(self, x):
+        """Squared distance to the nearest vertex of the leaf reached by greedy descent."""
+        tree = self._tree
+        node = np.zeros(len(x), dtype=np.int64)
+        rows = np.arange(len(x))
+        for _, _, boxes in tree.levels[1:]:
+            kids = np.stack([2 * node, 2 * node + 1], axis=1)
+            bx = boxes[kids]
+            dx = np.maximum(np.maximum(bx[..., 0] - x[:, None, 0], x[:, None, 0] - bx[..., 2]), 0.0)
+            dy = np.maximum(np.maximum(bx[..., 1] - x[:, None, 1], x[:, None, 1] - bx[..., 3]), 0.0)
+            d2 = dx * dx + dy * dy
+            d2 = np.where(np.isnan(d2), np.inf, d2)  # empty nodes have NaN boxes
+            node = kids[rows, np.argmin(d2, axis=1)]
+        starts, ends, _ = tree.levels[-1]
+        owner, local = ragged_arange(ends[node] - starts[node])
+        pts = tree.perm[starts[node][owner] + local]
+        d2 = np.sum(np.square(tree.points[pts] - x[owner]), axis=1)
+        best = np.full(len(x), np.inf)
+        np.minimum.at(best, owner, d2)
+        return best
+
+    def project(self, points):
+        """Closest points on the dense polyline.
+
+        Parameters
+        ----------
+        points : ndarray, shape (K, 2)
+
+        Returns
+        -------
+        Projection
+        """
+        x = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+        radius = np.sqrt(self._upper_bound(x) + self._half_edge**2)
+        radius = radius * (1.0 + 1e-9) + tol.COINCIDENT * scale_of(self.dense)
+        qi, vi = self._tree.within(x, radius)
+        # Both edges at each vertex found (a stroke's end vertices have one).
+        qi = np.repeat(qi, 2)
+        ei = np.stack([vi - 1, vi], axis=1).ravel()
+        if self.closed:
+            ei = np.mod(ei, self.n_edges)
+        else:
+            ok = (ei >= 0) & (ei < self.n_edges)
+            qi, ei = qi[ok], ei[ok]
+        a, e = self.dense[ei], self.edges[ei]
+        ee = np.einsum("ij,ij->i", e, e)
+        f = np.divide(np.einsum("ij,ij->i", x[qi] - a, e), ee, out=np.zeros_like(ee), where=ee > 0)
+        f = np.clip(f, 0.0, 1.0)
+        d2 = np.sum(np.square(a + f[:, None] * e - x[qi]), axis=1)
+        order = np.lexsort((ei, d2, qi))
+        qs = qi[order]
+        first = order[np.r_[True, qs[1:] != qs[:-1]]]
+        if len(first) != len(x):  # cannot happen: the bounding vertex is always found
+            raise RuntimeError("closest-point search missed a query")
+        edge, frac = ei[first], f[first]
+        foot = self.dense[edge] + frac[:, None] * self.edges[edge]
+        return self._refine(x, Projection(foot, edge + frac, np.sqrt(d2[first])))
+
+    def _refine(self, x, proj):
+        """Move each foot onto the circle through the three dense vertices nearest to it.
+
+        On a polyline the foot is off by up to a quarter edge along the curve (it is the foot
+        on a chord); the closest point on the local osculating circle is second-order accurate
+        (the same local-circle idea as the ball-map's refinement). Kept only where it stays
+        within that arc and near the polyline foot.
+        """
+        n_v = len(self.dense)
+        j = np.floor(proj.pos + 0.5).astype(np.int64)
+        if self.closed:
+            j = np.mod(j, n_v)
+            jm, jp = np.mod(j - 1, n_v), np.mod(j + 1, n_v)
+        else:
+            j = np.clip(j, 1, n_v - 2)
+            jm, jp = j - 1, j + 1
+        a, b, c = self.dense[jm], self.dense[j], self.dense[jp]
+        ab, ac = b - a, c - a
+        det = 2.0 * (ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0])
+        ab2, ac2 = np.einsum("ij,ij->i", ab, ab), np.einsum("ij,ij->i", ac, ac)
+        # Nearly straight: the chord foot is already right and the circle would cancel badly.
+        ok = np.abs(det) > tol.PROJECTION_STRAIGHT * ac2
+        det = np.where(ok, det, 1.0)
+        centre = a + np.stack([ac[:, 1] * ab2 - ab[:, 1] * ac2, ab[:, 0] * ac2 - ac[:, 0] * ab2], axis=1) / det[:, None]
+        radius = np.linalg.norm(b - centre, axis=1)
+        w = x - centre
+        wn = np.linalg.norm(w, axis=1)
+        ok &= wn > 0
+        foot = centre + radius[:, None] * np.divide(w, wn[:, None], out=np.zeros_like(w), where=ok[:, None])
+        t = np.einsum("ij,ij->i", foot - b, ac) / np.maximum(ac2, 1e-300)
+        ok &= (np.abs(t) <= 0.5) & (np.linalg.norm(foot - proj.foot, axis=1) <= np.sqrt(ac2))
+        if not self.closed:
+            ok &= (proj.pos > 0) & (proj.pos < self.n_edges)  # a stroke's ends stay exact
+        proj.foot = np.where(ok[:, None], foot, proj.foot)
+        proj.pos = np.where(ok, j + 2.0 * t, proj.pos)
+        if self.closed:
+            proj.pos = np.mod(proj.pos, self.n_edges)
+        proj.dist = np.linalg.norm(x - proj.foot, axis=1)
+        return proj
+
+    def fraction(self, pos):
+        """Arc-length fractions along the curve as given of dense positions, shape (K,).
+
+        The dense polyline is resampled at uniform arc length of the given polyline, so vertex
+        ``j`` sits at fraction ``j / n_edges`` (exactly, unless coarse input was subdivided).
+        """
+        return np.clip(np.asarray(pos, dtype=np.float64) / self.n_edges, 0.0, 1.0)
+
+
+@dataclass
+class ProjectionDefect:
+    """One place where a closest projection is not a homeomorphism.
+
+    Attributes
+    ----------
+    curve : str
+        ``'P'`` or ``'Q'``: the curve whose points are projected onto the other.
+    kind : str
+        ``'jump'`` (a point between two samples is equidistant to two separate parts of the
+        other curve), ``'reversal'`` (the projections run backwards) or ``'winding'`` (the
+        projections of a loop do not go once around the other loop).
+    point : ndarray, shape (2,)
+        Where on ``curve`` (between the two samples).
+    s : float
+        Its arc length along ``curve`` as given.
+    feet : ndarray, shape (2, 2)
+        The closest points of the two samples on the other curve.
+    s_feet : ndarray, shape (2,)
+        Their arc lengths along the other curve as given.
+    """
+
+    curve: str
+    kind: str
+    point: np.ndarray
+    s: float
+    feet: np.ndarray
+    s_feet: np.ndarray
+
+    def describe(self):
+        """A sentence saying where (str)."""
+        other = "Q" if self.curve == "P" else "P"
+        (ax, ay), (bx, by) = self.feet
+        where = (
+            f"{self.curve} near ({self.point[0]:.4g}, {self.point[1]:.4g}) (s={self.s:.4g}): its closest "
+            f"points on {other} go from ({ax:.4g}, {ay:.4g}) (s={self.s_feet[0]:.4g}) to "
+            f"({bx:.4g}, {by:.4g}) (s={self.s_feet[1]:.4g})"
+        )
+        if self.kind == "jump":
+            return where + f", jumping over a part of {other}: a point there has two closest projections"
+        if self.kind == "reversal":
+            return where + f", running backwards along {other}"
+        return f"the closest points of {self.curve} do not go once around {other}"
+
+
+def _defects(src, s_src, proj, projector, closed, spacing, name, length_src, length_dst, reversed_dst):
+    """Where the projection of consecutive samples ``src`` onto a curve is not a homeomorphism.
+
+    ``projector`` is built on the target oriented like the source. Between consecutive samples
+    the projection must move forward along the target (within ``PROJECTION_REVERSAL`` sample
+    spacings), and no target vertex passed over may lie farther than both samples' distances
+    from the segment joining them by ``PROJECTION_BULGE`` spacings (else the closest point
+    jumped over a bulge of the target: a point in between has two closest projections). A
+    loop's projections must go around the target exactly once.
+    """
+    k = len(src)
+    n = projector.n_edges
+    nxt = np.r_[np.arange(1, k), 0] if closed else np.arange(1, k)
+    cur = np.arange(len(nxt))
+    step = proj.pos[nxt] - proj.pos[cur]
+    if closed:
+        step = np.mod(step + 0.5 * n, n) - 0.5 * n
+
+    def target_s(pos):
+        u = projector.fraction(np.mod(pos, n) if closed else pos)
+        return length_dst * ((1.0 - u) % 1.0 if closed else 1.0 - u) if reversed_dst else length_dst * u
+
+    found = []
+
+    def add(kind, i):
+        j = nxt[i]
+        mid = 0.5 * (src[i] + src[j])
+        s_mid = s_src[i] + 0.5 * np.mod(s_src[j] - s_src[i], length_src) if closed else 0.5 * (s_src[i] + s_src[j])
+        feet = np.stack([proj.foot[i], proj.foot[j]])
+        found.append(ProjectionDefect(name, kind, mid, float(s_mid), feet, target_s(proj.pos[[i, j]])))
+
+    for i in np.flatnonzero(step * projector.mean_edge < -tol.PROJECTION_REVERSAL * spacing):
+        add("reversal", i)
+    forward = np.flatnonzero(step > 0)
+    start = np.floor(proj.pos[cur[forward]]).astype(np.int64)
+    stop = np.ceil(proj.pos[cur[forward]] + step[forward]).astype(np.int64)
+    owner, local = ragged_arange(np.maximum(stop - start - 1, 0))
+    v = start[owner] + 1 + local
+    v = np.mod(v, n) if closed else np.clip(v, 0, len(projector.dense) - 1)
+    which = forward[owner]
+    a, ab = src[cur[which]], src[nxt[which]] - src[cur[which]]
+    ab2 = np.einsum("ij,ij->i", ab, ab)
+    w = np.divide(np.einsum("ij,ij->i", projector.dense[v] - a, ab), ab2, out=np.zeros_like(ab2), where=ab2 > 0)
+    dist = np.linalg.norm(projector.dense[v] - (a + np.clip(w, 0.0, 1.0)[:, None] * ab), axis=1)
+    excess = dist - np.maximum(proj.dist[cur[which]], proj.dist[nxt[which]])
+    for i in np.unique(which[excess > tol.PROJECTION_BULGE * spacing]):
+        add("jump", i)
+    if closed and abs(step.sum() - n) > 0.5 * n:
+        add("winding", 0)
+    return found
+
+
+def c_compatibility(P, Q, closed, spacing=None):
+    """Where a pair is not c-compatible (paper section 3.5).
+
+    Parameters
+    ----------
+    P, Q : array_like, shape (N, 2) and (M, 2)
+        Disjoint nested loops or strokes sharing both endpoints (paper configurations 1, 2).
+    closed : bool
+    spacing : float, optional
+        Sample spacing of the check (default from the curves).
+
+    Returns
+    -------
+    list of ProjectionDefect
+        Empty when both closest projections (P onto Q, Q onto P) are homeomorphisms at this
+        sampling.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 2 * np.pi, 100, endpoint=False)
+    >>> c = np.c_[np.cos(t), np.sin(t)]
+    >>> c_compatibility(c, 2 * c, closed=True)
+    []
+    """
+    P, Q = as_curve(P, "P", closed), as_curve(Q, "Q", closed)
+    return _ClosestPair(P, Q, closed, check_spacing(P, Q, closed, spacing)).defects
+
+
+class _ClosestPair:
+    """Both closest projections of a pair, sampled uniformly, and their defects."""
+
+    def __init__(self, P, Q, closed, spacing):
+        setup = orient_pair(P, Q, closed)
+        # Stroke Q (loops: both) run the same way as P once oriented; flip is whether Q as given
+        # runs against P.
+        self.flip = setup.reversed_p != setup.reversed_q
+        self.closed = closed
+        self.spacing = spacing
+        self.lengths = {"P": curve_length(P, closed), "Q": curve_length(Q, closed)}
+        self.samples = {"P": resample(P, closed, spacing), "Q": resample(Q, closed, spacing)}
+        curves = {"P": P, "Q": Q}
+        self.maps = {}
+        self.defects = []
+        for src, dst in (("P", "Q"), ("Q", "P")):
+            target = reverse(curves[dst], closed) if self.flip else curves[dst]
+            projector = Projector(target, closed, spacing)
+            x = self.samples[src]
+            proj = projector.project(x)
+            if not closed:
+                # The shared endpoints map to each other exactly.
+                last = projector.n_edges
+                proj.foot[0], proj.foot[-1] = projector.dense[0], projector.dense[-1]
+                proj.pos[0], proj.pos[-1] = 0.0, float(last)
+                proj.dist[0] = proj.dist[-1] = 0.0
+            u_src = self._uniform(len(x))
+            u_dst = projector.fraction(proj.pos)
+            if self.flip:
+                u_dst = np.mod(1.0 - u_dst, 1.0) if closed else 1.0 - u_dst
+            self.maps[src] = (x, proj.foot, u_src, u_dst)
+            self.defects += _defects(
+                x,
+                u_src * self.lengths[src],
+                proj,
+                projector,
+                closed,
+                spacing,
+                src,
+                self.lengths[src],
+                self.lengths[dst],
+                self.flip,
+            )
+
+    def _uniform(self, k):
+        return np.arange(k) / (k if self.closed else k - 1)
+
+
+@register("closest-projection")
+def build(P, Q, closed, spacing, sampling):
+    """Closest-projection morph: straight trajectories to the closest points.
+
+    ``sampling='P'`` (and ``'symmetric'``, the same: this morph is not symmetric) samples P
+    uniformly at ``spacing`` and moves each sample to its closest point on Q; ``'Q'`` samples
+    Q uniformly, pairs each sample with its closest point on P and moves from there. Samples
+    are ordered along P as given.
+
+    Raises
+    ------
+    IncompatibleCurvesError
+        If the pair is not in configuration 1 or 2, or not c-compatible (either projection is
+        not a homeomorphism at this sampling); the message says where and ``error.report``
+        lists the :class:`ProjectionDefect` found.
+    """
+    check_option("sampling", sampling, SAMPLINGS)
+    pair = _ClosestPair(P, Q, closed, check_spacing(P, Q, closed, spacing))
+    if pair.defects:
+        listed = "; ".join(d.describe() for d in pair.defects[: tol.DEFECTS_LISTED])
+        more = len(pair.defects) - tol.DEFECTS_LISTED
+        tail = f"; and {more} more places" if more > 0 else ""
+        raise IncompatibleCurvesError(
+            "not c-compatible: a closest projection is not a homeomorphism (paper section 3.5): "
+            + listed
+            + tail
+            + "; use a ball-morph or the heat-propagation morph instead",
+            pair.defects,
+        )
+    if sampling == "Q":
+        q, p, u_q, u_p = pair.maps["Q"]
+        if pair.flip:  # keep the samples in P's direction
+            order = np.r_[0, np.arange(len(q) - 1, 0, -1)] if closed else np.arange(len(q))[::-1]
+            p, q, u_p, u_q = p[order], q[order], u_p[order], u_q[order]
+    else:
+        p, q, u_p, u_q = pair.maps["P"]
+    return PathMorph("closest-projection", closed, LinearPaths(p, q), u_p, u_q)

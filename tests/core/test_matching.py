@@ -1,0 +1,322 @@
+"""Stroke matching between two keys: index pairing, optimal assignment, reversal, unmatched."""
+
+import itertools
+import time
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from shapes import circle
+
+from ballmorph_core import tolerances as tol
+from ballmorph_core.curves import resample, reverse, signed_area
+from ballmorph_core.errors import InvalidCurveError
+from ballmorph_core.matching import (
+    _assign_within,
+    _loop_shape,
+    _padded_total,
+    match_strokes,
+    solve_assignment,
+)
+from ballmorph_core.morphs.linear import best_cyclic_alignment
+
+
+def face():
+    """A small drawing: (strokes, cyclic flags). Two eyes share a shape and differ by place."""
+    x = np.linspace(-0.4, 0.4, 30)
+    hx = np.linspace(-0.8, 0.8, 40)
+    head = circle(1.0, 64) * [1.0, 1.2]
+    strokes = [
+        head,
+        circle(0.15, 24, centre=(-0.4, 0.3)),
+        circle(0.15, 24, centre=(0.4, 0.3)),
+        np.c_[x, -0.5 - 0.2 * np.sin(np.pi * (x + 0.4) / 0.8)],
+        np.array([[0.0, 0.1], [0.1, -0.15], [0.0, -0.2]]),
+        np.c_[hx, 1.25 + 0.1 * np.sin(6 * hx)],
+    ]
+    return strokes, np.array([True, True, True, False, False, False])
+
+
+def identity_pairs(n):
+    return [(i, i, False) for i in range(n)]
+
+
+def test_identical_drawings_pair_by_index():
+    strokes, closed = face()
+    m = match_strokes(strokes, strokes, closed, closed)
+    assert m.method == "index"
+    assert m.pairs == identity_pairs(len(strokes))
+    assert m.unmatched_a == m.unmatched_b == []
+    assert max(m.costs) < 1e-6
+    np.testing.assert_allclose(m.motion, 0.0, atol=1e-12)
+
+
+def test_permuted_strokes_are_recovered():
+    strokes, closed = face()
+    perm = np.array([3, 0, 5, 2, 1, 4])  # B's stroke j is A's stroke perm[j]; eyes swapped too
+    shift = np.array([0.3, -0.2])
+    m = match_strokes(strokes, [strokes[p] + shift for p in perm], closed, closed[perm])
+    assert m.method == "assignment"
+    assert "drawing order" in m.reason
+    expected = sorted((int(p), j, False) for j, p in enumerate(perm))
+    assert m.pairs == expected
+    assert m.unmatched_a == m.unmatched_b == []
+    np.testing.assert_allclose(m.motion, shift, atol=1e-9)
+
+
+@pytest.mark.parametrize("mode", ["AUTO", "INDEX"])
+def test_reversed_open_stroke_is_detected(mode):
+    strokes, closed = face()
+    flipped = [s[::-1] if i == 3 else s for i, s in enumerate(strokes)]
+    m = match_strokes(strokes, flipped, closed, closed, mode=mode)
+    assert m.method == "index"
+    assert m.pairs == [(i, i, i == 3) for i in range(len(strokes))]
+    assert max(m.costs) < 1e-6  # the reversed stroke matches exactly once flipped
+
+
+def test_loop_in_opposite_orientation_from_another_vertex():
+    strokes, closed = face()
+    head = strokes[0]
+    backwards = np.roll(reverse(head, True), 17, axis=0)
+    rolled = np.roll(head, 17, axis=0)
+    m = match_strokes(strokes, [backwards, *strokes[1:]], closed, closed)
+    assert m.method == "index"
+    assert m.pairs[0] == (0, 0, True)
+    assert all(not r for _, _, r in m.pairs[1:])
+    # Started between two of B's samples: the cost is at most about half a sample spacing.
+    half_spacing = 0.5 * 7.0 / tol.MATCH_SAMPLES / np.hypot(2.0, 2.4)  # perimeter ~6.9
+    assert 0 < m.costs[0] < half_spacing
+    # The flag means opposite orientation: reversing B's loop restores A's.
+    assert np.sign(signed_area(backwards)) != np.sign(signed_area(head))
+    assert np.sign(signed_area(reverse(backwards, True))) == np.sign(signed_area(head))
+    # Same orientation from another vertex: matched, not reversed.
+    m = match_strokes(strokes, [rolled, *strokes[1:]], closed, closed)
+    assert m.pairs == identity_pairs(len(strokes))
+
+
+@pytest.mark.parametrize("shift", [(0.0, 0.0), (0.3, -0.2)])
+@pytest.mark.parametrize("new", ["far", "different"])
+def test_extra_stroke_in_second_key_is_unmatched(shift, new):
+    strokes, closed = face()
+    a = [strokes[i] for i in (0, 1, 3, 4)]
+    ca = closed[[0, 1, 3, 4]]
+    if new == "far":
+        extra = circle(0.3, 20, centre=(6.0, 5.0))[:15]  # an open arc far from the face
+    else:
+        x = np.linspace(-0.5, 0.5, 11)
+        extra = np.c_[x, -0.5 + 0.15 * (-1.0) ** np.arange(11)]  # a zigzag over the mouth
+    b = [s + shift for s in (a[0], a[1], extra, a[2], a[3])]
+    cb = np.array([ca[0], ca[1], False, ca[2], ca[3]])
+    m = match_strokes(a, b, ca, cb)
+    assert m.method == "assignment"
+    assert "4 vs 5" in m.reason
+    assert m.pairs == [(0, 0, False), (1, 1, False), (2, 3, False), (3, 4, False)]
+    assert m.unmatched_a == []
+    assert m.unmatched_b == [2]
+    np.testing.assert_allclose(m.motion, shift, atol=1e-9)
+
+
+def test_translated_and_deformed_drawing_keeps_index_pairing():
+    strokes, closed = face()
+    rng = np.random.default_rng(7)
+    move = np.array([3.0, -2.0])  # more than the drawing's own size
+
+    def deform(s, c):
+        s = resample(s, c, count=len(s) + 7)  # other point counts, as a redrawn key would have
+        warp = 0.04 * np.c_[np.sin(2 * s[:, 1]), np.cos(3 * s[:, 0])]
+        return s + warp + move + rng.normal(0.0, 0.005, s.shape)
+
+    b = [deform(s, c) for s, c in zip(strokes, closed)]
+    m = match_strokes(strokes, b, closed, closed)
+    assert m.method == "index", m.reason
+    assert m.pairs == identity_pairs(len(strokes))
+    assert 0 < max(m.costs) < tol.MATCH_INDEX_MAX_COST
+    np.testing.assert_allclose(m.motion, move, atol=0.05)
+
+
+def hatching(*heights):
+    """The face plus horizontal hatch lines at the given heights (open strokes)."""
+    strokes, closed = face()
+    x = np.linspace(-0.5, 0.5, 20)
+    return [*strokes, *(np.c_[x, np.full_like(x, y)] for y in heights)], np.r_[closed, [False] * len(heights)]
+
+
+def test_drawing_order_is_kept_only_when_nearly_optimal():
+    a, closed = hatching(0.0, 0.02)
+    # Swapped hatch lines: every index pair is close, but the order is clearly wrong.
+    b, _ = hatching(0.02, 0.0)
+    m = match_strokes(a, b, closed, closed)
+    assert m.method == "assignment"
+    assert "optimal assignment" in m.reason and "limit 1.25 times" in m.reason
+    assert m.pairs[-2:] == [(6, 7, False), (7, 6, False)]
+    # Redrawn lines where swapping is better by less than MATCH_INDEX_FACTOR (0.022 vs 0.018):
+    # the animator's drawing order wins.
+    b, _ = hatching(0.011, 0.009)
+    m = match_strokes(a, b, closed, closed)
+    assert m.method == "index", m.reason
+    assert m.pairs == identity_pairs(8)
+
+
+def test_stroke_far_from_anything_is_not_forced():
+    strokes, closed = face()
+    a = strokes[:4]
+    b = [*strokes[:3], strokes[3] + [8.0, 0.0]]  # the mouth jumped far away; nothing else moved
+    m = match_strokes(a, b, closed[:4], closed[:4])
+    assert m.method == "assignment"
+    assert "does not fit" in m.reason
+    assert m.pairs == identity_pairs(3)
+    assert m.unmatched_a == [3]
+    assert m.unmatched_b == [3]
+    # Same with the far stroke in the first key, counts differing.
+    m = match_strokes(b, a[:3], closed[:4], closed[:3])
+    assert m.pairs == identity_pairs(3)
+    assert m.unmatched_a == [3]
+
+
+def test_index_mode_pairs_by_order_and_leaves_extras():
+    strokes, closed = face()
+    a = strokes[:3]
+    b = [strokes[0], reverse(strokes[2], True), strokes[1], strokes[3], strokes[4]]
+    m = match_strokes(a, b, closed[:3], closed[:5], mode="INDEX")
+    assert m.method == "index"
+    # Pair 1 (left eye -> right eye, reversed loop) is kept: INDEX never reorders.
+    assert m.pairs == [(0, 0, False), (1, 1, True), (2, 2, False)]
+    assert m.unmatched_a == []
+    assert m.unmatched_b == [3, 4]
+    auto = match_strokes(a, b, closed[:3], closed[:5])
+    assert auto.pairs == [(0, 0, False), (1, 2, False), (2, 1, True)]
+
+
+def test_mixed_cyclic_pair_pays_the_penalty():
+    loop = circle(1.0, 40)
+    m = match_strokes([loop], [loop], [True], [False])
+    assert m.pairs == [(0, 0, False)]
+    assert m.costs[0] == pytest.approx(tol.MATCH_CYCLIC_PENALTY, abs=1e-6)
+
+
+def test_degenerate_strokes_and_empty_keys():
+    line = np.array([[0.0, 0.0], [1.0, 0.5]])
+    dot = np.array([[0.2, 0.9]])
+    for mode in ("AUTO", "INDEX"):
+        m = match_strokes([], [], [], [], mode=mode)
+        assert (m.pairs, m.unmatched_a, m.unmatched_b, m.method) == ([], [], [], "index")
+        m = match_strokes([line], [], [False], [], mode=mode)
+        assert (m.pairs, m.unmatched_a, m.unmatched_b) == ([], [0], [])
+        m = match_strokes([], [dot], [], [True], mode=mode)
+        assert (m.pairs, m.unmatched_a, m.unmatched_b) == ([], [], [0])
+    # Dots (one point, or one point repeated), a two-point "loop", duplicated points.
+    a = [dot, line, np.repeat(dot + 0.5, 4, axis=0), np.array([[0.0, 1.0], [0.5, 1.0]])]
+    b = [dot + 0.01, np.repeat(line, 3, axis=0), np.array([[0.7, 1.4]]), np.array([[0.0, 1.0], [0.5, 1.0], [0.0, 1.0]])]
+    m = match_strokes(a, b, [True, False, False, True], [False, False, False, True])
+    assert [p[:2] for p in m.pairs] == [(0, 0), (1, 1), (2, 2), (3, 3)]
+    assert m.pairs[1][2] is False
+    # A stroke with no point at all is never paired by AUTO, and does not crash INDEX.
+    empty = np.zeros((0, 2))
+    m = match_strokes([line, empty], [line, empty], [False, False], [False, False])
+    assert m.pairs == [(0, 0, False)]
+    assert m.unmatched_a == m.unmatched_b == [1]
+    m = match_strokes([line, empty], [line, empty], [False, False], [False, False], mode="INDEX")
+    assert m.pairs == identity_pairs(2)
+    assert m.costs[1] == np.inf
+
+
+def test_invalid_input_is_named():
+    line = np.array([[0.0, 0.0], [1.0, 0.0]])
+    with pytest.raises(InvalidCurveError, match="mode='NEAREST'"):
+        match_strokes([line], [line], [False], [False], mode="NEAREST")
+    with pytest.raises(InvalidCurveError, match="closed_b"):
+        match_strokes([line], [line], [False], [False, True])
+    with pytest.raises(InvalidCurveError, match=r"strokes_b\[1\]"):
+        match_strokes([line], [line, np.array([[0.0, 0.0], [np.nan, 1.0]])], [False], [False, False])
+    with pytest.raises(InvalidCurveError, match=r"strokes_a\[0\]"):
+        match_strokes([np.zeros((3, 3))], [line], [False], [False])
+    with pytest.raises(InvalidCurveError, match="cost"):
+        solve_assignment([[0.0, np.inf]])
+
+
+def _brute_force(cost):
+    r, c = cost.shape
+    if r > c:
+        return _brute_force(cost.T)
+    return min(sum(cost[i, p[i]] for i in range(r)) for p in itertools.permutations(range(c), r))
+
+
+def _matrix(data, low, high):
+    r = data.draw(st.integers(1, 5), label="rows")
+    c = data.draw(st.integers(1, 5), label="cols")
+    values = st.integers(low, high).map(float) | st.floats(low, high, allow_nan=False)
+    return np.array(data.draw(st.lists(values, min_size=r * c, max_size=r * c)), dtype=float).reshape(r, c)
+
+
+@given(st.data())
+def test_solver_agrees_with_brute_force(data):
+    cost = _matrix(data, -50, 50)  # integer draws make many ties
+    rows, cols = solve_assignment(cost)
+    k = min(cost.shape)
+    assert len(rows) == len(set(rows.tolist())) == len(set(cols.tolist())) == k
+    assert np.all(np.diff(rows) > 0)
+    assert cost[rows, cols].sum() == pytest.approx(_brute_force(cost), abs=1e-9)
+
+
+@given(st.data())
+def test_thresholded_assignment_agrees_with_brute_force(data):
+    limit = tol.MATCH_MAX_COST
+    cost = _matrix(data, 0, 1) * 2 * limit
+    rows, cols = _assign_within(cost)
+    assert np.all(cost[rows, cols] < limit)
+    got = _padded_total(cost[rows, cols], *cost.shape)
+    # Every partial matching: each row takes a column or nobody (None).
+    r, c = cost.shape
+    best = np.inf
+    for choice in itertools.product([None, *range(c)], repeat=r):
+        taken = [j for j in choice if j is not None]
+        if len(taken) != len(set(taken)) or any(j is not None and cost[i, j] >= limit for i, j in enumerate(choice)):
+            continue
+        best = min(best, _padded_total([cost[i, j] for i, j in enumerate(choice) if j is not None], r, c))
+    assert got == pytest.approx(best, abs=1e-9)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_loop_costs_match_explicit_shifts_and_directions(seed):
+    rng = np.random.default_rng(seed)
+    m = 12
+    a = rng.normal(size=(3, m, 2))
+    b = rng.normal(size=(4, m, 2))
+    a -= a.mean(axis=1, keepdims=True)
+    b -= b.mean(axis=1, keepdims=True)
+    got = _loop_shape(a, b)
+    for i in range(3):
+        for j in range(4):
+            candidates = [
+                np.mean(np.sum((a[i] - np.roll(q, -s, axis=0)) ** 2, axis=1))
+                for q in (b[j], reverse(b[j], True))
+                for s in range(m)
+            ]
+            assert got[i, j] == pytest.approx(min(candidates), rel=1e-9, abs=1e-12)
+            # The direction reported for loop pairs comes from best_cyclic_alignment, which
+            # minimises the same quantity.
+            shift, rev = best_cyclic_alignment(a[i], b[j])
+            assert int(np.argmin(candidates)) == (m if rev else 0) + shift
+
+
+def test_four_hundred_strokes_timing():
+    rng = np.random.default_rng(3)
+    strokes, closed = [], []
+    for k in range(400):
+        centre = rng.uniform(0.0, 10.0, 2)
+        if k % 3 == 0:
+            strokes.append(circle(rng.uniform(0.1, 0.4), int(rng.integers(8, 40)), centre=centre))
+            closed.append(True)
+        else:
+            steps = rng.normal(0.0, 0.04, (int(rng.integers(2, 30)), 2)) + rng.normal(0.0, 0.1, 2)
+            strokes.append(centre + np.cumsum(steps, axis=0))
+            closed.append(False)
+    closed = np.array(closed)
+    perm = rng.permutation(400)
+    b = [strokes[p] + [0.5, 0.2] + rng.normal(0.0, 0.005, strokes[p].shape) for p in perm]
+    start = time.perf_counter()
+    m = match_strokes(strokes, b, closed, closed[perm])
+    elapsed = time.perf_counter() - start
+    print(f"\nmatch_strokes 400 x 400 strokes: {elapsed:.3f} s ({m.method})")
+    assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))

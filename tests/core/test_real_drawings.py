@@ -1,0 +1,244 @@
+"""Real drawings (issue 5): carriers, crossing splits, overlaps, composite ball-morph, pipeline."""
+
+import numpy as np
+import pytest
+from shapes import circle, distance_to_polyline
+
+import ballmorph_core as bm
+from ballmorph_core.curves import curve_length, orient_clockwise
+from ballmorph_core.intersections import crossings, is_simple
+from ballmorph_core.pair import morph_pair
+from ballmorph_core.registration import Carrier, Similarity, endpoint_similarity, fit_similarity
+from ballmorph_core.splitting import split_pair
+
+# ------------------------------------------------------------------ registration
+
+
+def test_similarity_power_is_a_steady_interpolation():
+    s = Similarity(1.3 * np.exp(0.7j), 0.4 - 0.2j)
+    pts = np.array([[0.3, -1.0], [2.0, 0.5]])
+    np.testing.assert_allclose(s.power(0.0)(pts), pts, atol=1e-12)
+    np.testing.assert_allclose(s.power(1.0)(pts), s(pts), atol=1e-12)
+    np.testing.assert_allclose(s.power(0.5)(s.power(0.5)(pts)), s(pts), atol=1e-12)
+    np.testing.assert_allclose(s.power(-1.0)(s(pts)), pts, atol=1e-12)
+    # The fixed point does not move.
+    c = s.b / (1 - s.a)
+    np.testing.assert_allclose(s.power(0.37)(np.array([[c.real, c.imag]])), [[c.real, c.imag]], atol=1e-12)
+
+
+def test_endpoint_similarity_maps_endpoints():
+    P = np.array([[0.0, 0.0], [0.5, 0.3], [1.0, 0.0]])
+    Q = np.array([[2.0, 1.0], [2.4, 1.9], [2.0, 3.0]])
+    s = endpoint_similarity(P, Q)
+    np.testing.assert_allclose(s(P[[0, -1]]), Q[[0, -1]], atol=1e-12)
+
+
+@pytest.mark.parametrize("reverse", [False, True])
+def test_fit_similarity_recovers_a_loop_transform_whatever_start_and_direction(reverse):
+    t = np.linspace(0, 2 * np.pi, 90, endpoint=False)
+    P = np.c_[np.cos(t) + 0.3 * np.cos(2 * t), 0.6 * np.sin(t)]
+    true = Similarity(0.8 * np.exp(1.1j), 2.0 + 1.0j)
+    Q = np.roll(true(P), 17, axis=0)
+    if reverse:
+        Q = Q[::-1]
+    fit = fit_similarity(P, Q, True)
+    # The shift of 17 of 90 vertices falls between the fit's 128 uniform samples: a few %.
+    assert abs(fit.a - true.a) < 3e-2 * abs(true.a) and abs(fit.b - true.b) < 5e-2
+
+
+@pytest.mark.parametrize("kind", ["SIMILARITY", "RIGID"])
+def test_carrier_undoes_registration_at_start_and_is_identity_at_end(kind):
+    s = Similarity(1.5 * np.exp(-0.4j), 1.0 + 2.0j)
+    carrier = Carrier(s, kind, np.array([0.5, 0.5]))
+    pts = np.array([[0.0, 1.0], [3.0, -2.0]])
+    np.testing.assert_allclose(carrier.apply(0.0, s(pts)), pts, atol=1e-12)
+    np.testing.assert_allclose(carrier.apply(1.0, pts), pts, atol=1e-12)
+
+
+# ------------------------------------------------------------------ issue 5 must-shows
+
+
+def test_rotated_stroke_keeps_its_length_but_linear_interpolation_shrinks():
+    x = np.linspace(-1.0, 1.0, 80)
+    P = np.c_[x, 0.0 * x]
+    Q = np.c_[3.0 + 0.0 * x, 1.0 + x]  # turned 90 degrees about its centre and moved
+    key = curve_length(P, False)
+    ours = morph_pair(P, Q, False, "circular-ball", "SIMILARITY").morph
+    lengths = np.array([curve_length(ours(t), False) for t in np.linspace(0, 1, 11)])
+    assert np.all(np.abs(lengths / key - 1) < 0.05)
+    lerp = bm.make_morph(P, Q, "linear-interpolation")
+    mid = curve_length(lerp(0.5), False) / key
+    assert abs(mid - np.sqrt(0.5)) < 0.01  # 71 %, as Blender's own interpolation
+
+
+def test_translated_circle_stays_a_circle_on_the_default_carrier():
+    c = circle(1.0, 120)
+    shift = np.array([1.2, 0.4])
+    morph = morph_pair(c, c + shift, True, "circular-ball", "SIMILARITY").morph
+    for t in np.linspace(0.1, 0.9, 9):
+        frame = morph(t)
+        np.testing.assert_allclose(np.linalg.norm(frame - t * shift, axis=1), 1.0, atol=1e-6)
+
+
+def test_translated_circle_without_carrier_passes_through_the_crossings():
+    c = circle(1.0, 160)
+    Q = c + [1.2, 0.4]
+    cx = crossings(c, True, Q, True)
+    assert len(cx) == 2
+    outcome = morph_pair(c, Q, True, "circular-ball", "NONE")
+    assert any("split" in note for note in outcome.notes)
+    for t in np.linspace(0.1, 0.9, 9):
+        frame = outcome.morph(t)
+        assert is_simple(frame, True)
+        assert distance_to_polyline(cx.points, frame, True).max() < 1e-6
+
+
+def _pear_and_notched_circle():
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    r = 1.6 + 0.25 * np.cos(t - np.pi / 2) + 0.1 * np.cos(2 * t)
+    pear = np.c_[0.9 * r * np.cos(t), 1.2 * r * np.sin(t)]
+    notch = 1.0 - 0.6 * np.maximum(0, 1 - np.abs(np.angle(np.exp(1j * (t - 0.3)))) / 0.12)
+    return np.c_[notch * np.cos(t), notch * np.sin(t)], pear
+
+
+def test_pear_against_notched_circle_composite_frames_never_self_intersect():
+    notched, pear = _pear_and_notched_circle()
+    with pytest.raises(bm.IncompatibleCurvesError):
+        bm.ball_map(notched, pear, closed=True)
+    morph = bm.make_morph(notched, pear, "composite-ball", closed=True)
+    assert len(morph.stages["bridges_p"]) == 1  # the notch is bridged by one disk
+    assert distance_to_polyline(morph(0.0), notched, True).max() < 1e-2
+    assert distance_to_polyline(morph(1.0), pear, True).max() < 1e-2
+    for t in np.linspace(0.0, 1.0, 21):
+        frame = morph(t)
+        assert np.all(np.isfinite(frame))
+        assert is_simple(frame, True)
+    # Every sample moves at constant speed along its (piecewise circular) trajectory: at time
+    # t it has covered the fraction t of its path's length.
+    paths = morph.paths.points  # (K, S, 2)
+    seg = np.linalg.norm(np.diff(paths, axis=1), axis=2)
+    total = seg.sum(axis=1)
+    cum = np.concatenate([np.zeros((len(paths), 1)), np.cumsum(seg, axis=1)], axis=1)
+    for t in (0.2, 0.5, 0.8):
+        pos = morph(t)
+        # Arc length of each position along its own path (nearest segment).
+        a, b = paths[:, :-1], paths[:, 1:]
+        ab = b - a
+        u = np.clip(
+            np.einsum("ksi,ksi->ks", pos[:, None] - a, ab) / np.maximum(np.einsum("ksi,ksi->ks", ab, ab), 1e-300), 0, 1
+        )
+        d = np.linalg.norm(a + u[..., None] * ab - pos[:, None], axis=2)
+        j = np.argmin(d, axis=1)
+        rows = np.arange(len(paths))
+        s = cum[rows, j] + u[rows, j] * seg[rows, j]
+        moving = total > 1e-9
+        np.testing.assert_allclose(s[moving] / total[moving], t, atol=1e-6)
+
+
+def test_composite_of_a_compatible_pair_is_the_ball_morph():
+    c = circle(1.0, 100)
+    a = bm.make_morph(c, 2 * c, "composite-ball", closed=True)
+    b = bm.make_morph(c, 2 * c, "circular-ball", closed=True)
+    np.testing.assert_allclose(a(0.5), b(0.5), atol=1e-12)
+
+
+# ------------------------------------------------------------------ splitting
+
+
+def test_crossing_strokes_split_into_lenses_that_share_endpoints():
+    x = np.linspace(0, 1, 200)
+    P = np.c_[x, 0.2 * np.sin(2 * np.pi * x)]
+    Q = np.c_[x, 0.05 * np.sin(np.pi * x)]
+    pieces = split_pair(P, Q, False, 0.01)
+    assert [pc.kind for pc in pieces] == ["gap", "gap"]
+    for pc in pieces:
+        np.testing.assert_array_equal(pc.P[[0, -1]], pc.Q[[0, -1]])
+        assert bm.classify(pc.P, pc.Q) == "quasi-disjoint-strokes"
+    np.testing.assert_allclose(pieces[0].P[-1], pieces[1].P[0])
+
+
+def test_overlapping_portion_stays_static():
+    x = np.linspace(0, 1, 201)
+    bump = np.where(x < 0.5, 0.0, np.sin(2 * np.pi * (x - 0.5)))
+    P, Q = np.c_[x, 0.3 * bump], np.c_[x, -0.2 * bump]
+    outcome = morph_pair(P, Q, False, "circular-ball", "NONE")
+    flat = x < 0.45
+    for t in (0.3, 0.7):
+        frame = outcome.morph(t)
+        on_flat = frame[frame[:, 0] < 0.45]
+        assert len(on_flat) > 10
+        np.testing.assert_allclose(on_flat[:, 1], 0.0, atol=1e-9)
+    assert flat.any()
+
+
+def test_tangled_crossings_are_rejected():
+    c = orient_clockwise(circle(1.0, 200))
+    t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
+    wobble = orient_clockwise(np.c_[(1 + 0.3 * np.cos(5 * t)) * np.cos(t), (1 + 0.3 * np.cos(5 * t)) * np.sin(t)])
+    # Five lobes crossing a circle ten times in the same order still split...
+    assert len(split_pair(c, wobble, True, 0.02)) == 10
+    # ...but a stroke crossing in the opposite order along each curve does not.
+    x = np.linspace(0, 1, 300)
+    P = np.c_[x, 0.3 * np.sin(3 * np.pi * x)]
+    Q = np.c_[x[::-1] * 0 + x, -0.3 * np.sin(3 * np.pi * x) * np.cos(6 * np.pi * x)]
+    try:
+        split_pair(P, Q, False, 0.01)
+    except bm.IncompatibleCurvesError as exc:
+        assert "order" in str(exc)
+
+
+# ------------------------------------------------------------------ the pipeline
+
+
+def _drawing_4_and_5():
+    x = np.linspace(0, 1, 60)
+    a = [
+        np.c_[x, 0.3 * np.sin(np.pi * x)],
+        np.c_[x, 2 + 0.1 * x],
+        circle(0.3, 50, centre=(3.0, 1.0)),
+        np.c_[x + 5, 0.5 * x],
+    ]
+    b = [
+        np.c_[x, -0.2 * np.sin(np.pi * x)],
+        np.c_[x + 0.4, 2.3 - 0.1 * x][::-1],  # drawn the other way
+        circle(0.35, 50, centre=(3.2, 1.1)),  # crosses its first position
+        np.c_[x + 5.2, 0.4 + 0.3 * x],
+        np.c_[x + 8, np.sin(3 * x)],  # new stroke
+    ]
+    cyc_a = np.array([False, False, True, False])
+    cyc_b = np.array([False, False, True, False, False])
+    return bm.StrokeSet.from_strokes(a, cyclic=cyc_a), bm.StrokeSet.from_strokes(b, cyclic=cyc_b)
+
+
+def test_pipeline_on_mismatched_drawing_reports_and_keeps_strokes_simple():
+    key_a, key_b = _drawing_4_and_5()
+    times = np.linspace(0, 1, 7)[1:-1]
+    result = bm.inbetween(key_a, key_b, times)
+    texts = " ".join(m.text for m in result.messages)
+    assert "stroke 4 of the second key has no partner" in texts
+    assert "flipped" in texts
+    for k, frame in enumerate(result.frames):
+        assert len(frame) == (4 if times[k] < 0.5 else 5)
+        for i in range(len(frame)):
+            pts = frame.positions[frame.points(i)][:, [0, 2]]
+            assert is_simple(pts, bool(frame.cyclic[i]))
+    assert all(np.isfinite(f.positions).all() for f in result.frames)
+
+
+def test_attributes_follow_the_correspondence():
+    x = np.linspace(0, 1, 80)
+    key_a = bm.StrokeSet.from_strokes([np.c_[x, 0.3 * np.sin(np.pi * x)]], radius=[np.linspace(0.0, 1.0, 80)])
+    key_b = bm.StrokeSet.from_strokes([np.c_[x, -0.3 * np.sin(np.pi * x)]], radius=[np.full(80, 2.0)])
+    frame = bm.inbetween(key_a, key_b, [0.5], method="linear-ball").frames[0]
+    # Mirror pair with straight paths: the sample at x comes from the point of A at x, whose
+    # radius is x (vertices are evenly spaced in x), and from its mirror on B (radius 2).
+    np.testing.assert_allclose(frame.radius, 0.5 * frame.positions[:, 0] + 1.0, atol=1e-3)
+    np.testing.assert_allclose(frame.opacity, 1.0)
+
+
+def test_keys_are_not_modified():
+    key_a, key_b = _drawing_4_and_5()
+    before = [k.positions.copy() for k in (key_a, key_b)]
+    bm.inbetween(key_a, key_b, [0.5])
+    for k, b in zip((key_a, key_b), before):
+        np.testing.assert_array_equal(k.positions, b)
