@@ -1,7 +1,7 @@
 # Two commands matter: `make demo` (the main job) and `make test` (everything CI runs).
 # Both bootstrap their own cached Python 3.11 + bpy environments (tools/bootstrap.sh).
 
-.PHONY: demo test lint build core-demo
+.PHONY: demo test lint build core-demo evaluate
 
 demo:
 	tools/demo.sh
@@ -17,3 +17,6 @@ build:
 
 core-demo:
 	$$(tools/bootstrap.sh 5.0.1) tools/core_demo.py
+
+evaluate:
+	$$(tools/bootstrap.sh 5.0.1) tools/evaluate.py

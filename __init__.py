@@ -4,9 +4,9 @@ This file only registers: it walks the add-on's submodules in order, and in reve
 unregister. The maths lives in the vendored, bpy-free ``ballmorph_core`` package.
 """
 
-from . import operators, ui
+from . import operators, properties, ui
 
-_modules = (operators, ui)
+_modules = (properties, operators, ui)
 
 
 def register():

@@ -26,8 +26,10 @@ has moved by the spacing and the other by at most the spacing. Every kept pair i
 ball-map contact; swapping P and Q gives the same pairs. ``sampling='P'`` is the paper's
 approach 2 (uniform samples on P mapped to Q), used for its fair comparison; ``'Q'`` the mirror.
 
-**Check.** Every maximal disk must be empty: a k-d tree over both curves' vertices finds any
-vertex deeper than ``tolerances.DISK_PENETRATION`` sample spacings inside a disk. Such a disk
+**Check.** Every maximal disk must be empty: the vertices near its contacts may enter it by at
+most ``tolerances.DISK_PENETRATION`` sample spacings, and a k-d tree over both curves'
+vertices (:class:`~ballmorph_core.spatial.CurveTree`) finds any other part of the curves
+deeper inside than ``tolerances.NONLOCAL_*``. Such a disk
 touches a curve twice, i.e. the medial axis of the gap bifurcates there (paper section 3.3), and
 the pair is not b-compatible at that place.
 """
@@ -38,22 +40,13 @@ import numpy as np
 
 from . import tolerances as tol
 from .compat import CompatibilityReport, PairSetup, Violation, orient_pair
-from .curves import (
-    as_curve,
-    cumulative_length,
-    curve_length,
-    default_spacing,
-    densify,
-    edge_normals,
-    resample,
-    scale_of,
-    vertex_normals,
-)
+from .curves import as_curve, default_spacing, densify, scale_of
 from .errors import IncompatibleCurvesError, InvalidCurveError
 from .options import check_option
-from .spatial import PointTree, ragged_arange
+from .ragged import Ragged
+from .spatial import CurveTree, ragged_arange
 
-__all__ = ["Correspondence", "ball_map", "SAMPLINGS", "lace", "DenseMaps", "dense_maps", "disk_between"]
+__all__ = ["Correspondence", "ball_map", "ball_maps", "SAMPLINGS", "DenseMaps", "dense_maps", "disk_between"]
 
 SAMPLINGS = ("symmetric", "P", "Q")
 
@@ -177,113 +170,47 @@ def _segment_argmin(values, owner, n_groups):
 
 
 # --------------------------------------------------------------------------------------------
-# Lacing by bisection, batched over several chains.
+# One side of a batch of pairs: every chain's curve, densely resampled, with gap normals.
 
 
-def lace(chains, eps):
-    """Map the samples of every chain onto its target polyline (see the module docstring).
+class _Sides:
+    """Dense samples of one curve per chain, with normals pointing into each chain's gap.
 
-    Parameters
+    Attributes
     ----------
-    chains : list of tuple
-        ``(x, n, y, N, closed)`` per chain: samples ``x`` (K, 2) with unit gap normals ``n``
-        (K, 2); target vertices ``y`` (M, 2) with unit gap normals ``N`` of its edges (E, 2)
-        (``E = M`` for a loop, ``M - 1`` for a stroke).
-    eps : float
-        Absolute length tolerance.
-
-    Returns
-    -------
-    list of tuple
-        ``(r, pos)`` per chain: radii (K,) (``inf`` where no disk was found) and contact
-        positions (K,) in units of target edges, unwrapped for loops (``pos = e + u``: on edge
-        ``e mod M`` at fraction ``u``).
+    rg : Ragged
+    vnormals, enormals : ndarray, shape (N, 2)
+        Vertex normals and edge normals (by first vertex).
     """
-    # Concatenate all chains; loops get their target stored twice so unwrapped indices work.
-    xs, ns, ya, yb, Ns = [], [], [], [], []
-    x_off, e_off, n_edges, closed_flags = [0], [0], [], []
-    for x, n, y, N, closed in chains:
-        if closed:
-            y2 = np.concatenate([y, y, y[:1]])
-            N2 = np.concatenate([N, N])
-        else:
-            y2, N2 = y, N
-        xs.append(x)
-        ns.append(n)
-        ya.append(y2[:-1])
-        yb.append(y2[1:])
-        Ns.append(N2)
-        x_off.append(x_off[-1] + len(x))
-        e_off.append(e_off[-1] + len(N2))
-        n_edges.append(len(N))
-        closed_flags.append(closed)
-    X, Nx = np.concatenate(xs), np.concatenate(ns)
-    A, B, NE = np.concatenate(ya), np.concatenate(yb), np.concatenate(Ns)
-    x_off, e_off = np.array(x_off), np.array(e_off)
-    n_edges, closed_flags = np.array(n_edges), np.array(closed_flags)
 
-    total = x_off[-1]
-    r = np.full(total, np.inf)
-    pos = np.zeros(total)
+    def __init__(self, curves, closed, sides, spacing):
+        spacing = np.asarray(spacing, dtype=np.float64)
+        # Coarse, hand-placed polylines get a few interpolating subdivision steps first.
+        curves = [densify(c, cl, h) for c, cl, h in zip(curves, closed, spacing)]
+        raw = Ragged.from_list(curves, closed)
+        counts = np.round(raw.length / spacing).astype(np.int64) + np.where(raw.closed, 0, 1)
+        self.rg = raw.resample(counts)
+        side = np.asarray(sides, dtype=np.float64)[self.rg.owner][:, None]
+        self.vnormals = side * self.rg.vertex_normals()
+        self.enormals = side * self.rg.edge_normals()
 
-    def solve(samples, chain, e_lo, e_hi):
-        """Search edges [e_lo, e_hi] (chain-local, unwrapped) for each sample."""
-        owner, local = ragged_arange(e_hi - e_lo + 1)
-        s = samples[owner]
-        e = e_off[chain][owner] + e_lo[owner] + local
-        rr, uu = _candidates(X[s], Nx[s], A[e], B[e], NE[e], eps)
-        best = _segment_argmin(rr, owner, len(samples))
-        return rr[best], (e_lo[owner] + local)[best] + uu[best]
-
-    # Anchors.
-    chain_ids = np.arange(len(chains))
-    lo_idx = x_off[:-1].copy()
-    hi_idx = x_off[1:] - 1
-    lo_pos = np.zeros(len(chains))
-    hi_pos = n_edges.astype(np.float64)
-    r[lo_idx[~closed_flags]] = 0.0
-    r[hi_idx[~closed_flags]] = 0.0
-    pos[hi_idx[~closed_flags]] = n_edges[~closed_flags]
-    loops = chain_ids[closed_flags]
-    if len(loops):
-        rr, pp = solve(lo_idx[loops], loops, np.zeros(len(loops), np.int64), n_edges[loops] - 1)
-        r[lo_idx[loops]], pos[lo_idx[loops]] = rr, pp
-        lo_pos[loops] = pp
-        # A loop's chain closes on its first sample, one lap later.
-        hi_idx[loops] = x_off[1:][loops]
-        hi_pos[loops] = pp + n_edges[loops]
-
-    intervals = (chain_ids, lo_idx, hi_idx, lo_pos, hi_pos)
-    while True:
-        chain, lo, hi, plo, phi = intervals
-        open_ = hi - lo > 1
-        chain, lo, hi, plo, phi = chain[open_], lo[open_], hi[open_], plo[open_], phi[open_]
-        if len(chain) == 0:
-            break
-        mid = (lo + hi) // 2
-        n_e = np.where(closed_flags[chain], 2 * n_edges[chain], n_edges[chain])
-        e_lo = np.clip(np.floor(plo).astype(np.int64), 0, n_e - 1)
-        e_hi = np.clip(np.ceil(phi).astype(np.int64) - 1, e_lo, n_e - 1)
-        rr, pp = solve(mid, chain, e_lo, e_hi)
-        # No disk in the bracket: keep the order (the check will report the place).
-        pp = np.where(np.isfinite(rr), np.clip(pp, plo, phi), plo)
-        r[mid], pos[mid] = rr, pp
-        intervals = (
-            np.concatenate([chain, chain]),
-            np.concatenate([lo, mid]),
-            np.concatenate([mid, hi]),
-            np.concatenate([plo, pp]),
-            np.concatenate([pp, phi]),
+    def view(self, c):
+        """Curve ``c`` as a single-curve view (for the composite ball-morph)."""
+        rg = self.rg
+        sl = slice(rg.offsets[c], rg.offsets[c + 1])
+        n_e = rg.n_edges[c]
+        return _Side(
+            rg.pts[sl],
+            self.vnormals[sl],
+            self.enormals[sl][:n_e],
+            np.concatenate([rg.s[sl], [rg.length[c]]]) if rg.closed[c] else rg.s[sl],
+            float(rg.length[c]),
         )
-    return [(r[x_off[c] : x_off[c + 1]], pos[x_off[c] : x_off[c + 1]]) for c in range(len(chains))]
-
-
-# --------------------------------------------------------------------------------------------
 
 
 @dataclass
 class _Side:
-    """One curve prepared for lacing: dense samples, normals, arc length."""
+    """One dense curve: points, normals, arc length (``cum`` as curves.cumulative_length)."""
 
     pts: np.ndarray
     vnormals: np.ndarray
@@ -292,32 +219,96 @@ class _Side:
     length: float
 
 
-def _prepare(curve, closed, side, spacing):
-    dense = resample(densify(curve, closed, spacing), closed, spacing)
-    return _Side(
-        dense,
-        side * vertex_normals(dense, closed),
-        side * edge_normals(dense, closed),
-        cumulative_length(dense, closed),
-        curve_length(dense, closed),
-    )
+# --------------------------------------------------------------------------------------------
+# Lacing by bisection, batched over chains.
 
 
-def _contacts(target, closed, pos):
-    """Points, arc lengths (unwrapped) and edge normals at contact positions."""
-    m = len(target.enormals)
-    e = np.floor(pos).astype(np.int64)
-    e = np.clip(e, 0, (2 * m if closed else m) - 1)
-    u = pos - e
-    e_mod = e % m if closed else e
-    lens = target.cum[1:] - target.cum[:-1]
-    nxt = (e_mod + 1) % len(target.pts) if closed else e_mod + 1
-    pts = target.pts[e_mod] + u[:, None] * (target.pts[nxt] - target.pts[e_mod])
-    s = target.cum[e_mod] + u * lens[e_mod] + (e // m) * target.length if closed else target.cum[e] + u * lens[e]
-    return pts, s, target.enormals[e_mod]
+def _lace(src, dst, eps):
+    """Map every sample of chain ``c``'s source curve onto its target curve.
+
+    Returns
+    -------
+    r : ndarray, shape (N,)
+        Radii (inf where no disk was found in the window).
+    pos : ndarray, shape (N,)
+        Contact positions in units of target edges (``e + u``), unwrapped for loops.
+    """
+    s_rg, d_rg = src.rg, dst.rg
+    n_chains = len(s_rg)
+    xo, do = s_rg.offsets, d_rg.offsets
+    n_e = d_rg.n_edges
+    closed = d_rg.closed
+    X, NX = s_rg.pts, src.vnormals
+    A = d_rg.pts
+    B = A + d_rg.edge
+    NE = dst.enormals
+    r = np.full(len(X), np.inf)
+    pos = np.zeros(len(X))
+
+    def solve(samples, chain, e_lo, e_hi):
+        owner, local = ragged_arange(e_hi - e_lo + 1)
+        c = chain[owner]
+        e_local = e_lo[owner] + local
+        g = do[c] + np.where(closed[c], e_local % np.maximum(n_e[c], 1), e_local)
+        s = samples[owner]
+        rr, uu = _candidates(X[s], NX[s], A[g], B[g], NE[g], eps)
+        best = _segment_argmin(rr, owner, len(samples))
+        return rr[best], e_local[best] + uu[best]
+
+    chains = np.arange(n_chains)
+    lo_idx, hi_idx = xo[:-1].copy(), xo[1:] - 1
+    lo_pos, hi_pos = np.zeros(n_chains), n_e.astype(np.float64)
+    opened = ~closed
+    r[lo_idx[opened]] = 0.0
+    r[hi_idx[opened]] = 0.0
+    pos[hi_idx[opened]] = n_e[opened]
+    loops = chains[closed]
+    if len(loops):
+        rr, pp = solve(lo_idx[loops], loops, np.zeros(len(loops), np.int64), n_e[loops] - 1)
+        r[lo_idx[loops]], pos[lo_idx[loops]] = rr, pp
+        lo_pos[loops] = pp
+        # A loop's chain closes on its first sample, one lap later.
+        hi_idx[loops] = xo[1:][loops]
+        hi_pos[loops] = pp + n_e[loops]
+    chain, lo, hi, plo, phi = chains, lo_idx, hi_idx, lo_pos, hi_pos
+    while True:
+        keep = hi - lo > 1
+        chain, lo, hi, plo, phi = chain[keep], lo[keep], hi[keep], plo[keep], phi[keep]
+        if len(chain) == 0:
+            break
+        mid = (lo + hi) // 2
+        laps = np.where(closed[chain], 2 * n_e[chain], n_e[chain])
+        e_lo = np.clip(np.floor(plo).astype(np.int64), 0, laps - 1)
+        e_hi = np.clip(np.ceil(phi).astype(np.int64) - 1, e_lo, laps - 1)
+        rr, pp = solve(mid, chain, e_lo, e_hi)
+        # No disk in the bracket: keep the order (the check reports the place).
+        pp = np.where(np.isfinite(rr), np.clip(pp, plo, phi), plo)
+        r[mid], pos[mid] = rr, pp
+        chain, lo, hi, plo, phi = (
+            np.concatenate([chain, chain]),
+            np.concatenate([lo, mid]),
+            np.concatenate([mid, hi]),
+            np.concatenate([plo, pp]),
+            np.concatenate([pp, phi]),
+        )
+    return r, pos
 
 
-def _refine(x, n, dst, closed, pos, r, eps):
+def _contacts(dst, chain, pos):
+    """Contact points, unwrapped arc lengths and edge normals at positions on target edges."""
+    rg = dst.rg
+    n_e = np.maximum(rg.n_edges[chain], 1)
+    closed = rg.closed[chain]
+    e = np.clip(np.floor(pos).astype(np.int64), 0, np.where(closed, 2 * n_e, n_e) - 1)
+    u = np.clip(pos - e, 0.0, 1.0)
+    lap = np.where(closed, e // n_e, 0)
+    g = rg.offsets[chain] + np.where(closed, e % n_e, e)
+    q = rg.pts[g] + u[:, None] * rg.edge[g]
+    s = rg.s[g] + u * rg.length_of_edge[g] + lap * rg.length[chain]
+    return q, s, dst.enormals[g]
+
+
+def _refine(x, n, dst, chain, pos, r, eps):
     """Refine polyline contacts on the circle through the three nearest target vertices.
 
     On a polygon the ball-map is a staircase (every disk touches a flat edge at the foot of its
@@ -325,17 +316,20 @@ def _refine(x, n, dst, closed, pos, r, eps):
     vertices (the paper's exact construction for piecewise-circular curves, section 5.1,
     equations 1-2) makes the map exact on circles and second-order accurate on smooth curves.
     A refined contact is kept only if it stays within the arc's span and near the polyline one.
+
+    Returns ok, r_new, q_new and s_new (arc length on the target, within one lap).
     """
-    m_v = len(dst.pts)
+    rg = dst.rg
+    n_v = rg.n[chain]
+    closed = rg.closed[chain]
     j = np.floor(pos + 0.5).astype(np.int64)
-    if closed:
-        jm, j0, jp = (j - 1) % m_v, j % m_v, (j + 1) % m_v
-        ok = np.isfinite(r) & (r > eps)
-    else:
-        ok = np.isfinite(r) & (r > eps) & (j >= 1) & (j <= m_v - 2)
-        j0 = np.clip(j, 1, m_v - 2)
-        jm, jp = j0 - 1, j0 + 1
-    a, b, c = dst.pts[jm], dst.pts[j0], dst.pts[jp]
+    jl = np.where(closed, j % np.maximum(n_v, 1), np.minimum(np.maximum(j, 1), np.maximum(n_v - 2, 1)))
+    ok = np.isfinite(r) & (r > eps) & (closed | ((j >= 1) & (j <= n_v - 2)))
+    g0 = rg.offsets[chain] + jl
+    gm, gp = rg.prv[g0], rg.nxt[g0]
+    ok &= (gm >= 0) & (gp >= 0)
+    gm, gp = np.maximum(gm, 0), np.maximum(gp, 0)
+    a, b, c = rg.pts[gm], rg.pts[g0], rg.pts[gp]
     # Circumcentre of (a, b, c).
     ab, ac = b - a, c - a
     det = 2.0 * (ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0])
@@ -346,91 +340,90 @@ def _refine(x, n, dst, closed, pos, r, eps):
     centre = a + np.stack([cx, cy], axis=1)
     rad = np.hypot(cx, cy)
     # Nearly straight: the polyline contact is already right, and the circle would cancel badly.
-    ok &= (np.abs(det) > 1e-9 * ab2 + 1e-300) & (np.hypot(cx, cy) < 1e4 * np.sqrt(ac2))
-    w = x - centre
-    wn = np.einsum("ij,ij->i", w, n)
-    inside = np.einsum("ij,ij->i", dst.vnormals[j0], centre - b) > 0
-    den = 2.0 * wn + np.where(inside, 2.0, -2.0) * rad
-    with np.errstate(divide="ignore", invalid="ignore"):
+    ok &= (np.abs(det) > 1e-9 * ab2 + 1e-300) & (rad < 1e4 * np.sqrt(ac2))
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        w = x - centre
+        wn = np.einsum("ij,ij->i", w, n)
+        inside = np.einsum("ij,ij->i", dst.vnormals[g0], centre - b) > 0
+        den = 2.0 * wn + np.where(inside, 2.0, -2.0) * rad
         r_new = (rad * rad - np.einsum("ij,ij->i", w, w)) / den
         m = x + r_new[:, None] * n
         dm = m - centre
         q_new = centre + rad[:, None] * dm / np.linalg.norm(dm, axis=1, keepdims=True)
         chord = c - a
         t = np.einsum("ij,ij->i", q_new - b, chord) / np.einsum("ij,ij->i", chord, chord)
-    r_safe = np.where(np.isfinite(r), r, 0.0)
-    ok &= np.isfinite(r_new) & (r_new >= 0) & (np.abs(t) <= 0.5)
-    ok &= np.abs(r_new - r_safe) <= 0.25 * r_safe + np.linalg.norm(chord, axis=1)
-    s_mid = dst.cum[j0]
-    s_new = s_mid + t * (dst.cum[np.minimum(j0 + 1, len(dst.cum) - 1)] - dst.cum[np.maximum(j0 - 1, 0)])
+        r_safe = np.where(np.isfinite(r), r, 0.0)
+        ok &= np.isfinite(r_new) & (r_new >= 0) & (np.abs(t) <= 0.5)
+        ok &= np.abs(r_new - r_safe) <= 0.25 * r_safe + np.linalg.norm(chord, axis=1)
+    s_new = rg.s[g0] + t * (rg.length_of_edge[gm] + rg.length_of_edge[g0])
     return ok, r_new, q_new, s_new
 
 
-def _one_way(src, dst, closed, eps):
-    """Map every dense sample of src onto dst: dict of arrays."""
-    ((r, pos),) = lace([(src.pts, src.vnormals, dst.pts, dst.enormals, closed)], eps)
-    q, s_dst, n_edge = _contacts(dst, closed, pos)
-    better, r_new, q_new, s_new = _refine(src.pts, src.vnormals, dst, closed, pos, r, eps)
-    if closed:
-        lap = np.floor(s_dst / dst.length)
-        s_new = np.mod(s_new, dst.length) + lap * dst.length
-        # A refined contact near the seam may land on the other side of it.
-        s_new = np.where(s_new - s_dst > dst.length / 2, s_new - dst.length, s_new)
-        s_new = np.where(s_dst - s_new > dst.length / 2, s_new + dst.length, s_new)
+def _same_lap(s_new, s_ref, length, closed):
+    """Put loop positions on the lap of reference (unwrapped) positions."""
+    return np.where(closed, s_new + length * np.round((s_ref - s_new) / np.maximum(length, 1e-300)), s_new)
+
+
+def _one_way(src, dst, eps):
+    """Map every dense sample of each chain's source onto its target: dict of arrays."""
+    r, pos = _lace(src, dst, eps)
+    chain = src.rg.owner
+    q, s_dst, n_edge = _contacts(dst, chain, pos)
+    better, r_new, q_new, s_new = _refine(src.rg.pts, src.vnormals, dst, chain, pos, r, eps)
+    closed = dst.rg.closed[chain]
+    length = dst.rg.length[chain]
+    s_new = _same_lap(s_new, s_dst, length, closed)
     # Refining must not break the monotone order lacing produced: where refined neighbours
     # would step back, both fall back to their polyline contacts (which are in order).
+    nxt = src.rg.nxt
+    has_next = nxt >= 0
+    nxt_safe = np.maximum(nxt, 0)
+    wraps = has_next & (nxt_safe == src.rg.offsets[:-1][chain])
     for _ in range(8):
         s_try = np.where(better, s_new, s_dst)
-        steps = np.diff(np.r_[s_try, s_try[0] + dst.length] if closed else s_try)
-        back = np.flatnonzero(steps < 0)
+        step = s_try[nxt_safe] + np.where(wraps, length, 0.0) - s_try
+        back = np.flatnonzero(has_next & (step < 0))
         if len(back) == 0:
             break
         better[back] = False
-        better[(back + 1) % len(better)] = False
+        better[nxt_safe[back]] = False
     r = np.where(better, r_new, r)
     q = np.where(better[:, None], q_new, q)
     s_dst = np.where(better, s_new, s_dst)
+    return _assemble(src, chain, src.rg.pts, src.vnormals, src.rg.s, r, q, s_dst, n_edge, eps)
+
+
+def _assemble(src, chain, x, n, s_src, r, q, s_dst, n_edge, eps):
     ok = np.isfinite(r)
     rr = np.where(ok, r, 0.0)
-    m = src.pts + rr[:, None] * src.vnormals
+    m = x + rr[:, None] * n
     with np.errstate(invalid="ignore", divide="ignore"):
         n_dst = np.where((rr > eps)[:, None], (m - q) / rr[:, None], n_edge)
-    return dict(
-        src=src.pts,
-        dst=q,
-        m=m,
-        r=rr,
-        ok=ok,
-        s_src=src.cum[: len(src.pts)],
-        s_dst=s_dst,
-        n_src=src.vnormals,
-        n_dst=n_dst,
-    )
+    return dict(src=x, dst=q, m=m, r=rr, ok=ok, s_src=s_src, s_dst=s_dst, n_src=n, n_dst=n_dst, chain=chain)
 
 
-def _full_search(x, n, dst, closed, eps, budget=2_000_000):
-    """Smallest disk at each sample over *all* target edges (no lacing window), chunked.
-
-    Returns r (inf where none) and positions in [0, E).
-    """
-    n_edges = len(dst.enormals)
-    a = dst.pts[:n_edges]
-    b = np.roll(dst.pts, -1, axis=0)[:n_edges] if closed else dst.pts[1:]
+def _full_search(x, n, dst, chain, eps, budget=2_000_000):
+    """Smallest disk at each sample over all edges of its chain's target (no lacing window)."""
+    rg = dst.rg
+    counts = rg.n_edges[chain]
     r = np.full(len(x), np.inf)
     pos = np.zeros(len(x))
-    chunk = max(1, budget // max(n_edges, 1))
-    for start in range(0, len(x), chunk):
-        sl = slice(start, start + chunk)
-        k = len(x[sl])
-        owner = np.repeat(np.arange(k), n_edges)
-        e = np.tile(np.arange(n_edges), k)
-        rr, uu = _candidates(x[sl][owner], n[sl][owner], a[e], b[e], dst.enormals[e], eps)
-        best = _segment_argmin(rr, owner, k)
-        r[sl], pos[sl] = rr[best], e[best] + uu[best]
+    start = 0
+    cum = np.cumsum(counts)
+    while start < len(x):
+        stop = max(start + 1, int(np.searchsorted(cum, (cum[start - 1] if start else 0) + budget)))
+        sl = slice(start, stop)
+        owner, local = ragged_arange(counts[sl])
+        g = rg.offsets[chain[sl]][owner] + local
+        rr, uu = _candidates(x[sl][owner], n[sl][owner], rg.pts[g], rg.pts[g] + rg.edge[g], dst.enormals[g], eps)
+        best = _segment_argmin(rr, owner, stop - start) if len(rr) else np.zeros(0, np.int64)
+        if len(rr):
+            r[sl], pos[sl] = rr[best], local[best] + uu[best]
+        start = stop
     return r, pos
 
 
-def _repair(one_way, src, dst, closed, eps):
+def _repair(one_way, src, dst, eps):
     """Redo the samples whose lacing result failed the check with an unwindowed search.
 
     On a pair that is not b-compatible, a wrong contact at one bisection level narrows the
@@ -441,24 +434,110 @@ def _repair(one_way, src, dst, closed, eps):
     idx = np.flatnonzero(one_way["bad"])
     if len(idx) == 0:
         return
-    x, n = src.pts[idx], src.vnormals[idx]
-    r, pos = _full_search(x, n, dst, closed, eps)
-    q, s_dst, n_edge = _contacts(dst, closed, pos)
-    better, r_new, q_new, s_new = _refine(x, n, dst, closed, pos, r, eps)
+    chain = one_way["chain"][idx]
+    x, n = one_way["src"][idx], one_way["n_src"][idx]
+    r, pos = _full_search(x, n, dst, chain, eps)
+    q, s_dst, n_edge = _contacts(dst, chain, pos)
+    better, r_new, q_new, s_new = _refine(x, n, dst, chain, pos, r, eps)
     r = np.where(better, r_new, r)
     q = np.where(better[:, None], q_new, q)
     s_dst = np.where(better, s_new, s_dst)
-    if closed:
-        # Put each repaired contact on the lap nearest its old (unwrapped) position.
-        old = one_way["s_dst"][idx]
-        s_dst = s_dst + dst.length * np.round((old - s_dst) / dst.length)
-    ok = np.isfinite(r)
-    rr = np.where(ok, r, 0.0)
-    m = x + rr[:, None] * n
-    with np.errstate(invalid="ignore", divide="ignore"):
-        n_dst = np.where((rr > eps)[:, None], (m - q) / rr[:, None], n_edge)
-    for key, val in (("dst", q), ("m", m), ("r", rr), ("ok", ok), ("s_dst", s_dst), ("n_dst", n_dst)):
-        one_way[key][idx] = val
+    # Put each repaired contact on the lap nearest its old (unwrapped) position.
+    s_dst = _same_lap(s_dst, one_way["s_dst"][idx], dst.rg.length[chain], dst.rg.closed[chain])
+    fixed = _assemble(src, chain, x, n, one_way["s_src"][idx], r, q, s_dst, n_edge, eps)
+    for key in ("dst", "m", "r", "ok", "s_dst", "n_dst"):
+        one_way[key][idx] = fixed[key]
+
+
+def _local_depths(side, chain, s, centres, radii):
+    """Deepest penetration of each disk by the vertices near its contact on one curve."""
+    rg = side.rg
+    edge, _ = rg.locate(chain, s)
+    local = edge - rg.offsets[chain]
+    n_v = np.maximum(rg.n[chain], 1)[:, None]
+    win = local[:, None] + np.arange(-tol.LOCAL_WINDOW, tol.LOCAL_WINDOW + 2)[None, :]
+    win = np.where(rg.closed[chain][:, None], np.mod(win, n_v), np.clip(win, 0, n_v - 1))
+    g = rg.offsets[chain][:, None] + win
+    diff = rg.pts[g] - centres[:, None, :]
+    d2 = np.einsum("kwi,kwi->kw", diff, diff)
+    k = np.argmin(d2, axis=1)
+    rows = np.arange(len(k))
+    return radii - np.sqrt(d2[rows, k]), g[rows, k]
+
+
+def _check(one_way, src, dst, spacing, eps, driver, reports):
+    """Mark (``one_way['bad']``) and report the maximal disks entered by either curve.
+
+    ``spacing`` is the dense spacing per chain, shape (C,).
+    """
+    m, r, ok, chain = one_way["m"], one_way["r"], one_way["ok"], one_way["chain"]
+    h = spacing[chain]
+    d_src, w_src = _local_depths(src, chain, one_way["s_src"], m, r)
+    d_dst, w_dst = _local_depths(dst, chain, one_way["s_dst"], m, r)
+    n_src = len(src.rg.pts)
+    n_chains = len(src.rg)
+    verts = np.concatenate([src.rg.pts, dst.rg.pts])
+    depth = np.maximum(d_src, d_dst)
+    witness = np.where(d_src >= d_dst, w_src, w_dst + n_src)
+    bad = depth > np.maximum(tol.DISK_PENETRATION * h, eps)
+    # Other parts of the same chain's curves reaching into a disk.
+    radius = r * (1.0 - tol.NONLOCAL_RELATIVE) - tol.NONLOCAL_PENETRATION * h
+    query = np.flatnonzero((radius > 0) & ok)
+    tree = CurveTree(verts, np.concatenate([src.rg.offsets, dst.rg.offsets[1:] + n_src]))
+    own = np.stack([chain[query], chain[query] + n_chains], axis=1)  # the chain's two curves
+    qi, pi = tree.within(m[query], radius[query], own, first_only=True)
+    k = query[qi]
+    far = r[k] - np.linalg.norm(verts[pi] - m[k], axis=1)
+    deeper = far > np.where(bad[k], depth[k], -np.inf)
+    depth[k[deeper]], witness[k[deeper]] = far[deeper], pi[deeper]
+    bad[k] = True
+    bad &= ok
+    one_way["bad"] = bad | ~ok
+    flagged = np.flatnonzero(one_way["bad"])
+    if len(flagged) == 0:
+        return
+    other = "Q" if driver == "P" else "P"
+    s_src = one_way["s_src"] % np.where(src.rg.closed, src.rg.length, np.inf)[chain]
+    s_dst = one_way["s_dst"] % np.where(dst.rg.closed, dst.rg.length, np.inf)[chain]
+    for k in flagged:
+        pq, ss = (one_way["src"][k], one_way["dst"][k]), (float(s_src[k]), float(s_dst[k]))
+        if driver == "Q":
+            pq, ss = pq[::-1], ss[::-1]
+        found = bool(ok[k])
+        w = witness[k]
+        name = (driver if w < n_src else other) if found else other
+        sample = int(k - src.rg.offsets[chain[k]])
+        reports[chain[k]].violations.append(
+            Violation(
+                driver,
+                sample,
+                pq[0],
+                pq[1],
+                ss[0],
+                ss[1],
+                name,
+                verts[w] if found else one_way["dst"][k],
+                float(depth[k]) if found else float("inf"),
+            )
+        )
+
+
+def _checked(maps, spacing, eps, reports):
+    """Check one-way maps, repair lacing failures in chains with violations, check again."""
+    for one_way, src, dst, driver in maps:
+        _check(one_way, src, dst, spacing, eps, driver, reports)
+    failing = [c for c, rep in enumerate(reports) if rep.violations]
+    if not failing:
+        return
+    for c in failing:
+        reports[c].violations = []
+    for one_way, src, dst, driver in maps:
+        again = np.isin(one_way["chain"], failing)
+        one_way["bad"] &= again
+        _repair(one_way, src, dst, eps)
+        sub = {key: val[again] for key, val in one_way.items()}
+        _check(sub, src, dst, spacing, eps, driver, reports)
+        one_way["bad"][again] = sub["bad"]
 
 
 def _flip(d):
@@ -472,117 +551,201 @@ def _flip(d):
         s_dst=d["s_src"],
         n_src=d["n_dst"],
         n_dst=d["n_src"],
+        chain=d["chain"],
     )
 
 
-def _merge(fwd, bwd, spacing, closed, len_p, len_q, dense_spacing, report):
+def _segments(chain, n_chains):
+    """Start index of each chain's run in a chain-sorted array, shape (C + 1,)."""
+    return np.searchsorted(chain, np.arange(n_chains + 1))
+
+
+def _merge(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
     """Thin the union of both one-way maps into symmetric samples (paper approach 3).
 
-    The union, ordered by ``s_p + s_q``, must be a monotone chain. Pairs that step back by round-off
-    are dropped; a pair that steps back by more than ``tolerances.MAP_DISAGREEMENT`` dense
-    spacings means the forward and backward maps disagree: a maximal disk touches a curve at
-    two places (paper section 3.4), which is reported as a violation.
+    Per chain, the union ordered by ``s_p + s_q`` must be a monotone chain. Pairs that step
+    back by round-off are dropped; a pair that steps back by more than
+    ``tolerances.MAP_DISAGREEMENT`` dense spacings means the forward and backward maps
+    disagree: a maximal disk touches a curve at two places (paper section 3.4), reported.
     """
+    n_chains = len(sp.rg)
+    len_p, len_q = sp.rg.length, sq.rg.length
+    closed = sp.rg.closed
     bwd = _flip(bwd)  # now read from P to Q like fwd
-    if closed:
-        # Bring the backward pairs into the forward map's unwrapped frame.
-        sp = np.mod(bwd["s_src"], len_p)
-        ref = np.interp(sp, fwd["s_src"], fwd["s_dst"], period=None)
-        sq = bwd["s_dst"] + len_q * np.round((ref - bwd["s_dst"]) / len_q)
-        bwd = dict(bwd, s_src=sp, s_dst=sq)
-    keys = ("src", "dst", "m", "r", "ok", "s_src", "s_dst", "n_src", "n_dst")
+    cb = bwd["chain"]
+    if closed.any():
+        # Bring the backward pairs of loops into the forward map's unwrapped frame: interpolate
+        # the forward graph (with one extra node closing each loop's lap).
+        cf = fwd["chain"]
+        first = sp.rg.offsets[:-1]
+        gx = np.concatenate([fwd["s_src"], fwd["s_src"][first] + len_p])
+        gy = np.concatenate([fwd["s_dst"], fwd["s_dst"][first] + len_q])
+        gc = np.concatenate([cf, np.arange(n_chains)])
+        base = np.concatenate([[0.0], np.cumsum(len_p + 1.0)])[:-1]
+        order = np.argsort(gx + base[gc], kind="stable")
+        sp_b = np.where(closed[cb], np.mod(bwd["s_src"], len_p[cb]), bwd["s_src"])
+        ref = np.interp(sp_b + base[cb], (gx + base[gc])[order], gy[order])
+        sq_b = np.where(closed[cb], bwd["s_dst"] + len_q[cb] * np.round((ref - bwd["s_dst"]) / len_q[cb]), bwd["s_dst"])
+        bwd = dict(bwd, s_src=sp_b, s_dst=sq_b)
+    keys = ("src", "dst", "m", "r", "ok", "s_src", "s_dst", "n_src", "n_dst", "chain")
     allp = {k: np.concatenate([fwd[k], bwd[k]]) for k in keys}
-    order = np.argsort(allp["s_src"] + allp["s_dst"], kind="stable")
+    chain = allp["chain"]
+    order = np.lexsort((allp["s_src"] + allp["s_dst"], chain))
     allp = {k: v[order] for k, v in allp.items()}
-    sp, sq = allp["s_src"], allp["s_dst"]
-    back_p = np.maximum.accumulate(sp) - sp
-    back_q = np.maximum.accumulate(sq) - sq
-    for k in np.flatnonzero(np.maximum(back_p, back_q) > tol.MAP_DISAGREEMENT * dense_spacing):
+    chain = allp["chain"]
+    sp_, sq_ = allp["s_src"], allp["s_dst"]
+    # Running maxima per chain (chains sorted ascending: shift each far above the previous).
+    big = 4.0 * (max(len_p.max(), len_q.max()) + 1.0)
+    back_p = np.maximum.accumulate(sp_ + chain * big) - chain * big - sp_
+    back_q = np.maximum.accumulate(sq_ + chain * big) - chain * big - sq_
+    h = dense_spacing[chain]
+    for k in np.flatnonzero(np.maximum(back_p, back_q) > tol.MAP_DISAGREEMENT * h):
+        c = chain[k]
         curve = "P" if back_p[k] >= back_q[k] else "Q"
-        report.violations.append(
+        reports[c].violations.append(
             Violation(
                 "P+Q",
                 int(k),
                 allp["src"][k],
                 allp["dst"][k],
-                float(np.mod(sp[k], len_p) if closed else sp[k]),
-                float(np.mod(sq[k], len_q) if closed else sq[k]),
+                float(np.mod(sp_[k], len_p[c]) if closed[c] else sp_[k]),
+                float(np.mod(sq_[k], len_q[c]) if closed[c] else sq_[k]),
                 curve,
                 allp["src"][k] if curve == "P" else allp["dst"][k],
                 float(max(back_p[k], back_q[k])),
             )
         )
-    mono = (back_p <= 1e-12 * len_p) & (back_q <= 1e-12 * len_q)
+    mono = (back_p <= 1e-12 * len_p[chain]) & (back_q <= 1e-12 * len_q[chain])
     allp = {k: v[mono] for k, v in allp.items()}
-    sp, sq = allp["s_src"], allp["s_dst"]
-    step = np.maximum(np.abs(np.diff(sp)), np.abs(np.diff(sq)))
-    tau = np.concatenate([[0.0], np.cumsum(step)])
-    total = tau[-1] + (max(len_p - (sp[-1] - sp[0]), len_q - (sq[-1] - sq[0])) if closed else 0.0)
-    count = max(int(round(total / spacing)), 3 if closed else 1)
-    # The node nearest each multiple of the uniform step (ends included for strokes).
-    targets = np.arange(count + (0 if closed else 1)) * (total / count)
-    hi = np.clip(np.searchsorted(tau, targets), 1, len(tau) - 1)
-    keep = np.where(targets - tau[hi - 1] <= tau[hi] - targets, hi - 1, hi)
-    keep = np.unique(keep)
+    chain = allp["chain"]
+    sp_, sq_ = allp["s_src"], allp["s_dst"]
+    seg = _segments(chain, n_chains)
+    starts, ends = seg[:-1], seg[1:] - 1
+    step = np.maximum(np.abs(np.diff(sp_, prepend=sp_[:1])), np.abs(np.diff(sq_, prepend=sq_[:1])))
+    step[starts] = 0.0
+    tau = np.cumsum(step)
+    tau -= tau[starts][chain]
+    closing = np.maximum(len_p - (sp_[ends] - sp_[starts]), len_q - (sq_[ends] - sq_[starts]))
+    total = tau[ends] + np.where(closed, closing, 0.0)
+    count = np.maximum(np.round(total / spacing).astype(np.int64), np.where(closed, 3, 1))
+    owner, local = ragged_arange(count + np.where(closed, 0, 1))
+    targets = local * (total / count)[owner]
+    # The node nearest each multiple of the uniform step, within its chain.
+    tbase = np.concatenate([[0.0], np.cumsum(total + 1.0)])[:-1]
+    g = tau + tbase[chain]
+    want = targets + tbase[owner]
+    hi = np.clip(np.searchsorted(g, want), starts[owner] + 1, np.maximum(ends[owner], starts[owner] + 1))
+    hi = np.minimum(hi, len(g) - 1)
+    lo = np.maximum(hi - 1, starts[owner])
+    pick = np.where(want - g[lo] <= g[hi] - want, lo, hi)
+    keep = np.unique(pick)
     return {k: v[keep] for k, v in allp.items()}
 
 
-def _local_depths(side, closed, s, centres, radii):
-    """Deepest penetration of a disk by the vertices near its contact on one curve."""
-    n = len(side.pts)
-    pos = np.mod(s, side.length) if closed else s
-    j = np.searchsorted(side.cum[:n], pos)
-    win = j[:, None] + np.arange(-tol.LOCAL_WINDOW, tol.LOCAL_WINDOW + 1)[None, :]
-    win = np.mod(win, n) if closed else np.clip(win, 0, n - 1)
-    depth = radii[:, None] - np.linalg.norm(side.pts[win] - centres[:, None, :], axis=2)
-    k = np.argmax(depth, axis=1)
-    rows = np.arange(len(k))
-    return depth[rows, k], win[rows, k]
+# --------------------------------------------------------------------------------------------
 
 
-def _check(one_way, src, dst, closed, spacing, eps, driver, report):
-    """Add to ``report`` the maximal disks of a one-way map entered by either curve."""
-    m, r, ok = one_way["m"], one_way["r"], one_way["ok"]
-    d_src, w_src = _local_depths(src, closed, one_way["s_src"], m, r)
-    d_dst, w_dst = _local_depths(dst, closed, one_way["s_dst"], m, r)
-    verts = np.concatenate([src.pts, dst.pts])
-    depth = np.maximum(d_src, d_dst)
-    witness = np.where(d_src >= d_dst, w_src, w_dst + len(src.pts))
-    bad = depth > max(tol.DISK_PENETRATION * spacing, eps)
-    # Other parts of the curves reaching into a disk.
-    radius = r - tol.NONLOCAL_PENETRATION * spacing
-    query = np.flatnonzero((radius > 0) & ok)
-    qi, pi = PointTree(verts, leaf_size=4).within(m[query], radius[query], first_only=True)
-    k = query[qi]
-    far = r[k] - np.linalg.norm(verts[pi] - m[k], axis=1)
-    deeper = far > np.where(bad[k], depth[k], -np.inf)
-    depth[k[deeper]], witness[k[deeper]] = far[deeper], pi[deeper]
-    bad[k] = True
-    bad &= ok
-    one_way["bad"] = bad | ~ok
-    other = "Q" if driver == "P" else "P"
-    names = np.where(witness < len(src.pts), driver, other)
-    s_src = np.mod(one_way["s_src"], src.length) if closed else one_way["s_src"]
-    s_dst = np.mod(one_way["s_dst"], dst.length) if closed else one_way["s_dst"]
-    for k in np.flatnonzero(bad | ~ok):
-        pq = (one_way["src"][k], one_way["dst"][k])
-        ss = (float(s_src[k]), float(s_dst[k]))
-        if driver == "Q":
-            pq, ss = pq[::-1], ss[::-1]
-        found = bool(ok[k])
-        report.violations.append(
-            Violation(
-                driver,
-                int(k),
-                pq[0],
-                pq[1],
-                ss[0],
-                ss[1],
-                str(names[k]) if found else other,
-                verts[witness[k]] if found else one_way["dst"][k],
-                float(depth[k]) if found else float("inf"),
+def _static(setup, side, c, spacing):
+    """Coincident curves: every point maps to itself with a zero disk."""
+    v = side.view(c)
+    zeros = np.zeros(len(v.pts))
+    s = v.cum[: len(v.pts)]
+    report = CompatibilityReport("coincident", samples=len(v.pts))
+    return Correspondence(
+        v.pts,
+        v.pts.copy(),
+        v.pts.copy(),
+        zeros,
+        v.vnormals,
+        v.vnormals,
+        s,
+        s.copy(),
+        setup.closed,
+        setup,
+        v.pts,
+        v.pts.copy(),
+        spacing,
+        report,
+    )
+
+
+def ball_maps(setups, spacing, sampling="symmetric", check=True, eps=None):
+    """Ball-maps of many oriented pairs at once (the batched engine behind :func:`ball_map`).
+
+    Parameters
+    ----------
+    setups : list of PairSetup
+        Pairs already checked and oriented by :func:`~ballmorph_core.compat.orient_pair` (or an
+        equivalent batched check).
+    spacing : array_like, shape (C,)
+        Output sample spacing of each pair.
+    sampling : {'symmetric', 'P', 'Q'}
+    check : bool
+        Raise for the first pair that is not b-compatible; with False every pair's
+        ``report`` says where it fails.
+    eps : array_like, shape (C,), optional
+        Absolute length tolerance per pair (default from each pair's size).
+
+    Returns
+    -------
+    list of Correspondence
+    """
+    check_option("sampling", sampling, SAMPLINGS)
+    n = len(setups)
+    if n == 0:
+        return []
+    spacing = np.broadcast_to(np.asarray(spacing, dtype=np.float64), (n,)).copy()
+    if eps is None:
+        eps = np.array([tol.COINCIDENT * scale_of(s.P, s.Q) for s in setups])
+    eps = float(np.min(eps))
+    dense = spacing / 2.0 if sampling == "symmetric" else spacing
+    closed = np.array([s.closed for s in setups], dtype=bool)
+    sp = _Sides([s.P for s in setups], closed, [s.side_p for s in setups], dense)
+    sq = _Sides([s.Q for s in setups], closed, [s.side_q for s in setups], dense)
+    config = np.where(closed, "disjoint-loops", "quasi-disjoint-strokes")
+    reports = [CompatibilityReport(str(cfg)) for cfg in config]
+    fwd = _one_way(sp, sq, eps) if sampling in ("P", "symmetric") else None
+    bwd = _one_way(sq, sp, eps) if sampling in ("Q", "symmetric") else None
+    maps = [(m, a, b, d) for m, a, b, d in ((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")) if m is not None]
+    for one_way, _, _, _ in maps:
+        counts = np.bincount(one_way["chain"], minlength=n)
+        for c in range(n):
+            reports[c].samples += int(counts[c])
+    _checked(maps, dense, eps, reports)
+    if sampling == "P":
+        out = fwd
+    elif sampling == "Q":
+        out = _flip(bwd)
+    else:
+        out = _merge(fwd, bwd, sp, sq, spacing, dense, reports)
+    seg = _segments(out["chain"], n)
+    result = []
+    for c, setup in enumerate(setups):
+        if setup.coincident:
+            result.append(_static(setup, sp, c, float(spacing[c])))
+            continue
+        if check and reports[c].violations:
+            raise IncompatibleCurvesError(reports[c].describe(), reports[c])
+        sl = slice(seg[c], seg[c + 1])
+        result.append(
+            Correspondence(
+                out["src"][sl],
+                out["dst"][sl],
+                out["m"][sl],
+                out["r"][sl],
+                out["n_src"][sl],
+                out["n_dst"][sl],
+                out["s_src"][sl],
+                out["s_dst"][sl],
+                bool(closed[c]),
+                setup,
+                sp.rg.curve(c),
+                sq.rg.curve(c),
+                float(spacing[c]),
+                reports[c],
             )
         )
+    return result
 
 
 @dataclass
@@ -621,28 +784,14 @@ def dense_maps(P, Q, closed, spacing, setup=None):
     """
     setup = orient_pair(P, Q, closed) if setup is None else setup
     eps = tol.COINCIDENT * scale_of(P, Q)
-    sp = _prepare(setup.P, closed, setup.side_p, spacing)
-    sq = _prepare(setup.Q, closed, setup.side_q, spacing)
-    fwd = _one_way(sp, sq, closed, eps)
-    bwd = _one_way(sq, sp, closed, eps)
-    report = _checked(((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")), closed, spacing, eps)
-    return DenseMaps(setup, sp, sq, fwd, bwd, spacing, eps, report)
-
-
-def _checked(maps, closed, spacing, eps):
-    """Check one-way maps, repair lacing failures, check again (CompatibilityReport)."""
-    config = "disjoint-loops" if closed else "quasi-disjoint-strokes"
-    report = CompatibilityReport(config)
-    for one_way, src, dst, driver in maps:
-        _check(one_way, src, dst, closed, spacing, eps, driver, report)
-    if not report.violations:
-        report.samples = sum(len(m[0]["r"]) for m in maps)
-        return report
-    report = CompatibilityReport(config, samples=sum(len(m[0]["r"]) for m in maps))
-    for one_way, src, dst, driver in maps:
-        _repair(one_way, src, dst, closed, eps)
-        _check(one_way, src, dst, closed, spacing, eps, driver, report)
-    return report
+    h = np.array([spacing])
+    sp = _Sides([setup.P], [closed], [setup.side_p], h)
+    sq = _Sides([setup.Q], [closed], [setup.side_q], h)
+    fwd, bwd = _one_way(sp, sq, eps), _one_way(sq, sp, eps)
+    reports = [CompatibilityReport("disjoint-loops" if closed else "quasi-disjoint-strokes")]
+    reports[0].samples = len(fwd["r"]) + len(bwd["r"])
+    _checked(((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")), h, eps, reports)
+    return DenseMaps(setup, sp.view(0), sq.view(0), fwd, bwd, spacing, eps, reports[0])
 
 
 def disk_between(x0, n0, x1, n1, a, b, N, window_a, window_b, eps, iterations=40):
@@ -749,62 +898,4 @@ def ball_map(P, Q, closed=False, spacing=None, sampling="symmetric", check=True)
     elif not (np.isfinite(spacing) and spacing > 0):
         raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
     setup = orient_pair(P, Q, closed)
-    scale = scale_of(P, Q)
-    eps = tol.COINCIDENT * scale
-    dense_spacing = spacing / 2.0 if sampling == "symmetric" else spacing
-    sp = _prepare(setup.P, closed, setup.side_p, dense_spacing)
-    sq = _prepare(setup.Q, closed, setup.side_q, dense_spacing)
-    if setup.coincident:
-        return _static(setup, sp, sq, spacing)
-    fwd = _one_way(sp, sq, closed, eps) if sampling in ("P", "symmetric") else None
-    bwd = _one_way(sq, sp, closed, eps) if sampling in ("Q", "symmetric") else None
-    maps = [(m, a, b, d) for m, a, b, d in ((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")) if m is not None]
-    report = _checked(maps, closed, dense_spacing, eps)
-    if sampling == "P":
-        out = fwd
-    elif sampling == "Q":
-        out = _flip(bwd)
-    else:
-        out = _merge(fwd, bwd, spacing, closed, sp.length, sq.length, dense_spacing, report)
-    if check and report.violations:
-        raise IncompatibleCurvesError(report.describe(), report)
-    return Correspondence(
-        out["src"],
-        out["dst"],
-        out["m"],
-        out["r"],
-        out["n_src"],
-        out["n_dst"],
-        out["s_src"],
-        out["s_dst"],
-        closed,
-        setup,
-        sp.pts,
-        sq.pts,
-        spacing,
-        report,
-    )
-
-
-def _static(setup, sp, sq, spacing):
-    """Coincident curves: every point maps to itself with a zero disk."""
-    pts = sp.pts
-    zeros = np.zeros(len(pts))
-    s = sp.cum[: len(pts)]
-    report = CompatibilityReport("coincident", samples=len(pts))
-    return Correspondence(
-        pts,
-        pts.copy(),
-        pts.copy(),
-        zeros,
-        sp.vnormals,
-        sp.vnormals,
-        s,
-        s.copy(),
-        setup.closed,
-        setup,
-        sp.pts,
-        sq.pts,
-        spacing,
-        report,
-    )
+    return ball_maps([setup], [spacing], sampling, check)[0]

@@ -15,13 +15,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import tolerances as tol
+from .batch import morph_pairs
 from .curves import as_curve, cumulative_length
 from .errors import BallMorphError, InvalidCurveError
 from .matching import MODES as MATCHINGS
 from .matching import match_strokes
 from .morphs import make_morph
 from .options import check_option
-from .pair import morph_pair
+from .pair import BALL_METHODS, morph_pair
 from .plane import fit_plane
 from .registration import CARRIERS
 
@@ -56,6 +57,9 @@ class StrokeSet:
     opacity : ndarray, shape (N,)
     vertex_color : ndarray, shape (N, 4)
     selected : ndarray of bool, shape (S,)
+    origin : ndarray of int, shape (S, 2)
+        For an in-between: the strokes of the first and second key it comes from (-1 for
+        none), so the caller can carry attributes the core does not interpolate.
     """
 
     positions: np.ndarray
@@ -66,6 +70,7 @@ class StrokeSet:
     opacity: np.ndarray
     vertex_color: np.ndarray
     selected: np.ndarray = None
+    origin: np.ndarray = None
 
     def __post_init__(self):
         self.positions = np.asarray(self.positions, dtype=np.float64).reshape(-1, 3)
@@ -81,10 +86,16 @@ class StrokeSet:
         self.opacity = np.asarray(self.opacity, dtype=np.float64).reshape(-1)
         self.vertex_color = np.asarray(self.vertex_color, dtype=np.float64).reshape(-1, 4)
         self.selected = np.ones(s, dtype=bool) if self.selected is None else np.asarray(self.selected, dtype=bool)
+        self.origin = (
+            np.full((s, 2), -1, dtype=np.int64)
+            if self.origin is None
+            else np.asarray(self.origin, dtype=np.int64).reshape(-1, 2)
+        )
         for name, arr, size in (
             ("cyclic", self.cyclic, s),
             ("material_index", self.material_index, s),
             ("selected", self.selected, s),
+            ("origin", self.origin, s),
             ("radius", self.radius, n),
             ("opacity", self.opacity, n),
             ("vertex_color", self.vertex_color, n),
@@ -157,6 +168,7 @@ class StrokeSet:
             np.concatenate([p.opacity for p in parts]),
             np.concatenate([p.vertex_color for p in parts]),
             np.concatenate([p.selected for p in parts]),
+            np.concatenate([p.origin for p in parts]),
         )
 
     def subset(self, indices):
@@ -177,6 +189,7 @@ class StrokeSet:
             self.opacity[pts],
             self.vertex_color[pts],
             self.selected[idx],
+            self.origin[idx],
         )
 
 
@@ -385,9 +398,14 @@ def inbetween(
     )
     if pairing.method != "index" or pairing.unmatched_a or pairing.unmatched_b:
         result.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
-    for i, j, flip in pairing.pairs:
-        b = strokes_b[j].reversed() if flip else strokes_b[j]
-        _emit_pair(result, strokes_a[i], b, times, method, carrier, spacing, plane, flip)
+    pairs = [(strokes_a[i], strokes_b[j].reversed() if flip else strokes_b[j], flip) for i, j, flip in pairing.pairs]
+    fast = _fast_path(pairs, times, method, carrier, spacing)
+    for (a, b, flip), done in zip(pairs, fast):
+        if done is None:
+            frames, ua, ub, closed, used, notes = _pair_frames(a, b, times, method, carrier, spacing)
+        else:
+            frames, ua, ub, closed, used, notes = done.frames, done.u_p, done.u_q, done.closed, done.used, done.notes
+        _emit_pair(result, a, b, times, plane, flip, frames, ua, ub, closed, used, notes)
     for i in pairing.unmatched_a:
         _emit_unmatched(result, strokes_a[i], True, times, unmatched, plane)
     for j in pairing.unmatched_b:
@@ -397,8 +415,28 @@ def inbetween(
     return result
 
 
-def _emit_pair(result, a, b, times, method, carrier, spacing, plane, flipped):
-    frames, ua, ub, closed, used, notes = _pair_frames(a, b, times, method, carrier, spacing)
+def _fast_path(pairs, times, method, carrier, spacing):
+    """Batched ball-morph of every eligible pair (None where the general road is needed)."""
+    out = [None] * len(pairs)
+    if method not in BALL_METHODS:
+        return out
+    todo, curves = [], []
+    for k, (a, b, _) in enumerate(pairs):
+        if a.closed != b.closed or len(a.xy) < 2 or len(b.xy) < 2:
+            continue
+        try:
+            curves.append((as_curve(a.xy, "P", a.closed), as_curve(b.xy, "Q", a.closed), a.closed))
+        except InvalidCurveError:
+            continue
+        todo.append(k)
+    if todo:
+        for k, done in zip(todo, morph_pairs(curves, times, method[: -len("-ball")], carrier, spacing)):
+            if done is not None and np.all(np.isfinite(done.frames)):
+                out[k] = done
+    return out
+
+
+def _emit_pair(result, a, b, times, plane, flipped, frames, ua, ub, closed, used, notes):
     da, ra, oa, ca = a.attributes_at(ua)
     db, rb, ob, cb = b.attributes_at(ub)
     for k, t in enumerate(times):
@@ -410,6 +448,7 @@ def _emit_pair(result, a, b, times, method, carrier, spacing, plane, flipped):
                 (1 - t) * ra + t * rb,
                 (1 - t) * oa + t * ob,
                 (1 - t) * ca + t * cb,
+                (a.index, b.index),
             )
         )
     result.pairs.append(PairReport(a.index, b.index, used, "; ".join(notes)))
@@ -426,7 +465,10 @@ def _emit_unmatched(result, stroke, from_a, times, unmatched, plane):
     for k, t in enumerate(times):
         visible = unmatched == "HOLD" or (t < 0.5 if from_a else t >= 0.5)
         if visible:
-            result.frames[k].append((pos, stroke.closed, stroke.material, stroke.radius, stroke.opacity, stroke.color))
+            origin = (stroke.index, -1) if from_a else (-1, stroke.index)
+            result.frames[k].append(
+                (pos, stroke.closed, stroke.material, stroke.radius, stroke.opacity, stroke.color, origin)
+            )
     what = (
         ("held" if unmatched == "HOLD" else "disappears at the middle")
         if from_a
@@ -472,4 +514,5 @@ def _assemble(parts):
         np.concatenate([p[3] for p in parts]),
         np.concatenate([p[4] for p in parts]),
         np.concatenate([p[5] for p in parts]),
+        origin=np.array([p[6] for p in parts], dtype=np.int64).reshape(-1, 2),
     )

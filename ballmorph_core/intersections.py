@@ -10,7 +10,7 @@ from . import tolerances as tol
 from .curves import cumulative_length, edges, scale_of
 from .spatial import box_pairs
 
-__all__ = ["Crossings", "crossings", "self_crossings", "is_simple"]
+__all__ = ["Crossings", "crossings", "self_crossings", "is_simple", "segment_hits"]
 
 
 class Crossings:
@@ -39,8 +39,23 @@ def _boxes(a0, a1):
     return np.concatenate([np.minimum(a0, a1), np.maximum(a0, a1)], axis=1)
 
 
-def _segment_hits(a0, da, b0, db, scale):
-    """Parameters of proper and touching intersections of segment pairs (vectorised)."""
+def segment_hits(a0, da, b0, db, scale):
+    """Proper and touching intersections of segment pairs (vectorised).
+
+    Parameters
+    ----------
+    a0, da, b0, db : ndarray, shape (K, 2)
+        Segments ``a0 + s da`` and ``b0 + u db``.
+    scale : float or ndarray, shape (K,)
+        Length scale of the tolerances.
+
+    Returns
+    -------
+    ok : ndarray of bool, shape (K,)
+        The segments meet (parallel ones never count: an overlap is not a point).
+    s, u : ndarray, shape (K,)
+        Where, along each segment, in [0, 1].
+    """
     denom = da[:, 0] * db[:, 1] - da[:, 1] * db[:, 0]
     w = b0 - a0
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -85,7 +100,7 @@ def crossings(a, closed_a, b, closed_b):
     ea, eb = edges(a, closed_a), edges(b, closed_b)
     a0, b0 = a[: len(ea)], b[: len(eb)]
     i, j = box_pairs(_boxes(a0, a0 + ea), _boxes(b0, b0 + eb))
-    ok, sa, sb = _segment_hits(a0[i], ea[i], b0[j], eb[j], scale)
+    ok, sa, sb = segment_hits(a0[i], ea[i], b0[j], eb[j], scale)
     i, j, sa, sb = i[ok], j[ok], sa[ok], sb[ok]
     cum_a, cum_b = cumulative_length(a, closed_a), cumulative_length(b, closed_b)
     s_a = cum_a[i] + sa * (cum_a[i + 1] - cum_a[i])
@@ -125,7 +140,7 @@ def self_crossings(curve, closed):
     i, j = box_pairs(_boxes(c0, c0 + e))
     adjacent = (j - i == 1) | (closed & (i == 0) & (j == n - 1))
     i, j = i[~adjacent], j[~adjacent]
-    ok, sa, sb = _segment_hits(c0[i], e[i], c0[j], e[j], scale)
+    ok, sa, sb = segment_hits(c0[i], e[i], c0[j], e[j], scale)
     # Also catch a collinear fold-back between adjacent edges (a spike): that is a self-overlap.
     i, j, sa, sb = i[ok], j[ok], sa[ok], sb[ok]
     cum = cumulative_length(curve, closed)

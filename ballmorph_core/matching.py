@@ -527,6 +527,10 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="AUTO"):
         return _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)
 
     index_motion = table.fit_motion(index, index)
+    if len(rows) == n_a and np.array_equal(np.sort(rows), index) and np.array_equal(cols[np.argsort(rows)], index):
+        # The optimal assignment is the drawing order itself: keep it, however far strokes moved.
+        reason = "same stroke count and the optimal assignment is the drawing order"
+        return _matching(key_a, key_b, table, index, index, index_motion, "index", reason)
     index_costs = table.costs(index_motion)[index, index]
     worst = int(np.argmax(index_costs))
     index_total = _padded_total(index_costs, n_a, n_b)

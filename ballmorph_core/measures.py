@@ -470,14 +470,13 @@ def measure(
     """
     P = as_curve(P, "P", closed)
     Q = as_curve(Q, "Q", closed)
-    steps = int(steps)
-    if steps < 2:
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
         raise InvalidCurveError(f"steps must be an integer >= 2, got {steps!r}")
     if spacing is None:
         spacing = max(curve_length(P, closed), curve_length(Q, closed)) / tol.MEASURE_SAMPLES
     if height is None:
         height = scale_of(P, Q)
-    if not (np.isfinite(height) and height > 0):
+    if not (isinstance(height, (int, float, np.number)) and np.isfinite(height) and height > 0):
         raise InvalidCurveError(f"height must be a positive finite number, got {height!r}")
     ts = np.linspace(0.0, 1.0, steps + 1)
     results = []

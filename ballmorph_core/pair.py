@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .compat import classify, shared_endpoints
-from .curves import curve_length, orient_clockwise, reverse, scale_of, signed_area
+from .curves import curve_length, default_spacing, orient_clockwise, reverse, scale_of, signed_area
 from .errors import BallMorphError, IncompatibleCurvesError
 from .morphs import make_morph
 from .morphs.base import Morph, PathMorph
@@ -66,21 +66,22 @@ def _static(curve, closed):
     return PathMorph("static", closed, LinearPaths(curve, curve), u, u.copy())
 
 
-def _stroke_morph(P, Q, method, spacing, notes, where, depth=0):
-    """Requested morph for strokes sharing both endpoints, with composite and linear fallbacks."""
-    try:
-        return make_morph(P, Q, method, closed=False, spacing=spacing)
-    except IncompatibleCurvesError as exc:
-        reason = str(exc)
+def _fallbacks(P, Q, closed, method, spacing, notes, where, reason=None):
+    """The requested morph, else the composite ball-morph (ball methods), else linear."""
+    if reason is None:
+        try:
+            return make_morph(P, Q, method, closed=closed, spacing=spacing)
+        except IncompatibleCurvesError as exc:
+            reason = str(exc)
     if method in BALL_METHODS and "composite-ball" in _methods():
         try:
-            morph = make_morph(P, Q, "composite-ball", closed=False, spacing=spacing, kind=method[: -len("-ball")])
+            morph = make_morph(P, Q, "composite-ball", closed=closed, spacing=spacing, kind=method[: -len("-ball")])
             notes.append(f"{where}: not b-compatible, composite ball-morph used ({_short(reason)})")
             return morph
         except BallMorphError as exc:
             reason = str(exc)
     notes.append(f"{where}: {FALLBACK} used ({_short(reason)})")
-    return make_morph(P, Q, FALLBACK, closed=False, spacing=spacing)
+    return make_morph(P, Q, FALLBACK, closed=closed, spacing=spacing)
 
 
 def _methods():
@@ -117,12 +118,7 @@ def _shape_morph(P, Q, closed, method, spacing, notes):
             return make_morph(P, Q, FALLBACK, closed=closed, spacing=spacing)
     config = classify(Po, Qo, closed)
     if config in ("disjoint-loops", "quasi-disjoint-strokes"):
-        if closed:
-            notes.append(f"loops are not b-compatible ({_short(first_error)}): {FALLBACK} used")
-            return make_morph(P, Q, FALLBACK, closed=closed, spacing=spacing)
-        return _stroke_morph(P, Q, method, spacing, notes, "stroke")
-    if spacing is None:
-        spacing = max(curve_length(Po, closed), curve_length(Qo, closed)) / 200.0
+        return _fallbacks(P, Q, closed, method, spacing, notes, "loops" if closed else "stroke", first_error)
     try:
         pieces = split_pair(Po, Qo, closed, spacing / 2)
     except IncompatibleCurvesError as exc:
@@ -135,7 +131,7 @@ def _shape_morph(P, Q, closed, method, spacing, notes):
         if piece.kind == "overlap":
             morphs.append(_static(piece.P, False))
         else:
-            morphs.append(_stroke_morph(piece.P, piece.Q, method, spacing, notes, f"lens {k + 1}/{len(pieces)}"))
+            morphs.append(_fallbacks(piece.P, piece.Q, False, method, spacing, notes, f"lens {k + 1}/{len(pieces)}"))
     len_p, len_q = curve_length(Po, closed), curve_length(Qo, closed)
     ranges_p = np.array([pc.range_p for pc in pieces]) / len_p
     ranges_q = np.array([pc.range_q for pc in pieces]) / len_q
@@ -192,6 +188,9 @@ def morph_pair(P, Q, closed, method="circular-ball", carrier="SIMILARITY", spaci
     check_option("carrier", carrier, CARRIERS)
     notes = []
     scale = scale_of(P, Q)
+    if spacing is None:
+        # One spacing for the whole pair (its lenses and fallbacks), from the curves as given.
+        spacing = default_spacing(P, Q, closed=closed)
     if carrier == "NONE" or method not in BALL_METHODS:
         morph = _shape_morph(P, Q, closed, method, spacing, notes)
         return PairOutcome(morph, notes, morph.method)

@@ -27,12 +27,25 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .curves import curve_length, resample
+from . import tolerances as tol
 from .options import check_option
+from .ragged import Ragged
 
-__all__ = ["Similarity", "endpoint_similarity", "fit_similarity", "Carrier", "CARRIERS"]
+__all__ = [
+    "Similarity",
+    "endpoint_similarity",
+    "fit_similarity",
+    "similarities",
+    "power",
+    "carrier_at",
+    "Carrier",
+    "CARRIERS",
+]
 
 CARRIERS = ("SIMILARITY", "RIGID", "NONE")
+
+#: Uniform samples per curve for the least-squares fit of loops.
+FIT_SAMPLES = 128
 
 
 def _z(points):
@@ -42,6 +55,142 @@ def _z(points):
 
 def _xy(z):
     return np.stack([z.real, z.imag], axis=-1)
+
+
+# ------------------------------------------------------------------ vectorised core
+
+
+def power(a, b, s):
+    """``S^s`` for similarities ``z -> a z + b`` (arrays), along the steady interpolation.
+
+    ``S^s(z) = c + a^s (z - c)`` with ``c = b / (1 - a)`` the fixed point (a logarithmic spiral;
+    a translation ``z + s b`` when ``a = 1``). The angle of ``a`` is taken in (-pi, pi], so the
+    motion turns the short way.
+
+    Returns
+    -------
+    a_s, b_s : ndarray of complex
+    """
+    a = np.asarray(a, dtype=complex)
+    b = np.asarray(b, dtype=complex)
+    a_s = np.exp(s * (np.log(np.abs(a)) + 1j * np.angle(a)))
+    near_one = np.abs(a - 1) < 1e-12
+    c = np.where(near_one, 0, b / np.where(near_one, 1, 1 - a))
+    return a_s, np.where(near_one, s * b, c - a_s * c)
+
+
+def carrier_at(a, b, kind, centre, t):
+    """The carrier ``C_t`` of registrations ``S`` (arrays; see the module docstring).
+
+    Parameters
+    ----------
+    a, b : ndarray of complex
+        The registrations.
+    kind : {'SIMILARITY', 'RIGID'}
+    centre : ndarray of complex
+        Centre of each registered curve (the scaling centre of 'RIGID').
+    t : float
+
+    Returns
+    -------
+    ca, cb : ndarray of complex
+        ``C_t(z) = ca z + cb``.
+    """
+    s = -(1.0 - float(t))
+    if kind == "SIMILARITY":
+        return power(a, b, s)
+    # S = Zc o R: Zc the scaling by |a| about the registered centre, R = Zc^-1 o S rigid;
+    # C_t = R^s o Zc^s (scale about the centre, then move rigidly on circular arcs).
+    scale = np.abs(a)
+    ra = a / scale
+    rb = b / scale + centre - centre / scale
+    ra_s, rb_s = power(ra, rb, s)
+    zoom = scale**s
+    return ra_s * zoom, ra_s * (centre - zoom * centre) + rb_s
+
+
+def similarities(P, Q):
+    """Registrations of every curve of a batch onto its partner.
+
+    Strokes map their endpoints onto their partner's endpoints. Loops get the least-squares
+    similarity between ``FIT_SAMPLES`` uniform samples over every cyclic shift and both
+    directions (FFT cross-correlation). Among the distinct fits (local minima of the residual
+    over the shifts) a rotation costs ``tolerances.ROTATION_PENALTY`` times (angle / pi)^2 of
+    the normalised residual, and the best unrotated fit (scale and translation only) competes at
+    no cost: a squashed ball or a pear that is merely taller than the apple is not turned by 90
+    degrees to fit better, while a shape that really turned keeps its exact fit.
+
+    Parameters
+    ----------
+    P, Q : Ragged
+        Same number of curves, same closed flags.
+
+    Returns
+    -------
+    a, b : ndarray of complex, shape (C,)
+    residual : ndarray, shape (C,)
+        RMS distance left between ``FIT_SAMPLES`` uniform samples of the registered curve and
+        of its partner (0 when registration makes them coincide).
+    """
+    n = len(P)
+    a = np.ones(n, dtype=complex)
+    b = np.zeros(n, dtype=complex)
+    residual = np.full(n, np.inf)
+    zp, zq = _z(P.pts), _z(Q.pts)
+    opened = np.flatnonzero(~P.closed)
+    if len(opened):
+        fp, lp = P.offsets[:-1][opened], P.offsets[1:][opened] - 1
+        fq, lq = Q.offsets[:-1][opened], Q.offsets[1:][opened] - 1
+        dp, dq = zp[lp] - zp[fp], zq[lq] - zq[fq]
+        ok = (np.abs(dp) > 1e-12 * (np.abs(zp[fp]) + 1)) & (np.abs(dq) > 1e-12 * (np.abs(zq[fq]) + 1))
+        a[opened] = np.where(ok, dq / np.where(ok, dp, 1), 1.0)
+        b[opened] = zq[fq] - a[opened] * zp[fp]
+        k = FIT_SAMPLES
+        sp = _z(P.resample(np.full(n, k)).pts).reshape(n, k)[opened]
+        sq = _z(Q.resample(np.full(n, k)).pts).reshape(n, k)[opened]
+        fitted = a[opened][:, None] * sp + b[opened][:, None]
+        residual[opened] = np.sqrt(np.mean(np.abs(fitted - sq) ** 2, axis=1))
+    loops = np.flatnonzero(P.closed)
+    if len(loops):
+        k = FIT_SAMPLES
+        xp = _z(P.resample(np.full(n, k)).pts).reshape(n, k)[loops]
+        xq = _z(Q.resample(np.full(n, k)).pts).reshape(n, k)[loops]
+        cp, cq = xp.mean(axis=1), xq.mean(axis=1)
+        xp, xq = xp - cp[:, None], xq - cq[:, None]
+        norm_p = np.sum(np.abs(xp) ** 2, axis=1)
+        norm_q = np.sum(np.abs(xq) ** 2, axis=1)
+        safe = norm_p > 0
+        fp = np.conj(np.fft.fft(xp, axis=1))
+        best_cost = np.full(len(loops), np.inf)
+        best_c = np.zeros(len(loops), dtype=complex)
+        rows = np.arange(len(loops))[:, None]
+        for target in (xq, np.concatenate([xq[:, :1], xq[:, :0:-1]], axis=1)):
+            corr = np.fft.ifft(fp * np.fft.fft(target, axis=1), axis=1)  # c(s) for every shift
+            left = norm_q[:, None] - np.abs(corr) ** 2 / np.where(safe, norm_p, 1.0)[:, None]
+            fit = left / np.maximum(norm_q, 1e-300)[:, None]
+            # Rotation is penalised only between distinct fits (local minima over the shifts),
+            # never within one, so a fit that is right is not biased towards less rotation.
+            minimum = (fit <= np.roll(fit, 1, axis=1)) & (fit <= np.roll(fit, -1, axis=1))
+            cost = np.where(minimum, fit + tol.ROTATION_PENALTY * (np.angle(corr) / np.pi) ** 2, np.inf)
+            # The unrotated fit (a real scale) is always a candidate, at no penalty.
+            real = np.maximum(corr.real, 0.0)
+            fit0 = (norm_q[:, None] - real**2 / np.where(safe, norm_p, 1.0)[:, None]) / np.maximum(norm_q, 1e-300)[
+                :, None
+            ]
+            cost = np.concatenate([cost, fit0], axis=1)
+            s = np.argmin(cost, axis=1)
+            chosen = np.where(s < k, corr[rows[:, 0], s % k], real[rows[:, 0], s % k] + 0j)
+            better = cost[rows[:, 0], s] < best_cost
+            best_cost = np.where(better, cost[rows[:, 0], s], best_cost)
+            best_c = np.where(better, chosen, best_c)
+        a[loops] = np.where(safe, best_c / np.where(safe, norm_p, 1.0), 1.0)
+        b[loops] = cq - a[loops] * cp
+        # Least-squares residual of the chosen shift (what is left for the morph to do).
+        residual[loops] = np.sqrt(np.maximum(norm_q - np.abs(best_c) ** 2 / np.where(safe, norm_p, 1.0), 0) / k)
+    return a, b, residual
+
+
+# ------------------------------------------------------------------ one pair
 
 
 @dataclass
@@ -74,20 +223,18 @@ class Similarity:
         return float(np.angle(self.a))
 
     def power(self, s):
-        """``S^s`` along the steady (log-spiral) interpolation; ``S^0`` is the identity.
-
-        The rotation angle is taken in (-pi, pi], so the carrier turns the short way.
-        """
-        log_a = np.log(abs(self.a)) + 1j * np.angle(self.a)
-        a_s = np.exp(s * log_a)
-        if abs(self.a - 1) < 1e-12:
-            return Similarity(1.0 + 0j, s * self.b)
-        c = self.b / (1 - self.a)  # fixed point
-        return Similarity(a_s, c - a_s * c)
+        """``S^s`` along the steady (log-spiral) interpolation; ``S^0`` is the identity."""
+        a_s, b_s = power(self.a, self.b, s)
+        return Similarity(complex(a_s), complex(b_s))
 
     def is_identity(self, scale, tol=1e-12):
         """True when it moves no point of a drawing of size ``scale`` by more than tol*scale."""
         return abs(self.a - 1) * scale <= tol * scale and abs(self.b) <= tol * scale
+
+
+def _one(P, Q, closed):
+    a, b, _ = similarities(Ragged.from_list([P], [closed]), Ragged.from_list([Q], [closed]))
+    return Similarity(complex(a[0]), complex(b[0]))
 
 
 def endpoint_similarity(P, Q):
@@ -95,53 +242,12 @@ def endpoint_similarity(P, Q):
 
     Degenerate strokes whose endpoints coincide get the translation of their first points.
     """
-    zp, zq = _z(P[[0, -1]]), _z(Q[[0, -1]])
-    dp, dq = zp[1] - zp[0], zq[1] - zq[0]
-    if abs(dp) <= 1e-12 * (abs(zp[0]) + 1) or abs(dq) <= 1e-12 * (abs(zq[0]) + 1):
-        return Similarity(1.0 + 0j, zq[0] - zp[0])
-    a = dq / dp
-    return Similarity(a, zq[0] - a * zp[0])
+    return _one(P, Q, False)
 
 
-def fit_similarity(P, Q, closed, count=128):
-    """Least-squares similarity from P to Q (Procrustes in complex form).
-
-    Parameters
-    ----------
-    P, Q : ndarray, shape (N, 2), (M, 2)
-    closed : bool
-        For loops, the best cyclic shift and direction of the correspondence are searched too
-        (all shifts at once by FFT cross-correlation).
-    count : int
-        Uniform arc-length samples per curve.
-
-    Returns
-    -------
-    Similarity
-    """
-    zp = _z(resample(P, closed, count=count))
-    zq = _z(resample(Q, closed, count=count))
-    cp, cq = zp.mean(), zq.mean()
-    xp, xq = zp - cp, zq - cq
-    norm = float(np.vdot(xp, xp).real)
-    if norm <= 0:
-        return Similarity(1.0 + 0j, cq - cp)
-    best = None
-    candidates = (xq, np.concatenate([xq[:1], xq[:0:-1]])) if closed else (xq, xq[::-1])
-    for k, target in enumerate(candidates):
-        if closed:
-            # c(s) = sum conj(xp_i) target_(i+s), for every shift s.
-            corr = np.fft.ifft(np.conj(np.fft.fft(xp)) * np.fft.fft(target))
-            s = int(np.argmax(np.abs(corr)))
-            c = corr[s]
-        else:
-            if k == 1:
-                continue  # a stroke's direction is fixed by the caller
-            c = np.vdot(xp, target)
-        if best is None or abs(c) > abs(best):
-            best = c
-    a = best / norm
-    return Similarity(a, cq - a * cp)
+def fit_similarity(P, Q, closed=True):
+    """Registration of a loop onto another (see :func:`similarities`), as a Similarity."""
+    return _one(P, Q, closed)
 
 
 class Carrier:
@@ -160,27 +266,12 @@ class Carrier:
     def __init__(self, similarity, kind, centre):
         self.kind = check_option("carrier", kind, ("SIMILARITY", "RIGID"))
         self.similarity = similarity
-        self.centre = _z(np.asarray(centre, dtype=np.float64))
-        if kind == "RIGID":
-            s = similarity.scale
-            # S = R o Z with Z the scaling by s about S^-1(centre): equivalently S = Zc o R with
-            # Zc the scaling by s about the registered centre; R = Zc^-1 o S is rigid.
-            zc_inv = Similarity(1.0 / s + 0j, self.centre - self.centre / s)
-            rigid = zc_inv.a * similarity.a, zc_inv.a * similarity.b + zc_inv.b
-            self._rigid = Similarity(complex(rigid[0]), complex(rigid[1]))
-            self._scale = s
+        self.centre = complex(_z(np.asarray(centre, dtype=np.float64)))
 
     def at(self, t):
         """The similarity ``C_t`` (Similarity)."""
-        s = -(1.0 - float(t))
-        if self.kind == "SIMILARITY":
-            return self.similarity.power(s)
-        rigid = self._rigid.power(s)
-        zoom = self._scale**s
-        # C_t = R^s o Zc^s  (scale about the registered centre first, then move rigidly).
-        a = rigid.a * zoom
-        b = rigid.a * (self.centre - zoom * self.centre) + rigid.b
-        return Similarity(a, b)
+        ca, cb = carrier_at(self.similarity.a, self.similarity.b, self.kind, self.centre, t)
+        return Similarity(complex(ca), complex(cb))
 
     def apply(self, t, points):
         """``C_t`` applied to points, shape (K, 2)."""
@@ -194,12 +285,9 @@ def registration(P, Q, closed):
     -------
     Similarity
     """
-    return fit_similarity(P, Q, True) if closed else endpoint_similarity(P, Q)
+    return _one(P, Q, closed)
 
 
 def centre_of(curve, closed):
     """Arc-length centroid of a curve, shape (2,)."""
-    pts = resample(curve, closed, count=max(16, min(256, len(curve))))
-    if curve_length(curve, closed) <= 0:
-        return curve.mean(axis=0)
-    return pts.mean(axis=0)
+    return Ragged.from_list([curve], [closed]).centroids()[0]

@@ -7,7 +7,7 @@ every pair, and both run without any per-pair Python loop.
 
 import numpy as np
 
-__all__ = ["ragged_arange", "box_pairs", "PointTree"]
+__all__ = ["ragged_arange", "box_pairs", "PointTree", "CurveTree"]
 
 
 def ragged_arange(counts):
@@ -194,6 +194,135 @@ class PointTree:
         starts, ends, _ = self.levels[-1]
         owner, local = ragged_arange(ends[node] - starts[node])
         pq, pp = q[owner], self.perm[starts[node][owner] + local]
+        d2 = np.sum(np.square(self.points[pp] - centres[pq]), axis=1)
+        hit = d2 < r2[pq]
+        found_q.append(pq[hit])
+        found_p.append(pp[hit])
+        return np.concatenate(found_q), np.concatenate(found_p)
+
+
+class CurveTree:
+    """A bounding-volume hierarchy over polylines, built from runs of consecutive vertices.
+
+    Consecutive vertices of a curve are close to each other, so runs of them make tight boxes
+    without any sorting: leaves are runs of ``leaf_size`` vertices, and every level above merges
+    pairs of neighbouring nodes *of the same curve* until each curve has one root. Building is
+    linear in the number of vertices (a k-d tree sorts at every level), and a query only
+    descends the curves it names, which is what a batch of unrelated stroke pairs needs.
+
+    Parameters
+    ----------
+    points : ndarray, shape (N, 2)
+    offsets : ndarray of int, shape (C + 1,)
+        Curve ``c`` owns ``points[offsets[c]:offsets[c + 1]]``.
+    leaf_size : int
+    """
+
+    def __init__(self, points, offsets, leaf_size=8):
+        self.points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+        offsets = np.asarray(offsets, dtype=np.int64)
+        sizes = np.diff(offsets)
+        runs = -(-sizes // leaf_size)  # ceil
+        owner, local = ragged_arange(runs)
+        start = offsets[:-1][owner] + local * leaf_size
+        end = np.minimum(start + leaf_size, offsets[1:][owner])
+        boxes = self._boxes(start, end)
+        # levels[l] = (child_start, child_end, boxes) with children in level l - 1 (leaves:
+        # vertex ranges); nodes of a curve are contiguous at every level.
+        self.levels = [(start, end, boxes)]
+        count = runs
+        while count.max(initial=0) > 1:
+            first = np.concatenate([[0], np.cumsum(count)])[:-1]
+            parents = -(-count // 2)
+            owner, local = ragged_arange(parents)
+            c_start = first[owner] + 2 * local
+            c_end = np.minimum(c_start + 2, first[owner] + count[owner])
+            prev = self.levels[-1][2]
+            boxes = np.stack(
+                [
+                    np.minimum.reduceat(prev[:, 0], c_start),
+                    np.minimum.reduceat(prev[:, 1], c_start),
+                    np.maximum.reduceat(prev[:, 2], c_start),
+                    np.maximum.reduceat(prev[:, 3], c_start),
+                ],
+                axis=1,
+            )
+            # reduceat over [c_start, next c_start): the last parent of a curve may have one child.
+            single = c_end - c_start == 1
+            boxes[single] = prev[c_start[single]]
+            self.levels.append((c_start, c_end, boxes))
+            count = parents
+        self.roots = np.concatenate([[0], np.cumsum(count)])[:-1]  # root node of each curve
+        self.has_points = sizes > 0
+
+    def _boxes(self, start, end):
+        pts = self.points
+        if len(start) == 0:
+            return np.zeros((0, 4))
+        boxes = np.stack(
+            [
+                np.minimum.reduceat(pts[:, 0], start),
+                np.minimum.reduceat(pts[:, 1], start),
+                np.maximum.reduceat(pts[:, 0], start),
+                np.maximum.reduceat(pts[:, 1], start),
+            ],
+            axis=1,
+        )
+        return boxes  # runs tile the point array, so reduceat's ranges are exactly the runs
+
+    def within(self, centres, radii, curves, first_only=False):
+        """Vertices of given curves strictly inside disks.
+
+        Parameters
+        ----------
+        centres : ndarray, shape (K, 2)
+        radii : ndarray, shape (K,)
+        curves : ndarray of int, shape (K, J)
+            The curves searched for each disk.
+        first_only : bool
+            Report one vertex per node lying wholly inside a disk (enough to prove it is not
+            empty).
+
+        Returns
+        -------
+        query, point : ndarray of int, shape (M,)
+        """
+        centres = np.asarray(centres, dtype=np.float64).reshape(-1, 2)
+        r2 = np.square(np.asarray(radii, dtype=np.float64)).reshape(-1)
+        if len(centres) == 0:
+            return np.zeros(0, np.int64), np.zeros(0, np.int64)
+        curves = np.asarray(curves, dtype=np.int64).reshape(len(centres), -1)
+        q = np.repeat(np.arange(len(centres)), curves.shape[1])
+        c = curves.ravel()
+        keep = self.has_points[c]
+        q, node = q[keep], self.roots[c[keep]]
+        found_q, found_p = [], []
+        for depth in range(len(self.levels) - 1, -1, -1):
+            c_start, c_end, boxes = self.levels[depth]
+            bx = boxes[node]
+            cen = centres[q]
+            dx = np.maximum(np.maximum(bx[:, 0] - cen[:, 0], cen[:, 0] - bx[:, 2]), 0.0)
+            dy = np.maximum(np.maximum(bx[:, 1] - cen[:, 1], cen[:, 1] - bx[:, 3]), 0.0)
+            near = dx * dx + dy * dy < r2[q]
+            fx = np.maximum(np.abs(bx[:, 0] - cen[:, 0]), np.abs(bx[:, 2] - cen[:, 0]))
+            fy = np.maximum(np.abs(bx[:, 1] - cen[:, 1]), np.abs(bx[:, 3] - cen[:, 1]))
+            inside = near & (fx * fx + fy * fy < r2[q])
+            if depth == 0:
+                q, node = q[near], node[near]
+                break
+            if inside.any() and first_only:
+                leaf = node[inside]
+                for lower in range(depth, 0, -1):
+                    leaf = self.levels[lower][0][leaf]
+                found_q.append(q[inside])
+                found_p.append(self.levels[0][0][leaf])
+                near &= ~inside
+            q, node = q[near], node[near]
+            owner, local = ragged_arange(c_end[node] - c_start[node])
+            q, node = q[owner], c_start[node][owner] + local
+        start, end, _ = self.levels[0]
+        owner, local = ragged_arange(end[node] - start[node])
+        pq, pp = q[owner], start[node][owner] + local
         d2 = np.sum(np.square(self.points[pp] - centres[pq]), axis=1)
         hit = d2 < r2[pq]
         found_q.append(pq[hit])

@@ -1,7 +1,19 @@
-"""User interface: Dope Sheet menus, sidebar panel, preferences."""
+"""User interface: Dope Sheet and 3D viewport menus, sidebar panels, preferences."""
 
 import bpy
 
-classes = ()
+from . import menus, panels, preferences
 
-register, unregister = bpy.utils.register_classes_factory(classes)
+classes = (*preferences.classes, *menus.classes, *panels.classes)
+
+_register_classes, _unregister_classes = bpy.utils.register_classes_factory(classes)
+
+
+def register():
+    _register_classes()
+    menus.register()
+
+
+def unregister():
+    menus.unregister()
+    _unregister_classes()

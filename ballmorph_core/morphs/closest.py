@@ -17,23 +17,20 @@ import numpy as np
 from .. import tolerances as tol
 from ..ballmap import SAMPLINGS
 from ..compat import orient_pair
-from ..curves import as_curve, curve_length, default_spacing, densify, edges, resample, reverse, scale_of
-from ..errors import IncompatibleCurvesError, InvalidCurveError
+from ..curves import as_curve, curve_length, densify, edges, resample, reverse, scale_of
+from ..errors import IncompatibleCurvesError
 from ..options import check_option
 from ..spatial import PointTree, ragged_arange
 from ..trajectories import LinearPaths
 from .base import PathMorph, register
+from .linear import resolve_spacing
 
-__all__ = ["Projector", "Projection", "ProjectionDefect", "check_spacing", "c_compatibility"]
+#: Candidate (query, vertex) pairs held at once by :meth:`Projector.project` (memory bound), and
+#: the fewest queries per chunk.
+_PAIR_BUDGET = 2_000_000
+_MIN_CHUNK = 64
 
-
-def check_spacing(P, Q, closed, spacing):
-    """The sample spacing to use: ``spacing`` if valid, else the default for the pair (float)."""
-    if spacing is None:
-        return default_spacing(P, Q, closed=closed)
-    if not (np.isfinite(spacing) and spacing > 0):
-        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
-    return float(spacing)
+__all__ = ["Projector", "Projection", "ProjectionDefect", "c_compatibility"]
 
 
 @dataclass
@@ -74,11 +71,11 @@ class Projector:
 
     Notes
     -----
-    A k-d tree over the dense vertices gives, for each query, an upper bound ``d`` on its
-    distance to the curve (greedy descent to one leaf); then every vertex within
-    ``sqrt(d^2 + (e/2)^2)`` (``e`` the longest dense edge) is fetched in one batched disk
-    query. The closest point lies on an edge with an endpoint among them, so only those edges
-    are tested: the cost grows with the number of nearby vertices, not with ``K x M``.
+    A k-d tree over the dense vertices gives each query's distance ``d`` to its nearest vertex
+    (a pruned walk, all queries at once); then every vertex within ``sqrt(d^2 + (e/2)^2)``
+    (``e`` the longest dense edge) is fetched in one batched disk query. The closest point lies
+    on an edge with an endpoint among them, so only those edges are tested: the cost grows
+    with the number of vertices nearly as close as the nearest, not with ``K x M``.
     """
 
     def __init__(self, curve, closed, spacing):
@@ -92,25 +89,39 @@ class Projector:
         self._half_edge = 0.5 * float(lengths.max())
         self._tree = PointTree(self.dense)
 
-    def _upper_bound(self, x):
-        """Squared distance to the nearest vertex of the leaf reached by greedy descent."""
+    def _nearest_vertex_d2(self, x):
+        """Squared distance from each query to its nearest dense vertex, shape (K,).
+
+        The tree is walked level by level for all queries at once; a node is dropped when its
+        box is farther than the nearest *farthest corner* of the query's surviving nodes (a
+        box holding points has one within that distance), so only nodes near the minimum
+        survive to the leaves, whose points are then measured.
+        """
         tree = self._tree
-        node = np.zeros(len(x), dtype=np.int64)
-        rows = np.arange(len(x))
-        for _, _, boxes in tree.levels[1:]:
-            kids = np.stack([2 * node, 2 * node + 1], axis=1)
-            bx = boxes[kids]
-            dx = np.maximum(np.maximum(bx[..., 0] - x[:, None, 0], x[:, None, 0] - bx[..., 2]), 0.0)
-            dy = np.maximum(np.maximum(bx[..., 1] - x[:, None, 1], x[:, None, 1] - bx[..., 3]), 0.0)
-            d2 = dx * dx + dy * dy
-            d2 = np.where(np.isnan(d2), np.inf, d2)  # empty nodes have NaN boxes
-            node = kids[rows, np.argmin(d2, axis=1)]
+        k = len(x)
+        q = np.arange(k)
+        node = np.zeros(k, dtype=np.int64)
+        for depth, (_, _, boxes) in enumerate(tree.levels):
+            bx, c = boxes[node], x[q]
+            near_x = np.maximum(np.maximum(bx[:, 0] - c[:, 0], c[:, 0] - bx[:, 2]), 0.0)
+            near_y = np.maximum(np.maximum(bx[:, 1] - c[:, 1], c[:, 1] - bx[:, 3]), 0.0)
+            far_x = np.maximum(np.abs(bx[:, 0] - c[:, 0]), np.abs(bx[:, 2] - c[:, 0]))
+            far_y = np.maximum(np.abs(bx[:, 1] - c[:, 1]), np.abs(bx[:, 3] - c[:, 1]))
+            empty = np.isnan(bx[:, 0])
+            near = np.where(empty, np.inf, near_x * near_x + near_y * near_y)
+            far = np.where(empty, np.inf, far_x * far_x + far_y * far_y)
+            bound = np.full(k, np.inf)
+            np.minimum.at(bound, q, far)
+            keep = near <= bound[q]
+            q, node = q[keep], node[keep]
+            if depth + 1 < len(tree.levels):
+                q = np.repeat(q, 2)
+                node = np.stack([2 * node, 2 * node + 1], axis=1).ravel()
         starts, ends, _ = tree.levels[-1]
         owner, local = ragged_arange(ends[node] - starts[node])
         pts = tree.perm[starts[node][owner] + local]
-        d2 = np.sum(np.square(tree.points[pts] - x[owner]), axis=1)
-        best = np.full(len(x), np.inf)
-        np.minimum.at(best, owner, d2)
+        best = np.full(k, np.inf)
+        np.minimum.at(best, q[owner], np.sum(np.square(tree.points[pts] - x[q[owner]]), axis=1))
         return best
 
     def project(self, points):
@@ -125,7 +136,18 @@ class Projector:
         Projection
         """
         x = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-        radius = np.sqrt(self._upper_bound(x) + self._half_edge**2)
+        # Queries nearly equidistant to much of the curve (a small loop at the centre of a
+        # round one) fetch many vertices each: chunking bounds the memory of the candidates.
+        chunk = max(_MIN_CHUNK, _PAIR_BUDGET // len(self.dense))
+        parts = [self._nearest(x[i : i + chunk]) for i in range(0, len(x), chunk)]
+        edge = np.concatenate([p[0] for p in parts]) if parts else np.zeros(0, dtype=np.int64)
+        frac = np.concatenate([p[1] for p in parts]) if parts else np.zeros(0)
+        foot = self.dense[edge] + frac[:, None] * self.edges[edge]
+        return self._refine(x, Projection(foot, edge + frac, np.linalg.norm(foot - x, axis=1)))
+
+    def _nearest(self, x):
+        """Edge and fraction of the closest point on the dense polyline, for each query."""
+        radius = np.sqrt(self._nearest_vertex_d2(x) + self._half_edge**2)
         radius = radius * (1.0 + 1e-9) + tol.COINCIDENT * scale_of(self.dense)
         qi, vi = self._tree.within(x, radius)
         # Both edges at each vertex found (a stroke's end vertices have one).
@@ -146,9 +168,7 @@ class Projector:
         first = order[np.r_[True, qs[1:] != qs[:-1]]]
         if len(first) != len(x):  # cannot happen: the bounding vertex is always found
             raise RuntimeError("closest-point search missed a query")
-        edge, frac = ei[first], f[first]
-        foot = self.dense[edge] + frac[:, None] * self.edges[edge]
-        return self._refine(x, Projection(foot, edge + frac, np.sqrt(d2[first])))
+        return ei[first], f[first]
 
     def _refine(self, x, proj):
         """Move each foot onto the circle through the three dense vertices nearest to it.
@@ -244,15 +264,34 @@ class ProjectionDefect:
         return f"the closest points of {self.curve} do not go once around {other}"
 
 
-def _defects(src, s_src, proj, projector, closed, spacing, name, length_src, length_dst, reversed_dst):
-    """Where the projection of consecutive samples ``src`` onto a curve is not a homeomorphism.
+def _defects(name, src, s_src, length_src, proj, projector, s_feet, closed, spacing):
+    """Where the projection of consecutive samples onto a curve is not a homeomorphism.
 
-    ``projector`` is built on the target oriented like the source. Between consecutive samples
-    the projection must move forward along the target (within ``PROJECTION_REVERSAL`` sample
-    spacings), and no target vertex passed over may lie farther than both samples' distances
-    from the segment joining them by ``PROJECTION_BULGE`` spacings (else the closest point
-    jumped over a bulge of the target: a point in between has two closest projections). A
-    loop's projections must go around the target exactly once.
+    Parameters
+    ----------
+    name : str
+        The projected curve, ``'P'`` or ``'Q'``.
+    src : ndarray, shape (K, 2)
+        Its uniform samples, in order; ``s_src`` (K,) their arc lengths along it as given and
+        ``length_src`` its length.
+    proj : Projection
+        Their closest points on the target, whose ``projector`` runs the same way as ``src``.
+    s_feet : ndarray, shape (K,)
+        Arc lengths of the closest points along the target as given.
+    closed : bool
+    spacing : float
+
+    Returns
+    -------
+    list of ProjectionDefect
+
+    Notes
+    -----
+    Between consecutive samples the projection must move forward along the target (within
+    ``PROJECTION_REVERSAL`` sample spacings), and no target vertex passed over may lie farther
+    than both samples' distances from the segment joining them by ``PROJECTION_BULGE`` spacings
+    (else the closest point jumped over a bulge of the target: a point in between has two
+    closest projections). A loop's projections must go around the target exactly once.
     """
     k = len(src)
     n = projector.n_edges
@@ -261,11 +300,6 @@ def _defects(src, s_src, proj, projector, closed, spacing, name, length_src, len
     step = proj.pos[nxt] - proj.pos[cur]
     if closed:
         step = np.mod(step + 0.5 * n, n) - 0.5 * n
-
-    def target_s(pos):
-        u = projector.fraction(np.mod(pos, n) if closed else pos)
-        return length_dst * ((1.0 - u) % 1.0 if closed else 1.0 - u) if reversed_dst else length_dst * u
-
     found = []
 
     def add(kind, i):
@@ -273,7 +307,7 @@ def _defects(src, s_src, proj, projector, closed, spacing, name, length_src, len
         mid = 0.5 * (src[i] + src[j])
         s_mid = s_src[i] + 0.5 * np.mod(s_src[j] - s_src[i], length_src) if closed else 0.5 * (s_src[i] + s_src[j])
         feet = np.stack([proj.foot[i], proj.foot[j]])
-        found.append(ProjectionDefect(name, kind, mid, float(s_mid), feet, target_s(proj.pos[[i, j]])))
+        found.append(ProjectionDefect(name, kind, mid, float(s_mid), feet, s_feet[[i, j]]))
 
     for i in np.flatnonzero(step * projector.mean_edge < -tol.PROJECTION_REVERSAL * spacing):
         add("reversal", i)
@@ -322,7 +356,7 @@ def c_compatibility(P, Q, closed, spacing=None):
     []
     """
     P, Q = as_curve(P, "P", closed), as_curve(Q, "Q", closed)
-    return _ClosestPair(P, Q, closed, check_spacing(P, Q, closed, spacing)).defects
+    return _ClosestPair(P, Q, closed, resolve_spacing(P, Q, closed, spacing)).defects
 
 
 class _ClosestPair:
@@ -330,8 +364,8 @@ class _ClosestPair:
 
     def __init__(self, P, Q, closed, spacing):
         setup = orient_pair(P, Q, closed)
-        # Stroke Q (loops: both) run the same way as P once oriented; flip is whether Q as given
-        # runs against P.
+        # Whether Q as given runs against P (a stroke starting at P's end, a loop turning the
+        # other way): each target is then reversed so both curves run the same way.
         self.flip = setup.reversed_p != setup.reversed_q
         self.closed = closed
         self.spacing = spacing
@@ -356,18 +390,9 @@ class _ClosestPair:
             if self.flip:
                 u_dst = np.mod(1.0 - u_dst, 1.0) if closed else 1.0 - u_dst
             self.maps[src] = (x, proj.foot, u_src, u_dst)
-            self.defects += _defects(
-                x,
-                u_src * self.lengths[src],
-                proj,
-                projector,
-                closed,
-                spacing,
-                src,
-                self.lengths[src],
-                self.lengths[dst],
-                self.flip,
-            )
+            length = self.lengths[src]
+            s_feet = u_dst * self.lengths[dst]
+            self.defects += _defects(src, x, u_src * length, length, proj, projector, s_feet, closed, spacing)
 
     def _uniform(self, k):
         return np.arange(k) / (k if self.closed else k - 1)
@@ -390,7 +415,7 @@ def build(P, Q, closed, spacing, sampling):
         lists the :class:`ProjectionDefect` found.
     """
     check_option("sampling", sampling, SAMPLINGS)
-    pair = _ClosestPair(P, Q, closed, check_spacing(P, Q, closed, spacing))
+    pair = _ClosestPair(P, Q, closed, resolve_spacing(P, Q, closed, spacing))
     if pair.defects:
         listed = "; ".join(d.describe() for d in pair.defects[: tol.DEFECTS_LISTED])
         more = len(pair.defects) - tol.DEFECTS_LISTED

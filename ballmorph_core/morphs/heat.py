@@ -3,9 +3,9 @@ of a harmonic field between the curves, and each sample travels along the field'
 
 The field ``u`` solves the Laplace equation in the gap (between nested loops, or inside the loop
 formed by P and Q reversed for strokes sharing their endpoints), with ``u = 0`` on P and
-``u = 1`` on Q. It has no critical point in the gap (the gradient winds once around each
-boundary where ``u`` is constant, so the argument principle leaves no zero inside), so every
-gradient line runs from P to Q.
+``u = 1`` on Q. It has no critical point in the gap: a conformal map ``f`` takes the gap onto a
+round annulus (loops, ``u = log|f| / log R``) or onto a strip (strokes, ``u = Im f``), and
+``f' != 0``; so every gradient line runs from P to Q.
 
 **Grid.** ``grid`` cells along the longer side of the pair's bounding box. Nodes are inside the
 gap by the even-odd rule along each grid row, using the same crossings that cut grid edges, so
@@ -41,7 +41,8 @@ from ..errors import InvalidCurveError
 from ..options import check_option
 from ..spatial import ragged_arange
 from .base import PathMorph, register
-from .closest import Projector, check_spacing
+from .closest import Projector
+from .linear import resolve_spacing
 
 __all__ = ["HeatField", "HeatMorph", "LevelPaths", "conjugate_gradient"]
 
@@ -307,8 +308,8 @@ class HeatField:
                     weight += k1
             fill = ~known & (weight > 0)
             u[fill] = total[fill] / weight[fill]
-        # np.roll wraps around; the padding keeps the curves away from the grid's border, and
-        # the border itself is never used by the tracer.
+        # np.roll wraps around the grid, harmlessly: the padding (HEAT_GRID_PAD cells) is wider
+        # than the extension, so the border nodes stay unknown and never feed the other side.
         return u
 
     def _gradient(self, u):
@@ -470,7 +471,7 @@ def build(P, Q, closed, spacing, sampling, grid=None, levels=None):
     for name, value, least in (("grid", grid, tol.HEAT_COARSEST_GRID), ("levels", levels, 1)):
         if not (isinstance(value, (int, np.integer)) and value >= least):
             raise InvalidCurveError(f"{name} must be an integer >= {least}, got {value!r}")
-    spacing = check_spacing(P, Q, closed, spacing)
+    spacing = resolve_spacing(P, Q, closed, spacing)
     setup = orient_pair(P, Q, closed)
     flip = setup.reversed_p != setup.reversed_q
     proj = {"P": Projector(P, closed, spacing), "Q": Projector(reverse(Q, closed) if flip else Q, closed, spacing)}

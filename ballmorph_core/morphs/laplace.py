@@ -107,7 +107,9 @@ class LaplaceMorph(Morph):
     def __len__(self):
         return len(self._p)
 
-    def _delta(self, t):
+    def differential(self, t):
+        """The differential coordinates prescribed at ``t``, complex, shape (K,) for a loop and
+        (K - 2,) for a stroke (interior vertices)."""
         plain = (1 - t) * self._delta_a + t * self._delta_b
         if self.deltas == "plain":
             return plain
@@ -121,7 +123,7 @@ class LaplaceMorph(Morph):
         if t == 1.0:
             return self._q.copy()
         za, zb = _complex(self._p), _complex(self._q)
-        delta = self._delta(t)
+        delta = self.differential(t)
         if self.closed:
             spec = np.fft.fft(delta)
             spec[1:] /= self._eig[1:]

@@ -15,7 +15,7 @@ from ..options import check_option
 from ..trajectories import LinearPaths
 from .base import PathMorph, register
 
-__all__ = ["uniform_correspondence", "best_cyclic_alignment", "sample_count"]
+__all__ = ["uniform_correspondence", "best_cyclic_alignment", "sample_count", "resolve_spacing"]
 
 
 def best_cyclic_alignment(p, q, reverse=None):
@@ -94,6 +94,16 @@ def uniform_correspondence(P, Q, closed, count, match_orientation=False):
     return p, q[idx], u, u[idx]
 
 
+def resolve_spacing(P, Q, closed, spacing):
+    """The sample spacing a morph uses: ``spacing`` if it is valid, else the pair's default
+    (:func:`~ballmorph_core.curves.default_spacing`) when it is None (float)."""
+    if spacing is None:
+        return default_spacing(P, Q, closed=closed)
+    if not (np.isfinite(spacing) and spacing > 0):
+        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
+    return float(spacing)
+
+
 def sample_count(P, Q, closed, spacing, sampling):
     """Samples per curve of a uniform correspondence at ``spacing`` (int).
 
@@ -101,10 +111,7 @@ def sample_count(P, Q, closed, spacing, sampling):
     ``'symmetric'``. ``spacing=None`` uses :func:`~ballmorph_core.curves.default_spacing`.
     """
     check_option("sampling", sampling, SAMPLINGS)
-    if spacing is None:
-        spacing = default_spacing(P, Q, closed=closed)
-    elif not (np.isfinite(spacing) and spacing > 0):
-        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
+    spacing = resolve_spacing(P, Q, closed, spacing)
     lengths = {"P": curve_length(P, closed), "Q": curve_length(Q, closed)}
     length = lengths[sampling] if sampling in lengths else max(lengths.values())
     return int(round(length / spacing)) + (0 if closed else 1)

@@ -54,3 +54,25 @@ def addon():
     finally:
         if MODULE in bpy.context.preferences.addons:
             disable_addon()
+
+
+@pytest.fixture
+def shot(addon):
+    """A Grease Pencil object whose layer 'Ink' has keys on frames 1 and 9 (a loop and an arc each).
+
+    The current frame is 4, between the keys.
+    """
+    import gp_data
+
+    obj = gp_data.new_object()
+    layer = obj.data.layers["Ink"]
+    gp_data.add_key(layer, 1, [gp_data.loop(1.0), gp_data.arc(0.5)], cyclic=[True, False], materials=[0, 1])
+    gp_data.add_key(
+        layer,
+        9,
+        [gp_data.loop(1.3, wobble=0.08, centre=(0.2, 0.1)), gp_data.arc(-0.3)],
+        cyclic=[True, False],
+        materials=[0, 1],
+    )
+    bpy.context.scene.frame_current = 4
+    return obj

@@ -217,12 +217,13 @@ def _check_contact_invariants(P, Q, closed, corr, slope_p=None, slope_q=None):
     assert distance_to_polyline(corr.p, P, closed).max() < 0.1 * edge
     assert distance_to_polyline(corr.q, Q, closed).max() < 0.1 * edge
     # Maximality: no point of P or Q inside any disk, beyond the documented slack (a disk may be
-    # entered by DISK_PENETRATION dense spacings near its contacts, NONLOCAL_PENETRATION away).
+    # entered by DISK_PENETRATION dense spacings near its contacts, NONLOCAL_* farther away).
     fine_p = bm.curves.resample(P, closed, count=4 * len(P))
     fine_q = bm.curves.resample(Q, closed, count=4 * len(Q))
     pts = np.concatenate([fine_p, fine_q])
     d = np.linalg.norm(pts[None, :, :] - corr.centers[:, None, :], axis=2).min(axis=1)
-    assert np.all(d >= r - tol.NONLOCAL_PENETRATION * corr.spacing / 2 - 1e-9)
+    slack = tol.NONLOCAL_RELATIVE * r + tol.NONLOCAL_PENETRATION * corr.spacing / 2
+    assert np.all(d >= r - slack - 1e-9)
     # m - p is normal to P at p and m - q normal to Q at q.
     big = r > 0.2 * r.max()
     for pts_, slope in ((corr.p, slope_p), (corr.q, slope_q)):

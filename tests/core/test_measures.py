@@ -280,8 +280,12 @@ def test_bad_arguments_are_reported():
     P, Q = circle(1.0, 40), circle(2.0, 40)
     with pytest.raises(ValueError, match="steps"):
         bm.measure(P, Q, closed=True, steps=1)
+    with pytest.raises(ValueError, match="steps"):
+        bm.measure(P, Q, closed=True, steps=2.5)
     with pytest.raises(ValueError, match="height"):
         bm.measure(P, Q, closed=True, height=-1.0)
+    with pytest.raises(ValueError, match="height"):
+        bm.measure(P, Q, closed=True, height="tall")
     with pytest.raises(ValueError, match="method"):
         bm.measure(P, Q, "no-such-morph", closed=True)
     with pytest.raises(ValueError, match="frames"):

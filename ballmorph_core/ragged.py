@@ -1,0 +1,286 @@
+"""Many polylines at once: one flat point array plus offsets (Blender's curves layout).
+
+Drawings hold hundreds of strokes. Looping over them in Python and calling numpy on each small
+array spends the time in call overhead, so the hot paths (resampling, normals, the ball-map)
+work on a :class:`Ragged` batch instead: every per-curve quantity is computed for all curves by
+the same few numpy calls. Edges are indexed by their first vertex (edge ``i`` runs from vertex
+``i`` to ``nxt[i]``); an open curve's last vertex starts no edge.
+"""
+
+import numpy as np
+
+from .spatial import ragged_arange
+
+__all__ = ["Ragged", "catmull_rom"]
+
+
+def catmull_rom(p0, p1, p2, p3, frac):
+    """Centripetal Catmull-Rom spline between p1 and p2 at fractions ``frac``.
+
+    Parameters
+    ----------
+    p0, p1, p2, p3 : ndarray, shape (K, 2)
+        Control points (the segment runs from p1 to p2).
+    frac : ndarray, shape (K,)
+
+    Returns
+    -------
+    ndarray, shape (K, 2)
+        Passes through p1 at 0 and p2 at 1; the centripetal knots (alpha = 1/2) avoid cusps
+        and overshoot on unevenly spaced points.
+    """
+    d01 = np.maximum(np.linalg.norm(p1 - p0, axis=1) ** 0.5, 1e-12)
+    d12 = np.maximum(np.linalg.norm(p2 - p1, axis=1) ** 0.5, 1e-12)
+    d23 = np.maximum(np.linalg.norm(p3 - p2, axis=1) ** 0.5, 1e-12)
+    t1 = d01[:, None]
+    t2 = t1 + d12[:, None]
+    t3 = t2 + d23[:, None]
+    t = t1 + frac[:, None] * d12[:, None]
+    # Barry-Goldman pyramid (t0 = 0).
+    a1 = ((t1 - t) * p0 + t * p1) / t1
+    a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1)
+    a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2)
+    b1 = ((t2 - t) * a1 + t * a2) / t2
+    b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
+    return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
+
+
+class Ragged:
+    """A batch of polylines.
+
+    Parameters
+    ----------
+    pts : ndarray, shape (N, 2)
+        All vertices, curve after curve.
+    offsets : ndarray of int, shape (C + 1,)
+        Curve ``c`` owns ``pts[offsets[c]:offsets[c + 1]]``.
+    closed : ndarray of bool, shape (C,)
+
+    Attributes
+    ----------
+    n : ndarray of int, shape (C,)
+        Vertices per curve.
+    owner : ndarray of int, shape (N,)
+        Curve of each vertex.
+    nxt, prv : ndarray of int, shape (N,)
+        Next and previous vertex along the curve (-1 past an open curve's end).
+    edge : ndarray, shape (N, 2)
+        Edge vectors by first vertex (zero where no edge starts).
+    length_of_edge : ndarray, shape (N,)
+    s : ndarray, shape (N,)
+        Arc length of each vertex from its curve's first vertex.
+    length : ndarray, shape (C,)
+        Curve lengths (a loop's includes its closing edge).
+    n_edges : ndarray of int, shape (C,)
+    """
+
+    def __init__(self, pts, offsets, closed):
+        self.pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
+        self.offsets = np.asarray(offsets, dtype=np.int64)
+        self.closed = np.asarray(closed, dtype=bool).reshape(-1)
+        n_pts = len(self.pts)
+        self.n = np.diff(self.offsets)
+        self.owner = np.repeat(np.arange(len(self.n)), self.n)
+        first, last = self.offsets[:-1], self.offsets[1:] - 1
+        idx = np.arange(n_pts)
+        self.nxt = idx + 1
+        self.prv = idx - 1
+        nonempty = self.n > 0
+        self.nxt[last[nonempty]] = np.where(self.closed[nonempty], first[nonempty], -1)
+        self.prv[first[nonempty]] = np.where(self.closed[nonempty], last[nonempty], -1)
+        has_edge = self.nxt >= 0
+        self.edge = np.where(has_edge[:, None], self.pts[np.maximum(self.nxt, 0)] - self.pts, 0.0)
+        self.length_of_edge = np.linalg.norm(self.edge, axis=1)
+        csum = np.cumsum(self.length_of_edge) - self.length_of_edge
+        start = csum[first[nonempty]] if n_pts else np.zeros(0)
+        base = np.zeros(len(self.n))
+        base[nonempty] = start
+        self.s = csum - base[self.owner]
+        self.length = np.zeros(len(self.n))
+        np.add.at(self.length, self.owner, self.length_of_edge)
+        self.n_edges = np.where(self.closed, self.n, np.maximum(self.n - 1, 0))
+
+    def __len__(self):
+        return len(self.n)
+
+    @classmethod
+    def from_list(cls, curves, closed):
+        """Batch a list of (n_i, 2) arrays with their closed flags."""
+        sizes = [len(c) for c in curves]
+        pts = (
+            np.concatenate([np.asarray(c, dtype=np.float64).reshape(-1, 2) for c in curves])
+            if curves
+            else np.zeros((0, 2))
+        )
+        return cls(pts, np.concatenate([[0], np.cumsum(sizes)]), np.broadcast_to(closed, (len(curves),)))
+
+    def curve(self, c):
+        """Vertices of curve ``c``, shape (n_c, 2) (a view)."""
+        return self.pts[self.offsets[c] : self.offsets[c + 1]]
+
+    def global_s(self, gap=1.0):
+        """Arc lengths made increasing across the batch: curve ``c`` is shifted by ``base[c]``.
+
+        Returns
+        -------
+        g : ndarray, shape (N,)
+        base : ndarray, shape (C,)
+            Shift of each curve (each curve's range is followed by a gap).
+        """
+        base = np.concatenate([[0.0], np.cumsum(self.length + gap)])[:-1]
+        return self.s + base[self.owner], base
+
+    def locate(self, curve, s):
+        """Edge (global first-vertex index) and fraction at arc lengths ``s`` on given curves.
+
+        Parameters
+        ----------
+        curve : ndarray of int, shape (K,)
+        s : ndarray, shape (K,)
+            Positions, clipped to [0, length] (loops: taken modulo the length).
+
+        Returns
+        -------
+        edge : ndarray of int, shape (K,)
+        frac : ndarray, shape (K,)
+        """
+        length = self.length[curve]
+        s = np.where(self.closed[curve], np.mod(s, np.maximum(length, 1e-300)), np.clip(s, 0.0, length))
+        g, base = self.global_s()
+        i = np.searchsorted(g, s + base[curve], side="right") - 1
+        i = np.clip(i, self.offsets[curve], self.offsets[curve + 1] - 1)
+        # An open curve's last vertex starts no edge: use the last edge at fraction 1.
+        no_edge = self.nxt[i] < 0
+        i = np.where(no_edge & (self.n[curve] > 1), i - 1, i)
+        seg = self.length_of_edge[i]
+        frac = np.divide(s - self.s[i], seg, out=np.zeros_like(s), where=seg > 0)
+        return i, np.clip(frac, 0.0, 1.0)
+
+    def point_at(self, curve, s, smooth=False):
+        """Points at arc lengths ``s`` of given curves, shape (K, 2).
+
+        With ``smooth`` the point lies on the centripetal Catmull-Rom spline through the
+        vertices instead of on the straight edge.
+        """
+        i, frac = self.locate(curve, s)
+        if not smooth:
+            return self.pts[i] + frac[:, None] * self.edge[i]
+        j = np.maximum(self.nxt[i], 0)
+        p1, p2 = self.pts[i], self.pts[j]
+        h = self.prv[i]
+        k = self.nxt[j]
+        p0 = np.where((h >= 0)[:, None], self.pts[np.maximum(h, 0)], 2 * p1 - p2)
+        p3 = np.where((k >= 0)[:, None], self.pts[np.maximum(k, 0)], 2 * p2 - p1)
+        return catmull_rom(p0, p1, p2, p3, frac)
+
+    def resample(self, counts, smooth=True):
+        """Every curve resampled at uniform arc length.
+
+        Parameters
+        ----------
+        counts : ndarray of int, shape (C,)
+            Samples per curve (for an open curve both endpoints included, at least 2; a loop
+            at least 3, its first vertex not repeated).
+        smooth : bool
+            Place the samples on the centripetal Catmull-Rom spline through the vertices.
+
+        Returns
+        -------
+        Ragged
+        """
+        counts = np.maximum(np.asarray(counts, dtype=np.int64), np.where(self.closed, 3, 2))
+        owner, local = ragged_arange(counts)
+        step = self.length / np.where(self.closed, counts, counts - 1)
+        s = local * step[owner]
+        pts = self.point_at(owner, s, smooth=smooth)
+        offsets = np.concatenate([[0], np.cumsum(counts)])
+        # Open curves keep their exact endpoints.
+        is_open = ~self.closed
+        pts[offsets[:-1][is_open]] = self.pts[self.offsets[:-1][is_open]]
+        pts[offsets[1:][is_open] - 1] = self.pts[self.offsets[1:][is_open] - 1]
+        return Ragged(pts, offsets, self.closed)
+
+    def centroids(self):
+        """Arc-length centroid of every curve (the vertex mean for a dot), shape (C, 2)."""
+        mid = self.pts + 0.5 * self.edge
+        weight = self.length_of_edge
+        total = np.zeros((len(self.n), 2))
+        np.add.at(total, self.owner, mid * weight[:, None])
+        plain = np.zeros((len(self.n), 2))
+        np.add.at(plain, self.owner, self.pts)
+        plain /= np.maximum(self.n, 1)[:, None]
+        has_length = self.length > 0
+        return np.where(has_length[:, None], total / np.where(has_length, self.length, 1.0)[:, None], plain)
+
+    def signed_areas(self):
+        """Shoelace area of every curve closed by its chord, shape (C,) (counter-clockwise > 0)."""
+        nxt = np.where(self.nxt >= 0, self.nxt, self.offsets[:-1][self.owner])
+        a, b = self.pts, self.pts[nxt]
+        cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+        area = np.zeros(len(self.n))
+        np.add.at(area, self.owner, cross)
+        return 0.5 * area
+
+    def pieces(self, curve, s0, s1):
+        """Stretches of curves between arc lengths, as a new batch of open curves.
+
+        Parameters
+        ----------
+        curve : ndarray of int, shape (K,)
+        s0, s1 : ndarray, shape (K,)
+            Start and end of each stretch; on a loop ``s1`` may pass its length (the stretch
+            then runs on past the first vertex).
+
+        Returns
+        -------
+        Ragged
+            Stretch ``k`` is the point at ``s0``, the vertices strictly between, the point at
+            ``s1``.
+        """
+        n = self.n[curve]
+        length = self.length[curve]
+        closed = self.closed[curve]
+        g, base = self.global_s()
+        # Vertices passed before s0, and before s1 (counting a second lap for loops). A vertex
+        # within round-off of a boundary is the boundary point itself: leave it out, whatever
+        # the batch's offsets did to the last bits.
+        tiny = 1e-9 * (np.max(self.length, initial=0.0) + 1.0)
+        lo = np.searchsorted(g, s0 + base[curve] + tiny, side="right") - self.offsets[curve]
+        lap = closed & (s1 > length)
+        s1_in = np.where(lap, s1 - length, s1)
+        hi = np.searchsorted(g, s1_in + base[curve] - tiny, side="left") - self.offsets[curve] + np.where(lap, n, 0)
+        inner = np.maximum(hi - lo, 0)
+        owner, local = ragged_arange(inner)
+        k_local = lo[owner] + local
+        k_local = np.where(closed[owner], np.mod(k_local, np.maximum(n[owner], 1)), k_local)
+        verts = self.pts[self.offsets[curve][owner] + k_local]
+        start = self.point_at(curve, s0)
+        end = self.point_at(curve, np.where(lap, s1_in, s1))
+        sizes = inner + 2
+        offsets = np.concatenate([[0], np.cumsum(sizes)])
+        pts = np.empty((offsets[-1], 2))
+        pts[offsets[:-1]] = start
+        pts[offsets[1:] - 1] = end
+        mid = np.ones(offsets[-1], dtype=bool)
+        mid[offsets[:-1]] = False
+        mid[offsets[1:] - 1] = False
+        pts[mid] = verts
+        return Ragged(pts, offsets, np.zeros(len(curve), dtype=bool))
+
+    def vertex_normals(self):
+        """Unit left normals at the vertices, orthogonal to the chord of the two neighbours
+        (one-sided at an open curve's ends), shape (N, 2)."""
+        nxt = np.where(self.nxt >= 0, self.nxt, np.arange(len(self.pts)))
+        prv = np.where(self.prv >= 0, self.prv, np.arange(len(self.pts)))
+        chord = self.pts[nxt] - self.pts[prv]
+        return _left_unit(chord)
+
+    def edge_normals(self):
+        """Unit left normals of the edges by first vertex (zero where no edge), shape (N, 2)."""
+        return _left_unit(self.edge)
+
+
+def _left_unit(v):
+    norm = np.linalg.norm(v, axis=1, keepdims=True)
+    u = np.divide(v, norm, out=np.zeros_like(v), where=norm > 0)
+    return np.stack([-u[:, 1], u[:, 0]], axis=1)

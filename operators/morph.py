@@ -1,0 +1,115 @@
+"""Compute the in-betweens of one key interval: read both keys, ease, call the core.
+
+Nothing is written here: the operator computes every interval first and writes only when all
+of them are ready (see :mod:`.writer`).
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..ballmorph_core import StrokeSet, inbetween
+from ..ballmorph_core.timing import ease
+from . import grease_pencil
+
+__all__ = ["Morphed", "morph_interval"]
+
+# A layer transform whose 3x3 part has a smaller determinant cannot be inverted to write back.
+_SINGULAR_DETERMINANT = 1e-12
+
+
+@dataclass
+class Morphed:
+    """The in-betweens of one :class:`.keys.Interval`, ready to write.
+
+    Attributes
+    ----------
+    interval : keys.Interval
+    frames : list of StrokeSet
+        One per ``interval.targets``, in layer space.
+    messages : list of (level, text)
+        For the animator (level INFO or WARNING).
+    """
+
+    interval: object
+    frames: list
+    messages: list = field(default_factory=list)
+
+
+def _frame(layer, number):
+    return next(frame for frame in layer.frames if frame.frame_number == number)
+
+
+def _to_layer_space(strokes, matrix_inverse):
+    if matrix_inverse is None:
+        return strokes
+    positions = strokes.positions @ matrix_inverse[:3, :3].T + matrix_inverse[:3, 3]
+    return StrokeSet(
+        positions,
+        strokes.offsets,
+        strokes.cyclic,
+        strokes.material_index,
+        strokes.radius,
+        strokes.opacity,
+        strokes.vertex_color,
+        strokes.selected,
+    )
+
+
+def _selection(key_a, key_b, messages):
+    """Strokes to morph in each key and the first key's strokes to hold, for 'selected only'."""
+    if not key_a.selected.any() or not key_b.selected.any():
+        which = "first" if not key_a.selected.any() else "second"
+        messages.append(("INFO", f"no stroke is selected in the {which} key: all strokes were in-betweened"))
+        return key_a, key_b, None
+    held = key_a.subset(np.flatnonzero(~key_a.selected))
+    return key_a.subset(np.flatnonzero(key_a.selected)), key_b.subset(np.flatnonzero(key_b.selected)), held
+
+
+def morph_interval(interval, options, core_method):
+    """In-betweens of one interval.
+
+    Parameters
+    ----------
+    interval : keys.Interval
+    options : dict
+        The operator's options (see :data:`.options.OPTIONS`).
+    core_method : str
+        The core's name of the method.
+
+    Returns
+    -------
+    Morphed or None
+        None when both keys have no strokes.
+
+    Raises
+    ------
+    ballmorph_core.BallMorphError, ValueError
+        When the core cannot in-between these keys at all.
+    """
+    layer = interval.layer
+    matrix = grease_pencil.layer_matrix(layer)
+    identity = np.array_equal(matrix, np.eye(4))
+    if not identity and abs(np.linalg.det(matrix[:3, :3])) < _SINGULAR_DETERMINANT:
+        raise ValueError(f"layer '{layer.name}' has a flat transform (zero scale): it cannot be in-betweened")
+    to_morph, to_layer = (None, None) if identity else (matrix, np.linalg.inv(matrix))
+    key_a = grease_pencil.read_strokes(_frame(layer, interval.frame_a).drawing, to_morph)
+    key_b = grease_pencil.read_strokes(_frame(layer, interval.frame_b).drawing, to_morph)
+    if len(key_a) == 0 and len(key_b) == 0:
+        return None
+    messages, held = [], None
+    if options["selected_only"]:
+        key_a, key_b, held = _selection(key_a, key_b, messages)
+    times = ease(interval.fractions, options["easing_type"], options["easing"])
+    result = inbetween(
+        key_a,
+        key_b,
+        times,
+        method=core_method,
+        carrier=options["carrier"],
+        matching=options["matching"],
+        unmatched=options["unmatched"],
+    )
+    messages.extend((message.level, message.text) for message in result.messages)
+    frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
+    return Morphed(interval, [_to_layer_space(frame, to_layer) for frame in frames], messages)

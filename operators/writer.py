@@ -1,0 +1,83 @@
+"""Write computed in-betweens as 'BREAKDOWN' frames, all or nothing.
+
+Frames this add-on made earlier between the keys are removed first (their strokes are kept in
+memory); then every in-between frame is created and filled. If anything fails, the frames this
+run created are removed and the earlier ones restored, so the layer is as it was, and the
+error is raised again for the operator to report.
+"""
+
+from dataclasses import dataclass
+
+from . import generated, grease_pencil
+
+__all__ = ["write_all"]
+
+
+@dataclass
+class _Removed:
+    layer: object
+    frame_number: int
+    strokes: object  # StrokeSet in layer space
+
+
+def _remove_earlier(grease_pencil_data, morphed, removed):
+    layer = morphed.interval.layer
+    frames = {frame.frame_number: frame for frame in layer.frames}
+    for number in morphed.interval.replace:
+        strokes = grease_pencil.read_strokes(frames[number].drawing)
+        layer.frames.remove(number)
+        removed.append(_Removed(layer, number, strokes))
+        generated.unmark(grease_pencil_data, layer, number)
+
+
+def _new_breakdown(layer, number):
+    frame = layer.frames.new(number)
+    frame.keyframe_type = "BREAKDOWN"
+    frame.select = False
+    return frame
+
+
+def _fill(grease_pencil_data, layer, frame, strokes):
+    grease_pencil.write_strokes(frame.drawing, strokes)
+    generated.mark(grease_pencil_data, layer, frame)
+
+
+def write_all(grease_pencil_data, morphed_list):
+    """Write every interval's in-betweens.
+
+    Parameters
+    ----------
+    grease_pencil_data : bpy.types.GreasePencil
+    morphed_list : list of morph.Morphed
+
+    Returns
+    -------
+    int
+        Frames written.
+    """
+    created, removed = [], []
+    try:
+        for morphed in morphed_list:
+            _remove_earlier(grease_pencil_data, morphed, removed)
+        for morphed in morphed_list:
+            layer = morphed.interval.layer
+            for number, strokes in zip(morphed.interval.targets.tolist(), morphed.frames):
+                frame = _new_breakdown(layer, number)
+                created.append((layer, number))
+                _fill(grease_pencil_data, layer, frame, strokes)
+        for layer in {id(m.interval.layer): m.interval.layer for m in morphed_list}.values():
+            generated.prune(grease_pencil_data, layer)
+    except Exception:
+        _roll_back(grease_pencil_data, created, removed)
+        raise
+    return len(created)
+
+
+def _roll_back(grease_pencil_data, created, removed):
+    for layer, number in reversed(created):
+        if any(frame.frame_number == number for frame in layer.frames):
+            layer.frames.remove(number)
+        generated.unmark(grease_pencil_data, layer, number)
+    for item in removed:
+        frame = _new_breakdown(item.layer, item.frame_number)
+        _fill(grease_pencil_data, item.layer, frame, item.strokes)

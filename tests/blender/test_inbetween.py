@@ -1,0 +1,376 @@
+"""ballmorph.inbetween on real Grease Pencil data: frames, strokes, attributes, options, errors."""
+
+import bpy
+import gp_data
+import numpy as np
+import pytest
+
+import ballmorph_core as bm
+from ballmorph_core.timing import ease, frame_times
+
+
+def run(capfd, **options):
+    """Run the operator; return its result and everything it reported."""
+    capfd.readouterr()
+    result = bpy.ops.ballmorph.inbetween(**options)
+    out, err = capfd.readouterr()
+    return result, out + err
+
+
+def ink(obj):
+    return obj.data.layers["Ink"]
+
+
+def test_fills_every_frame_between_the_keys_with_breakdowns(shot, capfd):
+    result, text = run(capfd)
+    assert result == {"FINISHED"}
+    layer = ink(shot)
+    assert gp_data.frame_numbers(layer) == list(range(1, 10))
+    types = {f.frame_number: f.keyframe_type for f in layer.frames}
+    assert all(types[n] == "BREAKDOWN" for n in range(2, 9))
+    assert types[1] == types[9] == "KEYFRAME"
+    assert "7 in-between(s) on frame(s) 2\u20138" in text
+
+
+@pytest.mark.parametrize(("count", "expected"), [(1, [5]), (3, [3, 5, 7]), (50, list(range(2, 9)))])
+def test_frame_count_spreads_in_betweens_evenly(shot, count, expected):
+    assert bpy.ops.ballmorph.inbetween(frame_count=count) == {"FINISHED"}
+    made = [f.frame_number for f in ink(shot).frames if f.keyframe_type == "BREAKDOWN"]
+    assert made == expected
+
+
+@pytest.mark.parametrize(
+    ("method", "easing_type", "easing"),
+    [
+        ("CIRCULAR_BALL", "LINEAR", "EASE_IN"),
+        ("LINEAR_BALL", "QUAD", "EASE_IN_OUT"),
+        ("PARABOLIC_BALL", "SINE", "AUTO"),
+    ],
+)
+def test_strokes_equal_the_core_output_for_the_same_keys(shot, method, easing_type, easing):
+    layer = ink(shot)
+    key_a = gp_data.read_strokes(gp_data.frame_at(layer, 1).drawing)
+    key_b = gp_data.read_strokes(gp_data.frame_at(layer, 9).drawing)
+    frames, fractions = frame_times(1, 9, 3)
+    expected = bm.inbetween(
+        key_a, key_b, ease(fractions, easing_type, easing), method=method.lower().replace("_", "-")
+    ).frames
+
+    assert bpy.ops.ballmorph.inbetween(method=method, frame_count=3, easing_type=easing_type, easing=easing) == {
+        "FINISHED"
+    }
+    for number, want in zip(frames, expected):
+        got = gp_data.read_strokes(gp_data.frame_at(layer, int(number)).drawing)
+        np.testing.assert_array_equal(got.offsets, want.offsets)
+        np.testing.assert_allclose(got.positions, want.positions, rtol=0, atol=1e-6)
+        np.testing.assert_allclose(got.radius, want.radius, rtol=1e-6)
+        np.testing.assert_allclose(got.opacity, want.opacity, rtol=1e-6)
+        np.testing.assert_allclose(got.vertex_color, want.vertex_color, rtol=1e-6, atol=1e-7)
+        np.testing.assert_array_equal(got.cyclic, want.cyclic)
+        np.testing.assert_array_equal(got.material_index, want.material_index)
+
+
+def test_radius_and_opacity_are_interpolated(addon):
+    obj = gp_data.new_object()
+    layer = ink(obj)
+    stroke = gp_data.arc(0.4)
+    n = len(stroke)
+    gp_data.add_key(layer, 1, [stroke], radius=np.full(n, 0.02), opacity=np.full(n, 0.2))
+    gp_data.add_key(layer, 5, [stroke + [0, 0.1]], radius=np.full(n, 0.06), opacity=np.full(n, 1.0))
+    bpy.context.scene.frame_current = 1
+    assert bpy.ops.ballmorph.inbetween(method="LINEAR_BALL", easing_type="LINEAR") == {"FINISHED"}
+    for number, t in ((2, 0.25), (3, 0.5), (4, 0.75)):
+        got = gp_data.read_strokes(gp_data.frame_at(layer, number).drawing)
+        np.testing.assert_allclose(got.radius, 0.02 + t * 0.04, rtol=1e-5)
+        np.testing.assert_allclose(got.opacity, 0.2 + t * 0.8, rtol=1e-5)
+        # every written point is a real point: no zero opacity from a missing attribute
+        assert got.opacity.min() > 0.2
+
+
+def test_keys_are_byte_identical_after_the_run(shot):
+    layer = ink(shot)
+    before = {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in (1, 9)}
+    meta = {n: (f.keyframe_type, f.select) for n in (1, 9) for f in [gp_data.frame_at(layer, n)]}
+    assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
+    assert bpy.ops.ballmorph.inbetween(method="LINEAR_BALL", frame_count=2) == {"FINISHED"}
+    for n in (1, 9):
+        frame = gp_data.frame_at(layer, n)
+        assert gp_data.read_raw(frame.drawing) == before[n]
+        assert (frame.keyframe_type, frame.select) == meta[n]
+
+
+def test_hand_drawn_frame_between_the_keys_is_untouched_and_reported(shot, capfd):
+    layer = ink(shot)
+    for frame in layer.frames:
+        frame.select = True  # the animator selected keys 1 and 9 ...
+    gp_data.add_key(layer, 5, [gp_data.loop(0.5)], cyclic=[True])  # ... and had drawn frame 5
+    drawn = gp_data.read_raw(gp_data.frame_at(layer, 5).drawing)
+    result, text = run(capfd)
+    assert result == {"FINISHED"}
+    assert gp_data.read_raw(gp_data.frame_at(layer, 5).drawing) == drawn
+    assert gp_data.frame_at(layer, 5).keyframe_type == "KEYFRAME"
+    assert gp_data.frame_numbers(layer) == list(range(1, 10))
+    assert "frame(s) 5 already drawn: left untouched" in text
+    # the status bar shows the last report: it says there are warnings
+    assert (
+        text.strip().splitlines()[-1].startswith("Warning: Ball-morph In-between: 6 frame(s) on 1 layer(s), 1 warning")
+    )
+
+
+def test_rerun_replaces_only_its_own_frames(shot, capfd):
+    layer = ink(shot)
+    assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
+    first = {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in range(2, 9)}
+    for _ in range(2):
+        result, text = run(capfd)
+        assert result == {"FINISHED"}
+        assert "replacing 7 earlier" in text
+        assert "untouched" not in text
+    assert gp_data.frame_numbers(layer) == list(range(1, 10))
+    assert {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in range(2, 9)} == first
+    # fewer in-betweens: the earlier ones between the keys go, nothing else does
+    assert bpy.ops.ballmorph.inbetween(frame_count=1) == {"FINISHED"}
+    assert gp_data.frame_numbers(layer) == [1, 5, 9]
+    assert len(shot.data["ballmorph_inbetween"]["Ink"]) == 1
+
+
+def test_an_in_between_the_animator_edited_becomes_theirs(shot, capfd):
+    layer = ink(shot)
+    assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
+    drawing = gp_data.frame_at(layer, 5).drawing
+    positions = np.empty(len(drawing.attributes["position"].data) * 3, np.float32)
+    drawing.attributes["position"].data.foreach_get("vector", positions)
+    drawing.attributes["position"].data.foreach_set("vector", positions + np.float32(0.05))
+    edited = gp_data.read_raw(drawing)
+    # standing on frame 4, the edited frame 5 is now the next key ...
+    result, text = run(capfd)
+    assert result == {"FINISHED"}
+    assert "Ink 1\u21925: 3 in-between(s) on frame(s) 2\u20134" in text
+    assert gp_data.read_raw(gp_data.frame_at(layer, 5).drawing) == edited
+    # ... and with keys 1 and 9 selected it is a drawn frame between them
+    for number in (1, 9):
+        gp_data.frame_at(layer, number).select = True
+    result, text = run(capfd)
+    assert result == {"FINISHED"}
+    assert gp_data.read_raw(gp_data.frame_at(layer, 5).drawing) == edited
+    assert gp_data.frame_at(layer, 5).keyframe_type == "BREAKDOWN"
+    assert "frame(s) 5 already drawn: left untouched" in text
+
+
+def test_marks_survive_save_and_reload(shot, tmp_path, capfd):
+    assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
+    path = str(tmp_path / "shot.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    bpy.ops.wm.open_mainfile(filepath=path)
+    obj = bpy.data.objects["Drawing"]
+    bpy.context.view_layer.objects.active = obj
+    result, text = run(capfd)
+    assert result == {"FINISHED"}
+    assert "replacing 7 earlier" in text
+    assert gp_data.frame_numbers(ink(obj)) == list(range(1, 10))
+
+
+def test_no_grease_pencil_object_is_a_clear_cancel(addon):
+    bpy.context.view_layer.objects.active = None
+    with pytest.raises(RuntimeError, match="No Grease Pencil object is active"):
+        bpy.ops.ballmorph.inbetween()
+
+
+def test_one_keyframe_only_is_a_clear_cancel(addon):
+    obj = gp_data.new_object()
+    gp_data.add_key(ink(obj), 1, [gp_data.arc(0.3)])
+    with pytest.raises(RuntimeError, match="1 keyframe.*draw a second key"):
+        bpy.ops.ballmorph.inbetween()
+    assert gp_data.frame_numbers(ink(obj)) == [1]
+
+
+def test_empty_keys_are_a_clear_cancel(addon):
+    obj = gp_data.new_object()
+    ink(obj).frames.new(1)
+    ink(obj).frames.new(6)
+    bpy.context.scene.frame_current = 2
+    with pytest.raises(RuntimeError, match="both keys are empty"):
+        bpy.ops.ballmorph.inbetween()
+    assert gp_data.frame_numbers(ink(obj)) == [1, 6]
+
+
+def test_current_frame_after_the_last_key_is_a_clear_cancel(shot):
+    bpy.context.scene.frame_current = 20
+    with pytest.raises(RuntimeError, match="no keyframe after frame 20"):
+        bpy.ops.ballmorph.inbetween()
+
+
+def test_locked_layer_is_not_written(addon, capfd):
+    obj = gp_data.new_object(layers=("Ink", "Paint"))
+    for name in ("Ink", "Paint"):
+        gp_data.add_key(obj.data.layers[name], 1, [gp_data.arc(0.3)])
+        gp_data.add_key(obj.data.layers[name], 5, [gp_data.arc(-0.3)])
+    obj.data.layers["Paint"].lock = True
+    result, text = run(capfd, layers="ALL")
+    assert result == {"FINISHED"}
+    assert gp_data.frame_numbers(obj.data.layers["Paint"]) == [1, 5]
+    assert gp_data.frame_numbers(obj.data.layers["Ink"]) == [1, 2, 3, 4, 5]
+    assert "layer 'Paint' is locked" in text
+    obj.data.layers.active = obj.data.layers["Paint"]
+    with pytest.raises(RuntimeError, match="'Paint' is locked"):
+        bpy.ops.ballmorph.inbetween(layers="ACTIVE")
+
+
+def test_hidden_group_keeps_its_layers_unwritten(addon, capfd):
+    obj = gp_data.new_object(layers=("Ink", "Paint"))
+    for name in ("Ink", "Paint"):
+        gp_data.add_key(obj.data.layers[name], 1, [gp_data.arc(0.3)])
+        gp_data.add_key(obj.data.layers[name], 4, [gp_data.arc(-0.3)])
+    group = obj.data.layer_groups.new("Hidden")
+    obj.data.layers.move_to_layer_group(obj.data.layers["Paint"], group)
+    group.hide = True
+    result, text = run(capfd, layers="ALL")
+    assert result == {"FINISHED"}
+    assert gp_data.frame_numbers(obj.data.layers["Paint"]) == [1, 4]
+    assert gp_data.frame_numbers(obj.data.layers["Ink"]) == [1, 2, 3, 4]
+    assert "'Paint' is hidden (group 'Hidden')" in text
+
+
+def test_all_layers_each_use_their_own_keys(addon):
+    obj = gp_data.new_object(layers=("Ink", "Paint"))
+    gp_data.add_key(obj.data.layers["Ink"], 1, [gp_data.arc(0.3)])
+    gp_data.add_key(obj.data.layers["Ink"], 5, [gp_data.arc(-0.3)])
+    gp_data.add_key(obj.data.layers["Paint"], 3, [gp_data.loop(0.5)], cyclic=[True])
+    gp_data.add_key(obj.data.layers["Paint"], 8, [gp_data.loop(0.7)], cyclic=[True])
+    bpy.context.scene.frame_current = 4
+    assert bpy.ops.ballmorph.inbetween(layers="ALL") == {"FINISHED"}
+    assert gp_data.frame_numbers(obj.data.layers["Ink"]) == [1, 2, 3, 4, 5]
+    assert gp_data.frame_numbers(obj.data.layers["Paint"]) == [3, 4, 5, 6, 7, 8]
+    assert bpy.ops.ballmorph.inbetween(layers="ACTIVE", frame_count=1) == {"FINISHED"}
+    assert gp_data.frame_numbers(obj.data.layers["Ink"]) == [1, 3, 5]
+    assert gp_data.frame_numbers(obj.data.layers["Paint"]) == [3, 4, 5, 6, 7, 8]
+
+
+def test_layer_transform_is_applied_consistently(shot):
+    layer = ink(shot)
+    layer.translation = (0.5, 0.0, -0.2)
+    layer.rotation = (0.0, 0.4, 0.0)
+    layer.scale = (2.0, 1.0, 0.5)  # non-uniform: morphing in layer space would differ
+    matrix = np.array(layer.matrix_local)
+
+    def to_object(strokes):
+        strokes.positions = strokes.positions @ matrix[:3, :3].T + matrix[:3, 3]
+        return strokes
+
+    key_a = to_object(gp_data.read_strokes(gp_data.frame_at(layer, 1).drawing))
+    key_b = to_object(gp_data.read_strokes(gp_data.frame_at(layer, 9).drawing))
+    want = bm.inbetween(key_a, key_b, [0.5]).frames[0]
+    assert bpy.ops.ballmorph.inbetween(frame_count=1) == {"FINISHED"}
+    got = to_object(gp_data.read_strokes(gp_data.frame_at(layer, 5).drawing))
+    np.testing.assert_allclose(got.positions, want.positions, rtol=0, atol=1e-5)
+
+
+def _select_strokes(drawing, selected):
+    """Write a stroke selection (the attribute Blender's edit mode uses)."""
+    if ".selection" not in drawing.attributes:
+        drawing.attributes.new(".selection", "BOOLEAN", "CURVE")
+    drawing.attributes[".selection"].data.foreach_set("value", np.asarray(selected, bool))
+
+
+def test_selected_strokes_only_morphs_selected_and_holds_the_rest(shot):
+    layer = ink(shot)
+    _select_strokes(gp_data.frame_at(layer, 1).drawing, [False, True])
+    _select_strokes(gp_data.frame_at(layer, 9).drawing, [False, True])
+    key_a = gp_data.read_strokes(gp_data.frame_at(layer, 1).drawing)
+    key_b = gp_data.read_strokes(gp_data.frame_at(layer, 9).drawing)
+    want = bm.inbetween(key_a.subset([1]), key_b.subset([1]), [0.5]).frames[0]
+    assert bpy.ops.ballmorph.inbetween(frame_count=1, selected_only=True) == {"FINISHED"}
+    got = gp_data.read_strokes(gp_data.frame_at(layer, 5).drawing)
+    assert len(got) == 2
+    held = got.subset([0])
+    np.testing.assert_array_equal(held.positions, key_a.subset([0]).positions)  # the loop stays put
+    np.testing.assert_allclose(got.subset([1]).positions, want.positions, atol=1e-6)
+
+
+@pytest.mark.parametrize(
+    "method",
+    [
+        "CIRCULAR_BALL",
+        "LINEAR_BALL",
+        "PARABOLIC_BALL",
+        "LINEAR_INTERPOLATION",
+        "CLOSEST_PROJECTION",
+        "CURVATURE_INTERPOLATION",
+        "LAPLACE_BLENDING",
+        "HEAT_PROPAGATION",
+    ],
+)
+def test_every_method_runs(shot, method):
+    assert method.lower().replace("_", "-") in bm.METHODS
+    assert bpy.ops.ballmorph.inbetween(method=method, frame_count=1) == {"FINISHED"}
+    assert gp_data.frame_at(ink(shot), 5).keyframe_type == "BREAKDOWN"
+    assert len(gp_data.read_strokes(gp_data.frame_at(ink(shot), 5).drawing)) == 2
+
+
+def test_a_method_missing_from_the_core_is_a_clear_cancel(shot, addon, monkeypatch):
+    options = __import__(f"{addon.__name__}.operators.options", fromlist=["CORE_METHODS"])
+    monkeypatch.setattr(options, "CORE_METHODS", ("circular-ball",))
+    with pytest.raises(RuntimeError, match="Heat Propagation morph is not available in this version"):
+        bpy.ops.ballmorph.inbetween(method="HEAT_PROPAGATION")
+    assert gp_data.frame_numbers(ink(shot)) == [1, 9]
+
+
+def test_core_warnings_reach_the_report(addon, capfd):
+    obj = gp_data.new_object()
+    layer = ink(obj)
+    gp_data.add_key(layer, 1, [gp_data.arc(0.3), gp_data.loop(0.2, centre=(1, 0))], cyclic=[False, True])
+    gp_data.add_key(layer, 5, [gp_data.arc(-0.3)])
+    bpy.context.scene.frame_current = 2
+    result, text = run(capfd)
+    assert result == {"FINISHED"}
+    assert "Ink 1\u21925: " in text and "no partner" in text
+
+
+def test_a_failed_write_leaves_the_layer_as_it_was(shot, addon, monkeypatch):
+    layer = ink(shot)
+    assert bpy.ops.ballmorph.inbetween(frame_count=3) == {"FINISHED"}
+    before = {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in gp_data.frame_numbers(layer)}
+    io = __import__(f"{addon.__name__}.operators.grease_pencil", fromlist=["write_strokes"])
+    real, calls = io.write_strokes, []
+
+    def failing(drawing, strokes, matrix=None):
+        calls.append(1)
+        if len(calls) == 4:
+            raise MemoryError("simulated failure")
+        return real(drawing, strokes, matrix)
+
+    monkeypatch.setattr(io, "write_strokes", failing)
+    with pytest.raises(RuntimeError, match="nothing was changed: simulated failure"):
+        bpy.ops.ballmorph.inbetween(frame_count=0)
+    assert len(calls) >= 4
+    assert {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in gp_data.frame_numbers(layer)} == before
+    monkeypatch.undo()
+    # the restored in-betweens are still recognised as the tool's
+    assert bpy.ops.ballmorph.inbetween(frame_count=0) == {"FINISHED"}
+    assert gp_data.frame_numbers(layer) == list(range(1, 10))
+
+
+def test_preferences_are_the_defaults_and_runs_are_remembered(shot, addon):
+    preferences = bpy.context.preferences.addons[addon.__name__].preferences
+    settings = bpy.context.scene.ballmorph_inbetween
+    preferences.method = "LINEAR_BALL"
+    preferences.frame_count = 3
+    assert (settings.method, settings.frame_count) == ("LINEAR_BALL", 3)
+    assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
+    assert [f.frame_number for f in ink(shot).frames if f.keyframe_type == "BREAKDOWN"] == [3, 5, 7]
+    assert bpy.ops.ballmorph.inbetween(frame_count=1, method="PARABOLIC_BALL") == {"FINISHED"}
+    assert (settings.method, settings.frame_count) == ("PARABOLIC_BALL", 1)
+    preferences.method = "CIRCULAR_BALL"
+    assert settings.method == "PARABOLIC_BALL"  # the scene now has its own choice
+
+
+def test_keys_far_from_flat_are_reported(shot, capfd):
+    drawing = gp_data.frame_at(ink(shot), 9).drawing
+    positions = np.empty(len(drawing.attributes["position"].data) * 3, np.float32)
+    drawing.attributes["position"].data.foreach_get("vector", positions)
+    positions = positions.reshape(-1, 3)
+    positions[:, 1] = 0.6 * np.sin(3 * positions[:, 0])  # bumps off the XZ canvas
+    drawing.attributes["position"].data.foreach_set("vector", positions.ravel())
+    result, text = run(capfd, frame_count=1)
+    assert result == {"FINISHED"}
+    assert "Warning: Ink 1\u21929: " in text and "not flat" in text

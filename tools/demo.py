@@ -1,0 +1,265 @@
+"""The main demo: the add-on in-betweens three shot-like Grease Pencil cases inside Blender.
+
+Run by ``make demo`` (tools/demo.sh) with bpy (Blender as a Python module), headless:
+
+1. enables the add-on from this checkout (a development extension repository),
+2. builds one Grease Pencil object per shot, with hand-made keys on its layer "Ink":
+   - "Apple to pear": an apple outline and stem morphing into a pear (loops, frames 1-13),
+   - "Bend" (twice): a stroke whose ends stay put while it bends from an arch into a dip
+     (strokes sharing endpoints, frames 1-9), once with the circular ball-morph and once with
+     linear interpolation (what Blender's own Interpolate does) for comparison,
+   - "Squash and stretch": a ball falling (round, stretched, squashed on the floor: three
+     selected keys, frames 1, 7, 9) with a gravity ease-in,
+3. runs ``bpy.ops.ballmorph.inbetween`` on each (the same call the Dope Sheet menu makes),
+4. saves out/demo.blend (open it in Blender 4.5+ and scrub the timeline) and draws
+   out/demo.png, a contact sheet of the keys and in-betweens read back from Blender.
+"""
+
+import importlib
+import os
+import sys
+import tempfile
+
+import bpy
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = os.path.join(ROOT, "out")
+ADDON_ID = "ballmorph_inbetween"
+REPO_MODULE = "ballmorph_demo"
+MODULE = f"bl_ext.{REPO_MODULE}.{ADDON_ID}"
+addon_utils = importlib.import_module("addon_utils")
+
+
+# -- shapes (x, z) on Blender's front canvas ---------------------------------------------------
+
+
+def _loop(x, y):
+    return np.c_[x, y]
+
+
+def apple(n=160):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False) - np.pi / 2
+    dimple = 0.08 * np.exp(-(((t - np.pi / 2) / 0.45) ** 2)) + 0.04 * np.exp(-(((t + np.pi / 2) / 0.5) ** 2))
+    r = 1.0 - dimple + 0.04 * np.cos(2 * t)
+    return _loop(1.08 * r * np.cos(t), r * np.sin(t))
+
+
+def pear(n=160):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False) - np.pi / 2
+    s = np.sin(t)
+    width = 0.95 - 0.5 * np.clip(s, 0, None) ** 1.4
+    return _loop(width * np.cos(t), 1.35 * s + 0.3)
+
+
+def stem(base, top, n=20):
+    u = np.linspace(0, 1, n)[:, None]
+    bend = np.c_[0.08 * np.sin(np.pi * u[:, 0]), np.zeros(n)]
+    return (1 - u) * np.asarray(base) + u * np.asarray(top) + bend
+
+
+def bend_arch(n=90):
+    x = np.linspace(0, 2.4, n)
+    return np.c_[x, 0.75 * np.sin(np.pi * x / 2.4)]
+
+
+def bend_down(n=90):
+    x = np.linspace(0, 2.4, n)
+    return np.c_[x, -0.5 * np.sin(np.pi * x / 2.4) + 0.06 * np.sin(2 * np.pi * x / 2.4)]
+
+
+def ellipse(rx, rz, centre, n=96):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False) + np.pi / 2
+    return np.c_[centre[0] + rx * np.cos(t), centre[1] + rz * np.sin(t)]
+
+
+def floor(n=30):
+    return np.c_[np.linspace(-1.2, 1.2, n), np.zeros(n)]
+
+
+# -- Blender data ------------------------------------------------------------------------------
+
+
+def enable_addon():
+    """Enable the add-on from this checkout through a temporary development repository."""
+    repo_dir = tempfile.mkdtemp(prefix="ballmorph-demo-repo-")
+    os.symlink(ROOT, os.path.join(repo_dir, ADDON_ID))
+    bpy.context.preferences.extensions.repos.new(
+        name="Ball-morph demo", module=REPO_MODULE, custom_directory=repo_dir, source="USER"
+    )
+    addon_utils.enable(MODULE, default_set=True, handle_error=_raise)
+    return importlib.import_module(MODULE)
+
+
+def _raise(exc):
+    raise exc
+
+
+def material(name, rgb):
+    mat = bpy.data.materials.get(name)
+    if mat is None:
+        mat = bpy.data.materials.new(name)
+        bpy.data.materials.create_gpencil_data(mat)
+        mat.grease_pencil.color = (*rgb, 1.0)
+    return mat
+
+
+def new_shot(name, x_offset, materials):
+    io = importlib.import_module(f"{MODULE}.operators.grease_pencil")
+    data = io.data_collection().new(name)
+    obj = bpy.data.objects.new(name, data)
+    obj.location = (x_offset, 0.0, 0.0)
+    bpy.context.scene.collection.objects.link(obj)
+    for mat in materials:
+        data.materials.append(mat)
+    data.layers.new("Ink")
+    return obj
+
+
+def add_key(obj, number, strokes, cyclic, materials, radius):
+    """Draw a keyframe: (n, 2) strokes on the XZ canvas, written through the add-on's own I/O."""
+    io = importlib.import_module(f"{MODULE}.operators.grease_pencil")
+    core = importlib.import_module(f"{MODULE}.ballmorph_core")
+    n = [len(s) for s in strokes]
+    # Pressure-like radius: thin ends, full in the middle of each stroke.
+    taper = [r * (0.35 + 0.65 * np.sin(np.linspace(0, np.pi, k)) ** 0.5) for r, k in zip(radius, n)]
+    keys = core.StrokeSet.from_strokes(
+        strokes,
+        cyclic=cyclic,
+        material_index=materials,
+        radius=[np.full(k, r) if c else t for r, c, k, t in zip(radius, cyclic, n, taper)],
+        opacity=[np.full(k, 1.0) for k in n],
+    )
+    frame = obj.data.layers["Ink"].frames.new(number)
+    io.write_strokes(frame.drawing, keys)
+    return frame
+
+
+def build_scene():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    module = enable_addon()
+    ink = material("Ink", (0.05, 0.05, 0.08))
+    red = material("Apple red", (0.75, 0.1, 0.1))
+    brown = material("Stem", (0.35, 0.2, 0.05))
+    blue = material("Ball", (0.1, 0.3, 0.8))
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 13
+
+    shots = []
+    obj = new_shot("Apple to pear", 0.0, [red, brown])
+    add_key(obj, 1, [apple(), stem((0.0, 0.84), (0.12, 1.3))], [True, False], [0, 1], [0.035, 0.03])
+    add_key(obj, 13, [pear(), stem((0.0, 1.65), (0.16, 2.05))], [True, False], [0, 1], [0.035, 0.03])
+    shots.append((obj, 2, {"method": "CIRCULAR_BALL", "easing_type": "SINE", "easing": "EASE_IN_OUT"}))
+
+    for name, x, method in (
+        ("Bend", 3.2, "CIRCULAR_BALL"),
+        ("Bend (linear interpolation)", 6.4, "LINEAR_INTERPOLATION"),
+    ):
+        obj = new_shot(name, x, [ink])
+        add_key(obj, 1, [bend_arch()], [False], [0], [0.04])
+        add_key(obj, 9, [bend_down()], [False], [0], [0.04])
+        shots.append((obj, 2, {"method": method}))
+
+    obj = new_shot("Squash and stretch", 10.4, [blue, ink])
+    ball_keys = (
+        (1, ellipse(0.5, 0.5, (0.0, 2.6))),
+        (7, ellipse(0.36, 0.66, (0.0, 0.9))),
+        (9, ellipse(0.72, 0.3, (0.0, 0.3))),
+    )
+    for number, ball in ball_keys:
+        frame = add_key(obj, number, [ball, floor()], [True, False], [0, 1], [0.03, 0.02])
+        frame.select = True  # the animator selected the three keys in the Dope Sheet
+    # Paired by drawing order: the ball travels too far for the automatic matching to pair it.
+    options = {"method": "CIRCULAR_BALL", "easing_type": "QUAD", "easing": "EASE_IN", "matching": "INDEX"}
+    shots.append((obj, 2, options))
+    return module, shots
+
+
+def run_shots(shots):
+    for obj, frame, options in shots:
+        bpy.context.view_layer.objects.active = obj
+        bpy.context.scene.frame_current = frame
+        print(f"== {obj.name}: bpy.ops.ballmorph.inbetween({', '.join(f'{k}={v!r}' for k, v in options.items())})")
+        result = bpy.ops.ballmorph.inbetween(**options)
+        layer = obj.data.layers["Ink"]
+        kinds = " ".join(f"{f.frame_number}{'k' if f.keyframe_type == 'KEYFRAME' else 'b'}" for f in layer.frames)
+        print(f"   {result} frames (k = key, b = breakdown): {kinds}")
+
+
+# -- contact sheet -----------------------------------------------------------------------------
+
+
+def _frames(obj):
+    io = importlib.import_module(f"{MODULE}.operators.grease_pencil")
+    layer = obj.data.layers["Ink"]
+    frames = sorted(layer.frames, key=lambda f: f.frame_number)
+    return [(f.frame_number, f.keyframe_type, io.read_strokes(f.drawing)) for f in frames]
+
+
+def _draw(ax, obj, strokes, colour=None, alpha=1.0, width_scale=1.0):
+    colours = [tuple(slot.material.grease_pencil.color[:3]) for slot in obj.material_slots]
+    for i in range(len(strokes)):
+        sl = strokes.points(i)
+        xz = strokes.positions[sl][:, [0, 2]]
+        if strokes.cyclic[i]:
+            xz = np.vstack([xz, xz[:1]])
+        lw = width_scale * 70 * float(np.mean(strokes.radius[sl]))
+        c = colour or colours[int(strokes.material_index[i])]
+        ax.plot(xz[:, 0], xz[:, 1], color=c, lw=lw, alpha=alpha, solid_capstyle="round")
+
+
+def contact_sheet(shots, path, columns=6):
+    rows = len(shots)
+    fig, axes = plt.subplots(rows, columns + 1, figsize=(2.0 * (columns + 1), 2.2 * rows))
+    for row, (obj, _, options) in enumerate(shots):
+        frames = _frames(obj)
+        onion = axes[row, 0]
+        cmap = plt.get_cmap("viridis")
+        for k, (_, kind, strokes) in enumerate(frames):
+            if kind == "KEYFRAME":
+                _draw(onion, obj, strokes, colour="black", width_scale=0.8)
+            else:
+                _draw(onion, obj, strokes, colour=cmap(k / max(len(frames) - 1, 1)), alpha=0.8, width_scale=0.4)
+        onion.set_title(f"{obj.name}\n{options['method'].replace('_', ' ').lower()}", fontsize=8)
+        picks = np.unique(np.round(np.linspace(0, len(frames) - 1, columns)).astype(int))
+        limits = np.concatenate([s.positions[:, [0, 2]] for _, _, s in frames if len(s)])
+        lo, hi = limits.min(axis=0) - 0.15, limits.max(axis=0) + 0.15
+        for col in range(columns):
+            ax = axes[row, col + 1]
+            if col < len(picks):
+                number, kind, strokes = frames[picks[col]]
+                _draw(ax, obj, strokes)
+                ax.set_title(f"frame {number} ({'key' if kind == 'KEYFRAME' else 'in-between'})", fontsize=8)
+        for ax in axes[row]:
+            ax.set_xlim(lo[0], hi[0])
+            ax.set_ylim(lo[1], hi[1])
+            ax.set_aspect("equal")
+            ax.axis("off")
+    fig.suptitle("Ball-morph In-between: keys (black in the onion skin) and the in-betweens the add-on wrote")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    module, shots = build_scene()
+    try:
+        run_shots(shots)
+        blend = os.path.join(OUT, "demo.blend")
+        bpy.context.preferences.filepaths.save_version = 0  # no demo.blend1 backups
+        bpy.ops.wm.save_as_mainfile(filepath=blend)
+        contact_sheet(shots, os.path.join(OUT, "demo.png"))
+        print(f"wrote {blend}\nwrote {os.path.join(OUT, 'demo.png')}")
+    finally:
+        addon_utils.disable(MODULE, default_set=True)  # bpy may hang at exit with operators registered
+    del module
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
