@@ -24,29 +24,50 @@ from .registration import carrier_at, similarities
 from .spatial import box_pairs
 from .trajectories import BallPaths
 
-__all__ = ["BatchOutcome", "morph_pairs"]
+__all__ = ["BatchResult", "morph_pairs"]
 
 
 @dataclass
-class BatchOutcome:
-    """Frames of one pair from the fast path.
+class BatchResult:
+    """Frames of every pair the fast path handled, concatenated.
 
     Attributes
     ----------
+    done : ndarray of bool, shape (C,)
+        Pairs handled here (the others need :func:`~ballmorph_core.pair.morph_pair`).
+    offsets : ndarray of int, shape (C + 1,)
+        Pair ``c``'s samples are ``offsets[c]:offsets[c + 1]`` (empty when not done).
     frames : ndarray, shape (T, K, 2)
     u_p, u_q : ndarray, shape (K,)
         Arc-length fractions along P and Q as given.
-    closed : bool
-    used : str
-    notes : list of str
+    used : list of str
+    notes : list of list of str
     """
 
+    done: np.ndarray
+    offsets: np.ndarray
     frames: np.ndarray
     u_p: np.ndarray
     u_q: np.ndarray
-    closed: bool
-    used: str
+    used: list = field(default_factory=list)
     notes: list = field(default_factory=list)
+
+    @classmethod
+    def empty(cls, n, n_times):
+        return cls(
+            np.zeros(n, dtype=bool),
+            np.zeros(n + 1, dtype=np.int64),
+            np.zeros((n_times, 0, 2)),
+            np.zeros(0),
+            np.zeros(0),
+            [""] * n,
+            [[] for _ in range(n)],
+        )
+
+    def pair(self, c):
+        """``(frames (T, K, 2), u_p, u_q)`` of pair ``c``."""
+        sl = slice(self.offsets[c], self.offsets[c + 1])
+        return self.frames[:, sl], self.u_p[sl], self.u_q[sl]
 
 
 def _bbox_scale(rg):
@@ -128,12 +149,10 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
 
     Returns
     -------
-    list
-        Per pair a :class:`BatchOutcome`, or None where the pair needs the general road.
+    BatchResult
     """
-    out = [None] * len(pairs)
     if not pairs:
-        return out
+        return BatchResult.empty(0, len(times))
     times = np.asarray(times, dtype=np.float64)
     closed = np.array([c for _, _, c in pairs], dtype=bool)
     P = Ragged.from_list([p for p, _, _ in pairs], closed)
@@ -206,10 +225,9 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
         l_p1 = np.where(wrap & (l_p1 <= l_p0), l_p1 + R.length[lens_pair], l_p1)
         l_q1 = np.where(wrap & (l_q1 <= l_q0), l_q1 + Q.length[lens_pair], l_q1)
     lens_pair = np.asarray(lens_pair, dtype=np.int64)
-    # Chains: every lens, plus nested loops and coincident loops whole.
+    # Chains: every lens, plus nested or coincident curves whole; grouped by pair, in order.
     whole = np.flatnonzero(eligible & ((closed & (count == 0)) | coincident))
-    chains_p, chains_q, chain_pair = [], [], []
-    setups = []
+    setups, chain_pair, range_p, range_q = [], [], [], []
     if len(lens_pair):
         pieces_p = R.pieces(lens_pair, np.asarray(l_p0), np.asarray(l_p1))
         pieces_q = Q.pieces(lens_pair, np.asarray(l_q0), np.asarray(l_q1))
@@ -218,89 +236,103 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
         pieces_q.pts[pieces_q.offsets[1:] - 1] = pieces_p.pts[pieces_p.offsets[1:] - 1]
         # The gap lies left of P when P then Q backwards turns counter-clockwise.
         area = _open_area(pieces_p) - _open_area(pieces_q)
+        flat = np.abs(area) <= tol.OVERLAP * scale[lens_pair] * np.maximum(pieces_p.length, 1e-300)
+        side = np.where(area > 0, 1.0, -1.0)
         for k in range(len(lens_pair)):
-            c = lens_pair[k]
-            flat = abs(area[k]) <= tol.OVERLAP * scale[c] * max(pieces_p.length[k], 1e-300)
-            side = 1.0 if area[k] > 0 else -1.0
-            setups.append(PairSetup(pieces_p.curve(k), _fixed(pieces_q, k), False, side, -side, coincident=flat))
-            chain_pair.append(c)
-            chains_p.append((l_p0[k], l_p1[k]))
-            chains_q.append((l_q0[k], l_q1[k]))
+            setups.append(
+                PairSetup(
+                    pieces_p.curve(k), pieces_q.curve(k).copy(), False, side[k], -side[k], coincident=bool(flat[k])
+                )
+            )
+        chain_pair += list(lens_pair)
+        range_p += list(zip(l_p0, l_p1))
+        range_q += list(zip(l_q0, l_q1))
+    if len(whole):
+        areas = R.signed_areas()
+        p_inner = _inside(R.pts[R.offsets[:-1]], Q, R.owner)
     for c in whole:
-        rp, rq = R.curve(c), Q.curve(c)
         if coincident[c]:
-            setups.append(PairSetup(rp, rq, bool(closed[c]), 1.0, 1.0, coincident=True))
+            setups.append(PairSetup(R.curve(c), Q.curve(c), bool(closed[c]), 1.0, 1.0, coincident=True))
         else:
             # Nested loops: left normals point inside a counter-clockwise loop.
-            ccw = 1.0 if R.signed_areas()[c] > 0 else -1.0
-            p_inner = bool(_inside(R.pts[[R.offsets[c]]], Ragged.from_list([rq], [True]), None)[0])
-            side_p = -ccw if p_inner else ccw
-            setups.append(PairSetup(rp, rq, True, side_p, -side_p))
+            ccw = 1.0 if areas[c] > 0 else -1.0
+            side_p = -ccw if p_inner[c] else ccw
+            setups.append(PairSetup(R.curve(c), Q.curve(c), True, side_p, -side_p))
         chain_pair.append(c)
-        chains_p.append((0.0, R.length[c]))
-        chains_q.append((0.0, Q.length[c]))
+        range_p.append((0.0, R.length[c]))
+        range_q.append((0.0, Q.length[c]))
+    result = BatchResult.empty(n, len(times))
     if not setups:
-        return out
-    chain_pair = np.asarray(chain_pair)
+        return result
+    chain_pair = np.asarray(chain_pair, dtype=np.int64)
+    order = np.argsort(chain_pair, kind="stable")
+    setups = [setups[k] for k in order]
+    chain_pair, range_p, range_q = chain_pair[order], np.asarray(range_p)[order], np.asarray(range_q)[order]
     corrs = ball_maps(setups, h[chain_pair], "symmetric", check=False, eps=eps[chain_pair])
     failed = np.zeros(n, dtype=bool)
-    for corr, c in zip(corrs, chain_pair):
-        if corr.report.violations:
-            failed[c] = True
-    # Paths of every sample of every good chain, evaluated once per frame.
-    good = [k for k, c in enumerate(chain_pair) if not failed[c]]
-    if not good:
-        return out
-    p_all = np.concatenate([corrs[k].p for k in good])
-    m_all = np.concatenate([corrs[k].centers for k in good])
-    q_all = np.concatenate([corrs[k].q for k in good])
-    paths = BallPaths(p_all, m_all, q_all, kind)
-    frames_all = np.stack([paths.at(t) for t in times])  # (T, K, 2)
-    sizes = [len(corrs[k]) for k in good]
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    failed[[c for corr, c in zip(corrs, chain_pair) if corr.report.violations]] = True
+    good = np.flatnonzero(~failed[chain_pair])
+    if not len(good):
+        return result
+    corrs = [corrs[k] for k in good]
+    chain_pair, range_p, range_q = chain_pair[good], range_p[good], range_q[good]
+    sizes = np.array([len(corr) for corr in corrs])
+    chain_of = np.repeat(np.arange(len(corrs)), sizes)
+    pair_of = chain_pair[chain_of]
+    # Arc lengths on the dense chains -> fractions along the whole curves.
+    dense_p = Ragged.from_list([corr.dense_p for corr in corrs], [corr.closed for corr in corrs])
+    dense_q = Ragged.from_list([corr.dense_q for corr in corrs], [corr.closed for corr in corrs])
+    s_p = np.concatenate([corr.s_p for corr in corrs])
+    s_q = np.concatenate([corr.s_q for corr in corrs])
+    span_p, span_q = np.diff(range_p, axis=1)[:, 0], np.diff(range_q, axis=1)[:, 0]
+    u_p = range_p[chain_of, 0] + s_p / np.maximum(dense_p.length, 1e-300)[chain_of] * span_p[chain_of]
+    u_q = range_q[chain_of, 0] + s_q / np.maximum(dense_q.length, 1e-300)[chain_of] * span_q[chain_of]
+    u_p /= R.length[pair_of]
+    u_q /= Q.length[pair_of]
+    # A lens starts where the previous one ended: drop the repeat; a loop made of lenses ends
+    # where it starts: drop its last sample.
+    first = np.r_[0, np.cumsum(sizes)[:-1]]
+    last = np.cumsum(sizes) - 1
+    new_pair = np.r_[True, chain_pair[1:] != chain_pair[:-1]]
+    end_of_pair = np.r_[chain_pair[1:] != chain_pair[:-1], True]
+    keep = np.ones(len(chain_of), dtype=bool)
+    keep[first[~new_pair]] = False
+    lensed_loop = closed[chain_pair] & (count[chain_pair] > 1) & ~coincident[chain_pair]
+    keep[last[end_of_pair & lensed_loop]] = False
+    paths = BallPaths(
+        np.concatenate([corr.p for corr in corrs])[keep],
+        np.concatenate([corr.centers for corr in corrs])[keep],
+        np.concatenate([corr.q for corr in corrs])[keep],
+        kind,
+    )
+    pair_of, u_p, u_q = pair_of[keep], u_p[keep], u_q[keep]
+    cyc = closed[pair_of]
+    u_p = np.where(cyc, np.mod(u_p, 1.0), np.clip(u_p, 0.0, 1.0))
+    u_q = np.where(cyc, np.mod(u_q, 1.0), np.clip(u_q, 0.0, 1.0))
+    # Carrier: C_t = S^-(1-t), undoing the registration progressively (identity if none).
+    moving = (carrier != "NONE") & ~((np.abs(a - 1) <= 1e-9) & (np.abs(b) <= 1e-9 * scale))
     centres = Q.centroids()
-    by_pair = {}
-    for pos, k in enumerate(good):
-        by_pair.setdefault(int(chain_pair[k]), []).append((pos, k))
-    for c, items in by_pair.items():
-        frames, u_p, u_q = [], [], []
-        for j, (pos, k) in enumerate(items):
-            sl = slice(offsets[pos] + (1 if j > 0 else 0), offsets[pos + 1])
-            corr = corrs[k]
-            dense_len_p = max(float(np.sum(np.linalg.norm(np.diff(corr.dense_p, axis=0), axis=1))), 1e-300)
-            dense_len_q = max(float(np.sum(np.linalg.norm(np.diff(corr.dense_q, axis=0), axis=1))), 1e-300)
-            if corr.closed:
-                dense_len_p += float(np.linalg.norm(corr.dense_p[0] - corr.dense_p[-1]))
-                dense_len_q += float(np.linalg.norm(corr.dense_q[0] - corr.dense_q[-1]))
-            (p0, p1), (q0, q1) = chains_p[k], chains_q[k]
-            lo = 1 if j > 0 else 0
-            u_p.append(p0 + corr.s_p[lo:] / dense_len_p * (p1 - p0))
-            u_q.append(q0 + corr.s_q[lo:] / dense_len_q * (q1 - q0))
-            frames.append(frames_all[:, sl])
-        frames = np.concatenate(frames, axis=1)
-        u_p = np.concatenate(u_p) / R.length[c]
-        u_q = np.concatenate(u_q) / Q.length[c]
-        if closed[c] and len(items) and items[0] is not None and not (coincident[c] or count[c] == 0):
-            frames, u_p, u_q = frames[:, :-1], u_p[:-1], u_q[:-1]  # the loop's last point is its first
-        u_p = np.mod(u_p, 1.0) if closed[c] else np.clip(u_p, 0.0, 1.0)
-        u_q = np.mod(u_q, 1.0) if closed[c] else np.clip(u_q, 0.0, 1.0)
-        # Carrier: C_t = S^-(1-t), undoing the registration progressively.
-        if carrier != "NONE" and not (abs(a[c] - 1) <= 1e-9 and abs(b[c]) <= 1e-9 * scale[c]):
-            centre = complex(*centres[c])
-            moved = []
-            for ti, t in enumerate(times):
-                ca, cb = carrier_at(a[c], b[c], carrier, centre, t)
-                z = ca * (frames[ti, :, 0] + 1j * frames[ti, :, 1]) + cb
-                moved.append(np.stack([z.real, z.imag], axis=1))
-            frames = np.stack(moved)
-            used = f"{kind}-ball on a {carrier.lower()} carrier"
-        else:
-            used = f"{kind}-ball"
-        notes = []
-        if count[c] and not closed[c] or (closed[c] and count[c] > 1):
-            notes.append(f"split at {len(items)} crossing/overlap pieces")
-        out[c] = BatchOutcome(frames, u_p, u_q, bool(closed[c]), used, notes)
-    return out
+    centre = centres[:, 0] + 1j * centres[:, 1]
+    frames = np.empty((len(times), len(pair_of), 2))
+    for ti, t in enumerate(times):
+        z = paths.at(t)
+        if moving.any():
+            ca, cb = carrier_at(a, b, carrier if carrier != "NONE" else "SIMILARITY", centre, t)
+            ca, cb = np.where(moving, ca, 1.0), np.where(moving, cb, 0.0)
+            zz = ca[pair_of] * (z[:, 0] + 1j * z[:, 1]) + cb[pair_of]
+            z = np.stack([zz.real, zz.imag], axis=1)
+        frames[ti] = z
+    done = np.zeros(n, dtype=bool)
+    done[chain_pair] = True
+    lenses = np.bincount(chain_pair, minlength=n)
+    for c in np.flatnonzero(done):
+        result.used[c] = f"{kind}-ball on a {carrier.lower()} carrier" if moving[c] else f"{kind}-ball"
+        if lenses[c] > 1:
+            result.notes[c] = [f"split at {lenses[c]} crossing/overlap pieces"]
+    result.done = done
+    result.offsets = np.concatenate([[0], np.cumsum(np.bincount(pair_of, minlength=n))])
+    result.frames, result.u_p, result.u_q = frames, u_p, u_q
+    return result
 
 
 def _open_area(pieces):
@@ -316,7 +348,3 @@ def _open_area(pieces):
     area = np.zeros(len(pieces))
     np.add.at(area, pieces.owner, cross)
     return 0.5 * area
-
-
-def _fixed(pieces, k):
-    return pieces.curve(k).copy()

@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import tolerances as tol
-from .batch import morph_pairs
-from .curves import as_curve, cumulative_length
+from .batch import BatchResult, morph_pairs
+from .curves import as_curve
 from .errors import BallMorphError, InvalidCurveError
 from .matching import MODES as MATCHINGS
 from .matching import match_strokes
@@ -24,6 +24,7 @@ from .morphs import make_morph
 from .options import check_option
 from .pair import BALL_METHODS, morph_pair
 from .plane import fit_plane
+from .ragged import Ragged
 from .registration import CARRIERS
 
 __all__ = [
@@ -238,65 +239,84 @@ class InbetweenResult:
     pairs: list = field(default_factory=list)
 
 
-def _fractions(points2d, closed):
-    """Arc-length fraction of each vertex of a stroke, shape (n,) (all 0 for a dot)."""
-    if len(points2d) < 2:
-        return np.zeros(len(points2d))
-    cum = cumulative_length(points2d, closed)
-    total = cum[-1]
-    return cum[: len(points2d)] / total if total > 0 else np.linspace(0.0, 1.0, len(points2d))
+class _Key:
+    """A key projected into the drawing plane, with everything a stroke carries.
+
+    Attributes
+    ----------
+    rg : Ragged
+        The strokes' 2D points (arc lengths and fractions come from it).
+    values : ndarray, shape (N, 7)
+        Per point: offset from the plane, radius, opacity, vertex colour (RGBA).
+    """
+
+    def __init__(self, strokes, plane):
+        xy, depth = plane.to_2d(strokes.positions)
+        self.rg = Ragged(xy, strokes.offsets, strokes.cyclic)
+        self.strokes = strokes
+        self.values = np.column_stack([depth, strokes.radius, strokes.opacity, strokes.vertex_color])
+        length = self.rg.length[self.rg.owner]
+        local = np.arange(len(xy)) - strokes.offsets[:-1][self.rg.owner]
+        n = self.rg.n[self.rg.owner]
+        even = np.divide(local, np.maximum(n - 1, 1))
+        self.u = np.where(length > 0, np.divide(self.rg.s, np.where(length > 0, length, 1.0)), even)
+        # Interpolation table: every stroke's fractions shifted by 2 per stroke, loops closed by
+        # their first point at fraction 1, so one np.interp serves all strokes at once.
+        first = strokes.offsets[:-1][self.rg.n > 0]
+        closing = first[self.rg.closed[self.rg.n > 0] | (self.rg.n[self.rg.n > 0] == 1)]
+        owner = np.concatenate([self.rg.owner, self.rg.owner[closing]])
+        x = np.concatenate([self.u, np.ones(len(closing))]) + 2.0 * owner
+        order = np.argsort(x, kind="stable")
+        self._x = x[order]
+        self._v = np.concatenate([self.values, self.values[closing]])[order]
+
+    def stroke(self, i, flip=False):
+        """Stroke ``i`` for morphing (``_Stroke``), reversed if ``flip``."""
+        sl = self.strokes.points(i)
+        xy = self.rg.pts[sl]
+        u = self.u[sl]
+        closed = bool(self.rg.closed[i])
+        if flip:
+            order = np.r_[0, np.arange(len(xy) - 1, 0, -1)] if closed else np.arange(len(xy))[::-1]
+            xy, u = xy[order], np.mod(1.0 - u[order], 1.0) if closed else 1.0 - u[order]
+        return _Stroke(i, xy, u, closed, int(self.strokes.material_index[i]))
+
+    def sample(self, stroke, u):
+        """Per-point values at fractions ``u`` of given strokes (vectorised), shape (K, 7)."""
+        x = np.clip(u, 0.0, 1.0) + 2.0 * stroke
+        return np.column_stack([np.interp(x, self._x, self._v[:, c]) for c in range(self._v.shape[1])])
 
 
-def _sample(values, fractions, u, closed):
-    """Per-point values of a stroke at arc-length fractions ``u`` (periodic for loops)."""
-    if len(values) == 1:
-        return np.repeat(values, len(u), axis=0)
-    if values.ndim == 1:
-        return np.interp(u, fractions, values, period=1.0 if closed else None)
-    return np.stack(
-        [np.interp(u, fractions, values[:, c], period=1.0 if closed else None) for c in range(values.shape[1])], axis=1
-    )
-
-
+@dataclass
 class _Stroke:
-    """One stroke of a key, projected into the drawing plane."""
+    """One stroke as the morphs see it: index, 2D points, vertex fractions, cyclic, material."""
 
-    def __init__(self, strokes, index, plane):
-        sl = strokes.points(index)
-        self.index = index
-        self.xy, self.depth = plane.to_2d(strokes.positions[sl])
-        self.closed = bool(strokes.cyclic[index])
-        self.material = int(strokes.material_index[index])
-        self.radius = strokes.radius[sl]
-        self.opacity = strokes.opacity[sl]
-        self.color = strokes.vertex_color[sl]
-        self.u = _fractions(self.xy, self.closed)
+    index: int
+    xy: np.ndarray
+    u: np.ndarray
+    closed: bool
+    material: int
 
-    def reversed(self):
-        """The same stroke traversed backwards (a loop keeps its first point)."""
-        out = object.__new__(_Stroke)
-        out.__dict__.update(self.__dict__)
-        order = np.r_[0, np.arange(len(self.xy) - 1, 0, -1)] if self.closed else np.arange(len(self.xy))[::-1]
-        for name in ("xy", "depth", "radius", "opacity", "color"):
-            setattr(out, name, getattr(self, name)[order])
-        out.u = _fractions(out.xy, out.closed)
-        return out
 
-    def attributes_at(self, u):
-        return (
-            _sample(self.depth, self.u, u, self.closed),
-            _sample(self.radius, self.u, u, self.closed),
-            _sample(self.opacity, self.u, u, self.closed),
-            _sample(self.color, self.u, u, self.closed),
-        )
+def _along_original(u, flip, closed):
+    """Fractions along a reversed stroke, expressed along the stroke as drawn."""
+    if not flip:
+        return u
+    return np.mod(-u, 1.0) if closed else 1.0 - u
 
 
 def _dot_frames(a, b, times):
     """Strokes with fewer than two distinct points: move them straight, point by point."""
     k = max(len(a.xy), len(b.xy))
     u = np.linspace(0.0, 1.0, k)
-    xa, xb = _sample(a.xy, a.u, u, False), _sample(b.xy, b.u, u, False)
-    return [(1 - t) * xa + t * xb for t in times], u, u
+
+    def along(s):
+        if len(s.xy) == 1:
+            return np.repeat(s.xy, k, axis=0)
+        return np.column_stack([np.interp(u, s.u, s.xy[:, c]) for c in range(2)])
+
+    xa, xb = along(a), along(b)
+    return np.stack([(1 - t) * xa + t * xb for t in times]), u, u
 
 
 def _pair_frames(a, b, times, method, carrier, spacing):
@@ -322,8 +342,8 @@ def _pair_frames(a, b, times, method, carrier, spacing):
         morph = make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing)
         used = FALLBACK_METHOD
         notes.append(str(exc))
-    frames = [morph(t) for t in times]
-    if not all(np.all(np.isfinite(f)) for f in frames):
+    frames = morph.frames(times)
+    if not np.all(np.isfinite(frames)):
         frames, ua, ub = _dot_frames(a, b, times)
         return frames, ua, ub, False, "straight point motion", notes + ["the morph produced non-finite points"]
     return frames, morph.u_p, morph.u_q, morph.closed, used, notes
@@ -386,71 +406,75 @@ def inbetween(
     if not np.all(np.isfinite(times)):
         raise InvalidCurveError("times: must be finite numbers in [0, 1]")
     plane = fit_plane(np.concatenate([key_a.positions, key_b.positions]))
-    result = InbetweenResult(frames=[[] for _ in times])
-    strokes_a = [_Stroke(key_a, i, plane) for i in range(len(key_a))]
-    strokes_b = [_Stroke(key_b, i, plane) for i in range(len(key_b))]
+    result = InbetweenResult(frames=[])
+    ka, kb = _Key(key_a, plane), _Key(key_b, plane)
     pairing = match_strokes(
-        [s.xy for s in strokes_a],
-        [s.xy for s in strokes_b],
-        np.array([s.closed for s in strokes_a], dtype=bool),
-        np.array([s.closed for s in strokes_b], dtype=bool),
+        [ka.rg.curve(i) for i in range(len(key_a))],
+        [kb.rg.curve(j) for j in range(len(key_b))],
+        ka.rg.closed,
+        kb.rg.closed,
         mode=matching,
     )
     if pairing.method != "index" or pairing.unmatched_a or pairing.unmatched_b:
         result.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
-    pairs = [(strokes_a[i], strokes_b[j].reversed() if flip else strokes_b[j], flip) for i, j, flip in pairing.pairs]
+    unmatched_a, unmatched_b = list(pairing.unmatched_a), list(pairing.unmatched_b)
+    pairs = []
+    for i, j, flip in pairing.pairs:
+        if key_a.sizes[i] == 0 or key_b.sizes[j] == 0:  # an empty stroke has nothing to morph
+            unmatched_a += [i] if key_a.sizes[i] else []
+            unmatched_b += [j] if key_b.sizes[j] else []
+            continue
+        pairs.append((ka.stroke(i), kb.stroke(j, flip), flip))
     fast = _fast_path(pairs, times, method, carrier, spacing)
-    for (a, b, flip), done in zip(pairs, fast):
-        if done is None:
-            frames, ua, ub, closed, used, notes = _pair_frames(a, b, times, method, carrier, spacing)
+    parts = []  # per pair: frames (T, K, 2), fractions on A and B, cyclic, the two strokes
+    for k, (a, b, flip) in enumerate(pairs):
+        if fast.done[k]:
+            frames, ua, ub = fast.pair(k)
+            closed, used, notes = a.closed, fast.used[k], fast.notes[k]
         else:
-            frames, ua, ub, closed, used, notes = done.frames, done.u_p, done.u_q, done.closed, done.used, done.notes
-        _emit_pair(result, a, b, times, plane, flip, frames, ua, ub, closed, used, notes)
-    for i in pairing.unmatched_a:
-        _emit_unmatched(result, strokes_a[i], True, times, unmatched, plane)
-    for j in pairing.unmatched_b:
-        _emit_unmatched(result, strokes_b[j], False, times, unmatched, plane)
+            frames, ua, ub, closed, used, notes = _pair_frames(a, b, times, method, carrier, spacing)
+        parts.append((frames, ua, _along_original(ub, flip, b.closed), closed, a, b))
+        _report_pair(result, a, b, flip, used, notes)
+    held = [(ka, i, True) for i in unmatched_a] + [(kb, j, False) for j in unmatched_b]
+    for _, i, from_a in held:
+        _report_unmatched(result, i, from_a, unmatched)
+    result.frames = _assemble(parts, held, ka, kb, times, plane, unmatched)
     _check_planarity(result, key_a, key_b, plane)
-    result.frames = [_assemble(parts) for parts in result.frames]
     return result
 
 
 def _fast_path(pairs, times, method, carrier, spacing):
-    """Batched ball-morph of every eligible pair (None where the general road is needed)."""
-    out = [None] * len(pairs)
-    if method not in BALL_METHODS:
-        return out
+    """Batched ball-morph of every eligible pair (see :mod:`~ballmorph_core.batch`)."""
     todo, curves = [], []
-    for k, (a, b, _) in enumerate(pairs):
-        if a.closed != b.closed or len(a.xy) < 2 or len(b.xy) < 2:
-            continue
-        try:
-            curves.append((as_curve(a.xy, "P", a.closed), as_curve(b.xy, "Q", a.closed), a.closed))
-        except InvalidCurveError:
-            continue
-        todo.append(k)
-    if todo:
-        for k, done in zip(todo, morph_pairs(curves, times, method[: -len("-ball")], carrier, spacing)):
-            if done is not None and np.all(np.isfinite(done.frames)):
-                out[k] = done
+    if method in BALL_METHODS:
+        for k, (a, b, _) in enumerate(pairs):
+            if a.closed != b.closed or len(a.xy) < 2 or len(b.xy) < 2:
+                continue
+            try:
+                curves.append((as_curve(a.xy, "P", a.closed), as_curve(b.xy, "Q", a.closed), a.closed))
+            except InvalidCurveError:
+                continue
+            todo.append(k)
+    fast = morph_pairs(curves, times, method[: -len("-ball")] if todo else "circular", carrier, spacing)
+    out = BatchResult.empty(len(pairs), len(times))
+    if not todo:
+        return out
+    # Spread the batch's results over all pairs (those it skipped take the general road).
+    todo = np.asarray(todo)
+    good = fast.done & np.array([np.all(np.isfinite(fast.pair(c)[0])) for c in range(len(todo))])
+    sizes = np.zeros(len(pairs), dtype=np.int64)
+    sizes[todo[good]] = np.diff(fast.offsets)[good]
+    keep = np.repeat(good, np.diff(fast.offsets))
+    out.done[todo[good]] = True
+    out.offsets = np.concatenate([[0], np.cumsum(sizes)])
+    # Samples are grouped by pair in the batch's order, which follows ``pairs``.
+    out.frames, out.u_p, out.u_q = fast.frames[:, keep], fast.u_p[keep], fast.u_q[keep]
+    for c, k in enumerate(todo):
+        out.used[k], out.notes[k] = fast.used[c], fast.notes[c]
     return out
 
 
-def _emit_pair(result, a, b, times, plane, flipped, frames, ua, ub, closed, used, notes):
-    da, ra, oa, ca = a.attributes_at(ua)
-    db, rb, ob, cb = b.attributes_at(ub)
-    for k, t in enumerate(times):
-        result.frames[k].append(
-            (
-                plane.to_3d(frames[k], (1 - t) * da + t * db),
-                closed,
-                a.material if t < 0.5 else b.material,
-                (1 - t) * ra + t * rb,
-                (1 - t) * oa + t * ob,
-                (1 - t) * ca + t * cb,
-                (a.index, b.index),
-            )
-        )
+def _report_pair(result, a, b, flipped, used, notes):
     result.pairs.append(PairReport(a.index, b.index, used, "; ".join(notes)))
     if flipped:
         notes = ["the second key's stroke runs the other way: flipped", *notes]
@@ -460,29 +484,69 @@ def _emit_pair(result, a, b, times, plane, flipped, frames, ua, ub, closed, used
         result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {note}"))
 
 
-def _emit_unmatched(result, stroke, from_a, times, unmatched, plane):
-    pos = plane.to_3d(stroke.xy, stroke.depth)
-    for k, t in enumerate(times):
-        visible = unmatched == "HOLD" or (t < 0.5 if from_a else t >= 0.5)
-        if visible:
-            origin = (stroke.index, -1) if from_a else (-1, stroke.index)
-            result.frames[k].append(
-                (pos, stroke.closed, stroke.material, stroke.radius, stroke.opacity, stroke.color, origin)
-            )
-    what = (
-        ("held" if unmatched == "HOLD" else "disappears at the middle")
-        if from_a
-        else ("held" if unmatched == "HOLD" else "appears at the middle")
-    )
+def _report_unmatched(result, index, from_a, unmatched):
+    if from_a:
+        what = "held" if unmatched == "HOLD" else "disappears at the middle"
+    else:
+        what = "held" if unmatched == "HOLD" else "appears at the middle"
     key = "first" if from_a else "second"
-    result.pairs.append(
-        PairReport(
-            stroke.index if from_a else None,
-            None if from_a else stroke.index,
-            "hold" if unmatched == "HOLD" else ("disappear" if from_a else "appear"),
+    method = "hold" if unmatched == "HOLD" else ("disappear" if from_a else "appear")
+    result.pairs.append(PairReport(index if from_a else None, None if from_a else index, method))
+    result.messages.append(Message("WARNING", f"stroke {index} of the {key} key has no partner: {what}"))
+
+
+def _assemble(parts, held, ka, kb, times, plane, unmatched):
+    """One StrokeSet per time from every pair's frames and the unmatched strokes (vectorised)."""
+    if parts:
+        frames = np.concatenate([p[0] for p in parts], axis=1)  # (T, K, 2)
+        sizes = np.array([p[0].shape[1] for p in parts])
+        stroke_a = np.repeat([p[4].index for p in parts], sizes)
+        stroke_b = np.repeat([p[5].index for p in parts], sizes)
+        va = ka.sample(stroke_a, np.concatenate([p[1] for p in parts]))
+        vb = kb.sample(stroke_b, np.concatenate([p[2] for p in parts]))
+        cyclic = np.array([p[3] for p in parts], dtype=bool)
+        mat_a = np.array([p[4].material for p in parts], dtype=np.int64)
+        mat_b = np.array([p[5].material for p in parts], dtype=np.int64)
+        origin = np.array([(p[4].index, p[5].index) for p in parts], dtype=np.int64)
+    else:
+        frames, sizes = np.zeros((len(times), 0, 2)), np.zeros(0, np.int64)
+        va = vb = np.zeros((0, 7))
+        cyclic, origin = np.zeros(0, bool), np.zeros((0, 2), np.int64)
+        mat_a = mat_b = np.zeros(0, np.int64)
+    out = []
+    for ti, t in enumerate(times):
+        mix = (1 - t) * va + t * vb
+        pts = [plane.to_3d(frames[ti], mix[:, 0])]
+        vals = [mix[:, 1:]]
+        size_list = [sizes]
+        cyc = [cyclic]
+        mats = [mat_a if t < 0.5 else mat_b]
+        orig = [origin]
+        for key, i, from_a in held:
+            if unmatched != "HOLD" and (t >= 0.5 if from_a else t < 0.5):
+                continue
+            sl = key.strokes.points(i)
+            pts.append(key.strokes.positions[sl])
+            vals.append(key.values[sl, 1:])
+            size_list.append([sl.stop - sl.start])
+            cyc.append([key.strokes.cyclic[i]])
+            mats.append([key.strokes.material_index[i]])
+            orig.append([(i, -1) if from_a else (-1, i)])
+        v = np.concatenate(vals)
+        size = np.concatenate([np.asarray(x, dtype=np.int64) for x in size_list])
+        out.append(
+            StrokeSet(
+                np.concatenate(pts),
+                np.concatenate([[0], np.cumsum(size)]),
+                np.concatenate([np.asarray(x, dtype=bool) for x in cyc]),
+                np.concatenate([np.asarray(x, dtype=np.int64) for x in mats]),
+                v[:, 0],
+                v[:, 1],
+                v[:, 2:6],
+                origin=np.concatenate([np.asarray(x, dtype=np.int64).reshape(-1, 2) for x in orig]),
+            )
         )
-    )
-    result.messages.append(Message("WARNING", f"stroke {stroke.index} of the {key} key has no partner: {what}"))
+    return out
 
 
 def _check_planarity(result, key_a, key_b, plane):
@@ -500,19 +564,3 @@ def _check_planarity(result, key_a, key_b, plane):
                 "morphed in the best-fit plane, keeping each point's offset from it",
             )
         )
-
-
-def _assemble(parts):
-    if not parts:
-        return StrokeSet.empty()
-    sizes = [len(p[0]) for p in parts]
-    return StrokeSet(
-        np.concatenate([p[0] for p in parts]),
-        np.concatenate([[0], np.cumsum(sizes)]),
-        [p[1] for p in parts],
-        [p[2] for p in parts],
-        np.concatenate([p[3] for p in parts]),
-        np.concatenate([p[4] for p in parts]),
-        np.concatenate([p[5] for p in parts]),
-        origin=np.array([p[6] for p in parts], dtype=np.int64).reshape(-1, 2),
-    )

@@ -156,7 +156,8 @@ def is_simple(curve, closed):
     if len(self_crossings(curve, closed)):
         return False
     e = edges(curve, closed)
-    e = e[np.linalg.norm(e, axis=1) > 0]
+    # Repeated points (within round-off) are one point, not a fold.
+    e = e[np.linalg.norm(e, axis=1) > tol.COINCIDENT * scale_of(curve)]
     prev = np.roll(e, 1, axis=0) if closed else e[:-1]
     nxt = e if closed else e[1:]
     cross = prev[:, 0] * nxt[:, 1] - prev[:, 1] * nxt[:, 0]

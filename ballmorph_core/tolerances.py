@@ -36,7 +36,7 @@ DISK_PENETRATION = 0.05
 #: disk near its contacts (5x faster on 4000-vertex loops); what it can miss is a distant part
 #: of a curve grazing a disk by less than that: a slight bifurcation whose in-betweens overlap
 #: by less than 5 % of the local gap.
-LOCAL_WINDOW = 8
+LOCAL_WINDOW = 4
 NONLOCAL_RELATIVE = 0.05
 NONLOCAL_PENETRATION = 1.0
 

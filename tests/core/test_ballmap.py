@@ -222,7 +222,7 @@ def _check_contact_invariants(P, Q, closed, corr, slope_p=None, slope_q=None):
     fine_q = bm.curves.resample(Q, closed, count=4 * len(Q))
     pts = np.concatenate([fine_p, fine_q])
     d = np.linalg.norm(pts[None, :, :] - corr.centers[:, None, :], axis=2).min(axis=1)
-    slack = tol.NONLOCAL_RELATIVE * r + tol.NONLOCAL_PENETRATION * corr.spacing / 2
+    slack = tol.NONLOCAL_RELATIVE * r + tol.NONLOCAL_PENETRATION * corr.spacing
     assert np.all(d >= r - slack - 1e-9)
     # m - p is normal to P at p and m - q normal to Q at q.
     big = r > 0.2 * r.max()
