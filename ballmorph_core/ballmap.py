@@ -615,7 +615,7 @@ def _merge(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
                 float(max(back_p[k], back_q[k])),
             )
         )
-    mono = (back_p <= 1e-12 * len_p[chain]) & (back_q <= 1e-12 * len_q[chain])
+    mono = (back_p <= tol.ROUNDOFF * len_p[chain]) & (back_q <= tol.ROUNDOFF * len_q[chain])
     allp = {k: v[mono] for k, v in allp.items()}
     chain = allp["chain"]
     sp_, sq_ = allp["s_src"], allp["s_dst"]

@@ -310,7 +310,7 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
     u_p = np.where(cyc, np.mod(u_p, 1.0), np.clip(u_p, 0.0, 1.0))
     u_q = np.where(cyc, np.mod(u_q, 1.0), np.clip(u_q, 0.0, 1.0))
     # Carrier: C_t = S^-(1-t), undoing the registration progressively (identity if none).
-    moving = (carrier != "NONE") & ~((np.abs(a - 1) <= 1e-9) & (np.abs(b) <= 1e-9 * scale))
+    moving = (carrier != "NONE") & ~((np.abs(a - 1) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale))
     centres = Q.centroids()
     centre = centres[:, 0] + 1j * centres[:, 1]
     frames = np.empty((len(times), len(pair_of), 2))

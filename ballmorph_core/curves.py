@@ -9,6 +9,7 @@ import numpy as np
 
 from . import tolerances as tol
 from .errors import InvalidCurveError
+from .ragged import catmull_rom
 
 __all__ = [
     "as_curve",
@@ -190,34 +191,18 @@ def default_spacing(*curves, closed=False):
 
 
 def _catmull_rom(curve, closed, edge, frac):
-    """Centripetal Catmull-Rom spline through the vertices, at (edge, frac) (shape (K, 2)).
+    """Points on the centripetal Catmull-Rom spline through the vertices, at (edge, frac).
 
     Resampling on this spline instead of on the chords keeps new samples on the smooth curve
     the polyline approximates (second-order closer on a circle), and it passes through every
-    original vertex, so corners stay where they were drawn.
+    original vertex, so corners stay where they were drawn. Shape (K, 2).
     """
-    n = len(curve)
     if closed:
-        idx = (edge[:, None] + np.arange(-1, 3)[None, :]) % n
-        ctrl = curve[idx]
+        ctrl = curve[(edge[:, None] + np.arange(-1, 3)[None, :]) % len(curve)]
     else:
         ext = np.concatenate([[2 * curve[0] - curve[1]], curve, [2 * curve[-1] - curve[-2]]])
         ctrl = ext[edge[:, None] + np.arange(0, 4)[None, :]]
-    p0, p1, p2, p3 = (ctrl[:, k] for k in range(4))
-    d01 = np.maximum(np.linalg.norm(p1 - p0, axis=1) ** 0.5, 1e-12)
-    d12 = np.maximum(np.linalg.norm(p2 - p1, axis=1) ** 0.5, 1e-12)
-    d23 = np.maximum(np.linalg.norm(p3 - p2, axis=1) ** 0.5, 1e-12)
-    t0, t1 = np.zeros_like(d01), d01
-    t2, t3 = t1 + d12, t1 + d12 + d23
-    t = (t1 + frac * d12)[:, None]
-    t0, t1, t2, t3 = (v[:, None] for v in (t0, t1, t2, t3))
-    # Barry-Goldman pyramid.
-    a1 = ((t1 - t) * p0 + (t - t0) * p1) / (t1 - t0)
-    a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1)
-    a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2)
-    b1 = ((t2 - t) * a1 + (t - t0) * a2) / (t2 - t0)
-    b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
-    return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
+    return catmull_rom(ctrl[:, 0], ctrl[:, 1], ctrl[:, 2], ctrl[:, 3], frac)
 
 
 def resample(curve, closed, spacing=None, count=None, smooth=True):

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import tolerances as tol
 from .compat import classify, shared_endpoints
 from .curves import curve_length, default_spacing, orient_clockwise, reverse, scale_of, signed_area
 from .errors import BallMorphError, IncompatibleCurvesError
@@ -195,7 +196,7 @@ def morph_pair(P, Q, closed, method="circular-ball", carrier="SIMILARITY", spaci
         morph = _shape_morph(P, Q, closed, method, spacing, notes)
         return PairOutcome(morph, notes, morph.method)
     sim = registration(P, Q, closed)
-    if sim.is_identity(scale, 1e-9):
+    if sim.is_identity(scale, tol.IDENTITY):
         morph = _shape_morph(P, Q, closed, method, spacing, notes)
         return PairOutcome(morph, notes, morph.method)
     registered = sim(P)

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import tolerances as tol
+
 __all__ = ["Plane", "fit_plane"]
 
 
@@ -50,7 +52,7 @@ _AXIS_FRAMES = (
 )
 
 
-def fit_plane(points, axis_tolerance=1e-6):
+def fit_plane(points, axis_tolerance=tol.PLANE_AXIS):
     """Least-squares plane through points.
 
     Parameters

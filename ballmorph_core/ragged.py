@@ -9,6 +9,7 @@ the same few numpy calls. Edges are indexed by their first vertex (edge ``i`` ru
 
 import numpy as np
 
+from . import tolerances as tol
 from .spatial import ragged_arange
 
 __all__ = ["Ragged", "catmull_rom"]
@@ -29,9 +30,10 @@ def catmull_rom(p0, p1, p2, p3, frac):
         Passes through p1 at 0 and p2 at 1; the centripetal knots (alpha = 1/2) avoid cusps
         and overshoot on unevenly spaced points.
     """
-    d01 = np.maximum(np.linalg.norm(p1 - p0, axis=1) ** 0.5, 1e-12)
-    d12 = np.maximum(np.linalg.norm(p2 - p1, axis=1) ** 0.5, 1e-12)
-    d23 = np.maximum(np.linalg.norm(p3 - p2, axis=1) ** 0.5, 1e-12)
+    floor = tol.ROUNDOFF  # repeated control points: keep the knots distinct
+    d01 = np.maximum(np.linalg.norm(p1 - p0, axis=1) ** 0.5, floor)
+    d12 = np.maximum(np.linalg.norm(p2 - p1, axis=1) ** 0.5, floor)
+    d23 = np.maximum(np.linalg.norm(p3 - p2, axis=1) ** 0.5, floor)
     t1 = d01[:, None]
     t2 = t1 + d12[:, None]
     t3 = t2 + d23[:, None]
@@ -244,7 +246,7 @@ class Ragged:
         # Vertices passed before s0, and before s1 (counting a second lap for loops). A vertex
         # within round-off of a boundary is the boundary point itself: leave it out, whatever
         # the batch's offsets did to the last bits.
-        tiny = 1e-9 * (np.max(self.length, initial=0.0) + 1.0)
+        tiny = tol.COINCIDENT * (np.max(self.length, initial=0.0) + 1.0)
         lo = np.searchsorted(g, s0 + base[curve] + tiny, side="right") - self.offsets[curve]
         lap = closed & (s1 > length)
         s1_in = np.where(lap, s1 - length, s1)

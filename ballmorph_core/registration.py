@@ -74,7 +74,7 @@ def power(a, b, s):
     a = np.asarray(a, dtype=complex)
     b = np.asarray(b, dtype=complex)
     a_s = np.exp(s * (np.log(np.abs(a)) + 1j * np.angle(a)))
-    near_one = np.abs(a - 1) < 1e-12
+    near_one = np.abs(a - 1) < tol.ROUNDOFF
     c = np.where(near_one, 0, b / np.where(near_one, 1, 1 - a))
     return a_s, np.where(near_one, s * b, c - a_s * c)
 
@@ -142,7 +142,7 @@ def similarities(P, Q):
         fp, lp = P.offsets[:-1][opened], P.offsets[1:][opened] - 1
         fq, lq = Q.offsets[:-1][opened], Q.offsets[1:][opened] - 1
         dp, dq = zp[lp] - zp[fp], zq[lq] - zq[fq]
-        ok = (np.abs(dp) > 1e-12 * (np.abs(zp[fp]) + 1)) & (np.abs(dq) > 1e-12 * (np.abs(zq[fq]) + 1))
+        ok = (np.abs(dp) > tol.ROUNDOFF * (np.abs(zp[fp]) + 1)) & (np.abs(dq) > tol.ROUNDOFF * (np.abs(zq[fq]) + 1))
         a[opened] = np.where(ok, dq / np.where(ok, dp, 1), 1.0)
         b[opened] = zq[fq] - a[opened] * zp[fp]
         k = FIT_SAMPLES
@@ -227,9 +227,9 @@ class Similarity:
         a_s, b_s = power(self.a, self.b, s)
         return Similarity(complex(a_s), complex(b_s))
 
-    def is_identity(self, scale, tol=1e-12):
-        """True when it moves no point of a drawing of size ``scale`` by more than tol*scale."""
-        return abs(self.a - 1) * scale <= tol * scale and abs(self.b) <= tol * scale
+    def is_identity(self, scale, slack=tol.IDENTITY):
+        """True when it moves no point of a drawing of size ``scale`` by more than slack*scale."""
+        return abs(self.a - 1) <= slack and abs(self.b) <= slack * scale
 
 
 def _one(P, Q, closed):

@@ -139,7 +139,7 @@ def split_pair(P, Q, closed, spacing):
         pair does not decompose into lenses: paper Fig. 8 and 9, right).
     """
     scale = scale_of(P, Q)
-    eps = max(tol.OVERLAP * scale, 1e-12)
+    eps = tol.OVERLAP * scale
     len_p, len_q = cumulative_length(P, closed)[-1], cumulative_length(Q, closed)[-1]
     overlaps = _overlap_runs(P, Q, closed, spacing, eps)
     cx = crossings(P, closed, Q, closed)

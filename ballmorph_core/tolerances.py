@@ -153,3 +153,15 @@ HEAT_THIN_GAP = 1.5
 #: not turned to fit better; a shape that really turned still is (its unrotated residual is
 #: larger than the penalty).
 ROTATION_PENALTY = 1.0
+
+#: Relative slack for comparisons that only guard against floating-point round-off (monotone
+#: order checks, knot spacings, boundary tests).
+ROUNDOFF = 1e-12
+
+#: A registration that moves no point by more than this (times the pair's size) is the
+#: identity: no carrier motion is applied.
+IDENTITY = 1e-9
+
+#: A fitted drawing plane within this (1 - |cos|) of a world axis plane is taken as that plane,
+#: so a drawing on Blender's front canvas maps to plain (x, z) coordinates.
+PLANE_AXIS = 1e-6

@@ -140,12 +140,15 @@ def bridges(maps, side, window=16):
         width = s_b - s_a
         if closed:
             d = np.mod(img - s_a, own.length)
-            outside = np.flatnonzero(d >= width - 1e-12)
+            outside = np.flatnonzero(d >= width - tol.ROUNDOFF * own.length)
             if len(outside) == 0:
                 raise IncompatibleCurvesError(f"composite ball-morph: no disk bridges {side} near s={s_a:.4g}")
             i, j = int(outside[np.argmax(d[outside])]), int(outside[np.argmin(d[outside])])
         else:
-            before, after = np.flatnonzero(img <= s_a + 1e-12), np.flatnonzero(img >= s_b - 1e-12)
+            before, after = (
+                np.flatnonzero(img <= s_a + tol.ROUNDOFF * own.length),
+                np.flatnonzero(img >= s_b - tol.ROUNDOFF * own.length),
+            )
             if not len(before) or not len(after):
                 raise IncompatibleCurvesError(f"composite ball-morph: no disk bridges {side} near s={s_a:.4g}")
             i, j = int(before.max()), int(after.min())
@@ -286,11 +289,12 @@ def _to_original(t, offsets, pieces, stages, which, closed, blended_len, length)
     paths = np.zeros((len(t), _STAGE_POINTS, 2))
     has = np.zeros(len(t), dtype=bool)
     tt = np.mod(t, blended_len) if closed else t
+    slack = tol.ROUNDOFF * blended_len
     for s0, s1, t0 in offsets:
-        inside = (tt >= t0 - 1e-12) & (tt <= t0 + (s1 - s0) + 1e-12)
+        inside = (tt >= t0 - slack) & (tt <= t0 + (s1 - s0) + slack)
         s[inside] = s0 + (tt[inside] - t0)
     for (t0, t1), (stage, br) in zip(pieces, stages):
-        inside = (tt >= t0 - 1e-12) & (tt <= t1 + 1e-12)
+        inside = (tt >= t0 - slack) & (tt <= t1 + slack)
         if not inside.any():
             continue
         lam = stage.lam(tt[inside] - t0, which)
@@ -384,7 +388,9 @@ def build_composite(P, Q, closed, spacing, sampling, kind="circular"):
     uq = _unwrap(s_q / sq.length) * sq.length if closed else s_q
     order = np.argsort(up + uq, kind="stable")
     full, up, uq, s_p, s_q = full[order], up[order], uq[order], s_p[order], s_q[order]
-    mono = (up >= np.maximum.accumulate(up) - 1e-9) & (uq >= np.maximum.accumulate(uq) - 1e-9)
+    mono = (up >= np.maximum.accumulate(up) - tol.ROUNDOFF * sp.length) & (
+        uq >= np.maximum.accumulate(uq) - tol.ROUNDOFF * sq.length
+    )
     full, up, uq, s_p, s_q = full[mono], up[mono], uq[mono], s_p[mono], s_q[mono]
     tau = np.concatenate([[0.0], np.cumsum(np.maximum(np.diff(up), np.diff(uq)))])
     count = max(int(round(tau[-1] / spacing)), 2)
