@@ -32,6 +32,8 @@ __all__ = [
     "points_in_loop",
     "reverse",
     "subcurve",
+    "as_complex",
+    "from_complex",
 ]
 
 
@@ -425,3 +427,15 @@ def subcurve(curve, closed, s0, s1, cum=None):
     start = point_at(curve, closed, np.array([s0]), cum)
     end = point_at(curve, closed, np.array([s1]), cum)
     return np.concatenate([start, verts[inner], end])
+
+
+def as_complex(points):
+    """Points as complex numbers ``x + iy``, shape (...,) from (..., 2)."""
+    points = np.asarray(points, dtype=np.float64)
+    return points[..., 0] + 1j * points[..., 1]
+
+
+def from_complex(z):
+    """Complex numbers back to points, shape (..., 2)."""
+    z = np.asarray(z)
+    return np.stack([z.real, z.imag], axis=-1)

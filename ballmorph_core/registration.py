@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import tolerances as tol
+from .curves import as_complex, from_complex
 from .options import check_option
 from .ragged import Ragged
 
@@ -46,15 +47,6 @@ CARRIERS = ("SIMILARITY", "RIGID", "NONE")
 
 #: Uniform samples per curve for the least-squares fit of loops.
 FIT_SAMPLES = 128
-
-
-def _z(points):
-    points = np.asarray(points, dtype=np.float64)
-    return points[..., 0] + 1j * points[..., 1]
-
-
-def _xy(z):
-    return np.stack([z.real, z.imag], axis=-1)
 
 
 # ------------------------------------------------------------------ vectorised core
@@ -136,7 +128,7 @@ def similarities(P, Q):
     a = np.ones(n, dtype=complex)
     b = np.zeros(n, dtype=complex)
     residual = np.full(n, np.inf)
-    zp, zq = _z(P.pts), _z(Q.pts)
+    zp, zq = as_complex(P.pts), as_complex(Q.pts)
     opened = np.flatnonzero(~P.closed)
     if len(opened):
         fp, lp = P.offsets[:-1][opened], P.offsets[1:][opened] - 1
@@ -146,15 +138,15 @@ def similarities(P, Q):
         a[opened] = np.where(ok, dq / np.where(ok, dp, 1), 1.0)
         b[opened] = zq[fq] - a[opened] * zp[fp]
         k = FIT_SAMPLES
-        sp = _z(P.resample(np.full(n, k)).pts).reshape(n, k)[opened]
-        sq = _z(Q.resample(np.full(n, k)).pts).reshape(n, k)[opened]
+        sp = as_complex(P.resample(np.full(n, k)).pts).reshape(n, k)[opened]
+        sq = as_complex(Q.resample(np.full(n, k)).pts).reshape(n, k)[opened]
         fitted = a[opened][:, None] * sp + b[opened][:, None]
         residual[opened] = np.sqrt(np.mean(np.abs(fitted - sq) ** 2, axis=1))
     loops = np.flatnonzero(P.closed)
     if len(loops):
         k = FIT_SAMPLES
-        xp = _z(P.resample(np.full(n, k)).pts).reshape(n, k)[loops]
-        xq = _z(Q.resample(np.full(n, k)).pts).reshape(n, k)[loops]
+        xp = as_complex(P.resample(np.full(n, k)).pts).reshape(n, k)[loops]
+        xq = as_complex(Q.resample(np.full(n, k)).pts).reshape(n, k)[loops]
         cp, cq = xp.mean(axis=1), xq.mean(axis=1)
         xp, xq = xp - cp[:, None], xq - cq[:, None]
         norm_p = np.sum(np.abs(xp) ** 2, axis=1)
@@ -208,7 +200,7 @@ class Similarity:
 
     def __call__(self, points):
         """Apply to points, shape (..., 2) -> (..., 2)."""
-        return _xy(self.a * _z(points) + self.b)
+        return from_complex(self.a * as_complex(points) + self.b)
 
     def inverse(self):
         """The inverse similarity."""
@@ -266,7 +258,7 @@ class Carrier:
     def __init__(self, similarity, kind, centre):
         self.kind = check_option("carrier", kind, ("SIMILARITY", "RIGID"))
         self.similarity = similarity
-        self.centre = complex(_z(np.asarray(centre, dtype=np.float64)))
+        self.centre = complex(as_complex(np.asarray(centre, dtype=np.float64)))
 
     def at(self, t):
         """The similarity ``C_t`` (Similarity)."""

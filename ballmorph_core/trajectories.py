@@ -20,7 +20,7 @@ import numpy as np
 from . import tolerances as tol
 from .options import check_option
 
-__all__ = ["KINDS", "BallPaths", "SampledPaths", "LinearPaths", "midpoint_locus"]
+__all__ = ["KINDS", "BallPaths", "SampledPaths", "LevelPaths", "LinearPaths", "midpoint_locus"]
 
 KINDS = ("hat", "linear", "tangent", "circular", "parabolic")
 
@@ -71,18 +71,11 @@ def _invert_rows(table, levels):
     return idx + np.clip(frac, 0.0, 1.0)
 
 
-class SampledPaths:
-    """Paths given as polylines, traversed at uniform arc length.
-
-    Parameters
-    ----------
-    points : ndarray, shape (K, S, 2)
-        Polyline of each of the K paths (S >= 2 points, first = start, last = end).
-    """
+class _Polylines:
+    """Paths stored as polylines, shape (K, S, 2) (first point = start, last = end)."""
 
     def __init__(self, points):
         self.points = np.asarray(points, dtype=np.float64)
-        self._table, self._lengths = _arc_table(self.points)
 
     def __len__(self):
         return len(self.points)
@@ -96,6 +89,20 @@ class SampledPaths:
     def end(self):
         """End points, shape (K, 2)."""
         return self.points[:, -1]
+
+
+class SampledPaths(_Polylines):
+    """Paths given as polylines, traversed at uniform arc length.
+
+    Parameters
+    ----------
+    points : ndarray, shape (K, S, 2)
+        Polyline of each of the K paths (S >= 2 points, first = start, last = end).
+    """
+
+    def __init__(self, points):
+        super().__init__(points)
+        self._table, self._lengths = _arc_table(self.points)
 
     def lengths(self):
         """Arc length of each path, shape (K,)."""
@@ -270,6 +277,29 @@ class BallPaths:
         # Parabolic: Bezier parameter reached at arc-length fraction t.
         s = self._parabola_parameter(t)[:, None]
         return (1 - s) ** 2 * p + 2 * s * (1 - s) * m + s**2 * q
+
+
+class LevelPaths(_Polylines):
+    """Paths sampled at uniform *times*: ``points[:, j]`` is reached at ``t = j / (S - 1)``.
+
+    The heat-propagation morph stores its gradient paths by level of the field this way, so that
+    frame t is that level's iso-contour (not a uniform arc-length traversal).
+
+    Parameters
+    ----------
+    points : ndarray, shape (K, S, 2)
+    """
+
+    def lengths(self):
+        """Polyline length of each path, shape (K,)."""
+        return np.linalg.norm(np.diff(self.points, axis=1), axis=2).sum(axis=1)
+
+    def at(self, t):
+        """Positions at time (level) ``t``, linear between stored levels, shape (K, 2)."""
+        f = float(np.clip(t, 0.0, 1.0)) * (self.points.shape[1] - 1)
+        j = min(int(np.floor(f)), self.points.shape[1] - 2)
+        w = f - j
+        return (1 - w) * self.points[:, j] + w * self.points[:, j + 1]
 
 
 def midpoint_locus(p, m, q, kind):

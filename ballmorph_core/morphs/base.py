@@ -5,7 +5,7 @@ import numpy as np
 from ..curves import as_curve
 from ..options import check_option
 
-__all__ = ["Morph", "PathMorph", "register", "registered", "build"]
+__all__ = ["Morph", "PathMorph", "KeyedMorph", "register", "registered", "build"]
 
 _REGISTRY = {}
 
@@ -123,3 +123,36 @@ class PathMorph(Morph):
 
     def __len__(self):
         return len(self.paths)
+
+
+class KeyedMorph(Morph):
+    """A morph that solves every in-between from the two key polygons.
+
+    Sample ``i`` of ``p`` corresponds to sample ``i`` of ``q``; the frames at t = 0 and 1 are
+    the keys exactly, and subclasses implement ``_solve(t)`` for the times between.
+
+    Parameters
+    ----------
+    p, q : ndarray, shape (K, 2)
+    u_p, u_q : array_like, shape (K,)
+        See :class:`Morph`.
+    closed : bool
+    """
+
+    def __init__(self, p, q, u_p, u_q, closed):
+        super().__init__(closed)
+        self._p, self._q = p, q
+        self.u_p, self.u_q = np.asarray(u_p, dtype=np.float64), np.asarray(u_q, dtype=np.float64)
+
+    def __len__(self):
+        return len(self._p)
+
+    def _frame(self, t):
+        if t == 0.0:
+            return self._p.copy()
+        if t == 1.0:
+            return self._q.copy()
+        return self._solve(t)
+
+    def _solve(self, t):
+        raise NotImplementedError

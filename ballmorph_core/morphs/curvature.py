@@ -13,19 +13,15 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..ballmap import SAMPLINGS
-from ..curves import edges, turning_angles
+from ..curves import as_complex, edges, turning_angles
 from ..options import check_option
-from .base import Morph, register
+from .base import KeyedMorph, register
 from .linear import sample_count, uniform_correspondence
 
 __all__ = ["CurvatureMorph", "close_polygon", "STROKE_FITS"]
 
 #: How a stroke's frames meet its endpoints (see :class:`CurvatureMorph`).
 STROKE_FITS = ("similarity", "closure")
-
-
-def _complex(v):
-    return v[..., 0] + 1j * v[..., 1]
 
 
 def close_polygon(lengths, angles, weights, target):
@@ -68,7 +64,7 @@ def close_polygon(lengths, angles, weights, target):
     return lengths + w2 * (lam[0] * c + lam[1] * s)
 
 
-class CurvatureMorph(Morph):
+class CurvatureMorph(KeyedMorph):
     """Interpolated edge lengths and turning angles between corresponding polygons.
 
     Parameters
@@ -100,20 +96,15 @@ class CurvatureMorph(Morph):
     method = "curvature-interpolation"
 
     def __init__(self, p, q, u_p, u_q, closed, stroke_fit="similarity"):
-        super().__init__(closed)
+        super().__init__(p, q, u_p, u_q, closed)
         self.stroke_fit = check_option("stroke_fit", stroke_fit, STROKE_FITS)
-        self._p, self._q = p, q
-        self.u_p, self.u_q = np.asarray(u_p, dtype=np.float64), np.asarray(u_q, dtype=np.float64)
-        ea, eb = _complex(edges(p, closed)), _complex(edges(q, closed))
+        ea, eb = as_complex(edges(p, closed)), as_complex(edges(q, closed))
         self._len_a, self._len_b = np.abs(ea), np.abs(eb)
         self._turn_a, self._turn_b = turning_angles(p, closed), turning_angles(q, closed)
         self._dir_a = float(np.angle(ea[0]))
         self._dir_b = self._dir_a + float(np.angle(eb[0] / ea[0])) if ea[0] != 0 else float(np.angle(eb[0]))
         floor = tol.CURVATURE_LENGTH_FLOOR * 0.5 * (self._len_a.mean() + self._len_b.mean())
         self._weights = np.maximum(np.abs(self._len_a - self._len_b), floor)
-
-    def __len__(self):
-        return len(self._p)
 
     def _directions(self, t):
         turn = (1 - t) * self._turn_a + t * self._turn_b
@@ -123,26 +114,22 @@ class CurvatureMorph(Morph):
         first = (1 - t) * self._dir_a + t * self._dir_b
         return first + np.concatenate([[0.0], np.cumsum(steps)])
 
-    def _frame(self, t):
-        if t == 0.0:
-            return self._p.copy()
-        if t == 1.0:
-            return self._q.copy()
+    def _solve(self, t):
         lengths = (1 - t) * self._len_a + t * self._len_b
         angles = self._directions(t)
         p, q = self._p, self._q
         if self.closed:
             lengths = close_polygon(lengths, angles, self._weights, 0.0)
         elif self.stroke_fit == "closure":
-            chord = (1 - t) * _complex(p[-1] - p[0]) + t * _complex(q[-1] - q[0])
+            chord = (1 - t) * as_complex(p[-1] - p[0]) + t * as_complex(q[-1] - q[0])
             lengths = close_polygon(lengths, angles, self._weights, chord)
         z = np.concatenate([[0.0], np.cumsum(lengths * np.exp(1j * angles))])
         if self.closed:
             z = z[:-1]
-            z += (1 - t) * _complex(p).mean() + t * _complex(q).mean() - z.mean()
+            z += (1 - t) * as_complex(p).mean() + t * as_complex(q).mean() - z.mean()
         else:
-            start = (1 - t) * _complex(p[0]) + t * _complex(q[0])
-            end = (1 - t) * _complex(p[-1]) + t * _complex(q[-1])
+            start = (1 - t) * as_complex(p[0]) + t * as_complex(q[0])
+            end = (1 - t) * as_complex(p[-1]) + t * as_complex(q[-1])
             span = z[-1] - z[0]
             # A rebuilt stroke whose ends meet cannot be fitted: it is only moved.
             scale = (end - start) / span if abs(span) > tol.COINCIDENT * np.abs(lengths).sum() else 1.0

@@ -40,11 +40,12 @@ from ..curves import resample, reverse
 from ..errors import InvalidCurveError
 from ..options import check_option
 from ..spatial import ragged_arange
+from ..trajectories import LevelPaths
 from .base import PathMorph, register
 from .closest import Projector
 from .linear import resolve_spacing
 
-__all__ = ["HeatField", "HeatMorph", "LevelPaths", "conjugate_gradient"]
+__all__ = ["HeatField", "HeatMorph", "conjugate_gradient"]
 
 
 def conjugate_gradient(apply, b, diag, x0, rtol, max_iter):
@@ -342,40 +343,6 @@ class HeatField:
     def gradient(self, x):
         """Bilinearly interpolated gradient at points, shape (K, 2) (NaN where unknown)."""
         return self._bilinear(self._grad, np.asarray(x, dtype=np.float64).reshape(-1, 2))
-
-
-class LevelPaths:
-    """Paths sampled at uniform levels of the field: ``points[:, j]`` is at time ``j / (S - 1)``.
-
-    Parameters
-    ----------
-    points : ndarray, shape (K, S, 2)
-    """
-
-    def __init__(self, points):
-        self.points = np.asarray(points, dtype=np.float64)
-
-    def __len__(self):
-        return len(self.points)
-
-    @property
-    def start(self):
-        return self.points[:, 0]
-
-    @property
-    def end(self):
-        return self.points[:, -1]
-
-    def lengths(self):
-        """Polyline length of each path, shape (K,)."""
-        return np.linalg.norm(np.diff(self.points, axis=1), axis=2).sum(axis=1)
-
-    def at(self, t):
-        """Positions at time (level) ``t``, linear between stored levels, shape (K, 2)."""
-        f = float(np.clip(t, 0.0, 1.0)) * (self.points.shape[1] - 1)
-        j = min(int(np.floor(f)), self.points.shape[1] - 2)
-        w = f - j
-        return (1 - w) * self.points[:, j] + w * self.points[:, j + 1]
 
 
 def _velocity(field, x, sign):

@@ -28,19 +28,15 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..ballmap import SAMPLINGS
-from ..curves import scale_of
+from ..curves import as_complex, scale_of
 from ..options import check_option
-from .base import Morph, register
+from .base import KeyedMorph, register
 from .linear import sample_count, uniform_correspondence
 
 __all__ = ["LaplaceMorph", "DELTAS"]
 
 #: How the differential coordinates are blended (see the module docstring).
 DELTAS = ("local", "plain")
-
-
-def _complex(v):
-    return v[..., 0] + 1j * v[..., 1]
 
 
 def _dst1(f):
@@ -56,7 +52,7 @@ def _dst1(f):
     return 0.5j * np.fft.fft(g)[1 : n + 1]
 
 
-class LaplaceMorph(Morph):
+class LaplaceMorph(KeyedMorph):
     """Blended differential coordinates, rebuilt by least squares (see the module docstring).
 
     Parameters
@@ -71,11 +67,9 @@ class LaplaceMorph(Morph):
     method = "laplace-blending"
 
     def __init__(self, p, q, u_p, u_q, closed, deltas="local"):
-        super().__init__(closed)
+        super().__init__(p, q, u_p, u_q, closed)
         self.deltas = check_option("deltas", deltas, DELTAS)
-        self._p, self._q = p, q
-        self.u_p, self.u_q = np.asarray(u_p, dtype=np.float64), np.asarray(u_q, dtype=np.float64)
-        za, zb = _complex(p), _complex(q)
+        za, zb = as_complex(p), as_complex(q)
         if closed:
             prev_a, next_a, prev_b, next_b = np.roll(za, 1), np.roll(za, -1), np.roll(zb, 1), np.roll(zb, -1)
             mid_a, mid_b = za, zb
@@ -104,9 +98,6 @@ class LaplaceMorph(Morph):
         ang_b = ang_b - 2.0 * np.pi * np.round(turn / (2.0 * np.pi))
         self._ang_a, self._ang_b = ang_a, ang_b
 
-    def __len__(self):
-        return len(self._p)
-
     def differential(self, t):
         """The differential coordinates prescribed at ``t``, complex, shape (K,) for a loop and
         (K - 2,) for a stroke (interior vertices)."""
@@ -117,12 +108,8 @@ class LaplaceMorph(Morph):
         tau = ((1 - t) * self._mag_a + t * self._mag_b) * np.exp(1j * ((1 - t) * self._ang_a + t * self._ang_b))
         return np.where(self._framed, coord * tau, plain)
 
-    def _frame(self, t):
-        if t == 0.0:
-            return self._p.copy()
-        if t == 1.0:
-            return self._q.copy()
-        za, zb = _complex(self._p), _complex(self._q)
+    def _solve(self, t):
+        za, zb = as_complex(self._p), as_complex(self._q)
         delta = self.differential(t)
         if self.closed:
             spec = np.fft.fft(delta)
