@@ -18,6 +18,7 @@ import numpy as np
 from . import tolerances as tol
 from .ballmap import ball_maps
 from .compat import PairSetup
+from .curves import as_complex, from_complex
 from .intersections import segment_hits
 from .ragged import Ragged
 from .registration import carrier_at, similarities
@@ -162,8 +163,7 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
         a, b, residual = np.ones(n, dtype=complex), np.zeros(n, dtype=complex), np.full(n, np.inf)
     else:
         a, b, residual = similarities(P, Q)
-    zp = a[P.owner] * (P.pts[:, 0] + 1j * P.pts[:, 1]) + b[P.owner]
-    R = Ragged(np.stack([zp.real, zp.imag], axis=1), P.offsets, closed)  # registered P
+    R = Ragged(from_complex(a[P.owner] * as_complex(P.pts) + b[P.owner]), P.offsets, closed)  # registered P
     scale = np.maximum(_bbox_scale(R), _bbox_scale(Q))
     scale = np.where(scale > 0, scale, 1.0)
     eps = tol.COINCIDENT * scale
@@ -312,15 +312,14 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
     # Carrier: C_t = S^-(1-t), undoing the registration progressively (identity if none).
     moving = (carrier != "NONE") & ~((np.abs(a - 1) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale))
     centres = Q.centroids()
-    centre = centres[:, 0] + 1j * centres[:, 1]
+    centre = as_complex(centres)
     frames = np.empty((len(times), len(pair_of), 2))
     for ti, t in enumerate(times):
         z = paths.at(t)
         if moving.any():
             ca, cb = carrier_at(a, b, carrier if carrier != "NONE" else "SIMILARITY", centre, t)
             ca, cb = np.where(moving, ca, 1.0), np.where(moving, cb, 0.0)
-            zz = ca[pair_of] * (z[:, 0] + 1j * z[:, 1]) + cb[pair_of]
-            z = np.stack([zz.real, zz.imag], axis=1)
+            z = from_complex(ca[pair_of] * as_complex(z) + cb[pair_of])
         frames[ti] = z
     done = np.zeros(n, dtype=bool)
     done[chain_pair] = True
