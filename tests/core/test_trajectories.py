@@ -1,0 +1,106 @@
+"""The five ball-morph paths and the midpoint loci (paper section 4.2)."""
+
+import numpy as np
+import pytest
+from shapes import circle
+
+import ballmorph_core as bm
+from ballmorph_core.trajectories import KINDS, BallPaths, LevelPaths, SampledPaths
+
+# A right-angle contact: p on the x axis, m above it, q to the right of m (r = 1, psi = 90 deg).
+P1, M1, Q1 = np.array([[0.0, 0.0]]), np.array([[0.0, 1.0]]), np.array([[1.0, 1.0]])
+
+
+@pytest.mark.parametrize(
+    "kind,length",
+    [
+        ("hat", 2.0),  # p -> m -> q
+        ("linear", np.sqrt(2.0)),  # the chord
+        ("tangent", np.pi / 2),  # a quarter of the disk's boundary
+        ("circular", np.pi / 2),  # centre (1, 0), radius 1: a quarter circle
+    ],
+)
+def test_path_lengths_on_a_right_angle_contact(kind, length):
+    paths = BallPaths(P1, M1, Q1, kind)
+    assert paths.lengths()[0] == pytest.approx(length, rel=1e-12)
+    np.testing.assert_allclose(paths.at(0.0), P1, atol=1e-12)
+    np.testing.assert_allclose(paths.at(1.0), Q1, atol=1e-12)
+
+
+def test_parabolic_path_is_the_quadratic_bezier_and_its_length():
+    paths = BallPaths(P1, M1, Q1, "parabolic")
+    # Midpoint of a symmetric quadratic Bezier: (p + 2m + q) / 4.
+    np.testing.assert_allclose(paths.at(0.5), (P1 + 2 * M1 + Q1) / 4, atol=1e-9)
+    # Its length, by fine chords.
+    s = np.linspace(0, 1, 20001)[:, None]
+    curve = (1 - s) ** 2 * P1 + 2 * s * (1 - s) * M1 + s**2 * Q1
+    assert paths.lengths()[0] == pytest.approx(np.linalg.norm(np.diff(curve, axis=0), axis=1).sum(), rel=1e-8)
+
+
+def test_circular_path_degenerates_to_the_segment_when_tangents_are_parallel():
+    p = np.array([[0.0, 0.0], [2.0, 0.0]])
+    m = np.array([[0.0, 1.0], [2.0, 0.5]])
+    q = np.array([[0.0, 2.0], [2.0, 1.0]])  # p, m, q collinear: the disk's diameter
+    paths = BallPaths(p, m, q, "circular")
+    for t in (0.0, 0.3, 0.5, 1.0):
+        np.testing.assert_allclose(paths.at(t), p + t * (q - p), atol=1e-15)
+    np.testing.assert_allclose(paths.lengths(), np.linalg.norm(q - p, axis=1))
+    # Nearly collinear: continuous, no blow-up of sin(phi t) / sin(phi).
+    q2 = q + np.array([[1e-9, 0.0], [0.0, 0.0]])
+    np.testing.assert_allclose(BallPaths(p, m, q2, "circular").at(0.5), paths.at(0.5), atol=1e-8)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_kind_is_traversed_at_constant_speed(kind):
+    rng = np.random.default_rng(3)
+    p = rng.normal(size=(20, 2))
+    n = rng.normal(size=(20, 2))
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    r = rng.uniform(0.2, 2.0, 20)
+    m = p + r[:, None] * n
+    # q on the disk at angle psi from p seen from m, psi in [30, 170] degrees (sharper spikes make
+    # a 1/400 chord cut the parabola's tip: a measuring error, not a speed error).
+    psi = rng.uniform(0.5, 3.0, 20) * rng.choice([-1.0, 1.0], 20)
+    d = -n
+    q = m + r[:, None] * np.stack(
+        [np.cos(psi) * d[:, 0] - np.sin(psi) * d[:, 1], np.sin(psi) * d[:, 0] + np.cos(psi) * d[:, 1]], axis=1
+    )
+    paths = BallPaths(p, m, q, kind)
+    ts = np.linspace(0, 1, 401)
+    pts = np.stack([paths.at(t) for t in ts])
+    steps = np.linalg.norm(np.diff(pts, axis=0), axis=2)
+    np.testing.assert_allclose(steps.sum(axis=0), paths.lengths(), rtol=1e-4)
+    rel = (steps.max(axis=0) - steps.min(axis=0)) / steps.mean(axis=0)
+    assert rel.max() < (1e-2 if kind == "hat" else 1e-4)  # the hat's corner cuts one chord
+
+
+def test_midpoint_loci_of_concentric_circles_are_the_middle_circle():
+    corr = bm.ball_map(circle(1.0, 120), circle(3.0, 160), closed=True)
+    # (The tangent path is not unique for antipodal contacts: either half of the disk's boundary.)
+    for kind in ("linear", "circular", "parabolic", "hat"):
+        locus = bm.midpoint_locus(corr.p, corr.centers, corr.q, kind)
+        # The hat's midpoint is m itself: the medial axis M.
+        np.testing.assert_allclose(np.linalg.norm(locus, axis=1), 2.0, atol=1e-6)
+    np.testing.assert_allclose(bm.midpoint_locus(corr.p, corr.centers, corr.q, "hat"), corr.centers, atol=1e-12)
+
+
+def test_midpoint_loci_differ_on_a_tilted_contact():
+    loci = {k: bm.midpoint_locus(P1, M1, Q1, k)[0] for k in KINDS}
+    np.testing.assert_allclose(loci["hat"], M1[0])  # M
+    np.testing.assert_allclose(loci["linear"], [0.5, 0.5])  # L (Asada-Brady)
+    np.testing.assert_allclose(loci["tangent"], M1[0] + np.sqrt(0.5) * np.array([1.0, -1.0]))  # T (PISA)
+    t = loci["tangent"]
+    assert np.linalg.norm(t - M1[0]) == pytest.approx(1.0)  # T lies on the disk's boundary
+    n = loci["circular"]
+    assert np.linalg.norm(n - np.array([1.0, 0.0])) == pytest.approx(1.0)  # N on the circular path
+    assert len({tuple(np.round(v, 9)) for v in loci.values()}) == 5
+
+
+def test_sampled_and_level_paths():
+    pts = np.array([[[0.0, 0.0], [1.0, 0.0], [1.0, 3.0]]])  # an L: lengths 1 then 3
+    sampled, level = SampledPaths(pts), LevelPaths(pts)
+    np.testing.assert_allclose(sampled.at(0.25), [[1.0, 0.0]])  # a quarter of the length
+    np.testing.assert_allclose(level.at(0.5), [[1.0, 0.0]])  # the middle level
+    np.testing.assert_allclose(sampled.lengths(), [4.0])
+    np.testing.assert_allclose(level.lengths(), [4.0])
+    np.testing.assert_allclose(sampled.end, [[1.0, 3.0]])
