@@ -17,7 +17,7 @@ import numpy as np
 from . import tolerances as tol
 from .batch import BatchResult, morph_pairs
 from .curves import as_curve
-from .errors import BallMorphError, InvalidCurveError
+from .errors import InvalidCurveError
 from .matching import MODES as MATCHINGS
 from .matching import match_strokes
 from .morphs import make_morph
@@ -338,11 +338,15 @@ def _pair_frames(a, b, times, method, carrier, spacing):
         outcome = morph_pair(P, Q, closed, method, carrier, spacing)
         morph, used = outcome.morph, outcome.used
         notes += outcome.notes
-    except BallMorphError as exc:  # the fallback itself failed: never lose the pair
-        morph = make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing)
-        used = FALLBACK_METHOD
-        notes.append(str(exc))
-    frames = morph.frames(times)
+        frames = morph.frames(times)
+    except Exception as exc:
+        notes.append(f"{method} failed ({type(exc).__name__}: {exc})")
+        try:
+            morph = make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing)
+            used, frames = FALLBACK_METHOD, morph.frames(times)
+        except Exception as exc2:
+            frames, ua, ub = _dot_frames(a, b, times)
+            return frames, ua, ub, False, "straight point motion", notes + [f"{type(exc2).__name__}: {exc2}"]
     if not np.all(np.isfinite(frames)):
         frames, ua, ub = _dot_frames(a, b, times)
         return frames, ua, ub, False, "straight point motion", notes + ["the morph produced non-finite points"]
@@ -402,6 +406,13 @@ def inbetween(
     check_option("carrier", carrier, CARRIERS)
     check_option("matching", matching, MATCHINGS)
     check_option("unmatched", unmatched, UNMATCHED)
+    for name, key in (("key_a", key_a), ("key_b", key_b)):
+        if not np.all(np.isfinite(key.positions)):
+            points = np.flatnonzero(~np.all(np.isfinite(key.positions), axis=1))
+            bad = np.unique(np.searchsorted(key.offsets, points, "right") - 1).tolist()
+            raise InvalidCurveError(
+                f"{name}: stroke(s) {bad[:10]} have NaN or infinite coordinates: redraw or delete them"
+            )
     times = np.asarray(times, dtype=np.float64).reshape(-1)
     if not np.all(np.isfinite(times)):
         raise InvalidCurveError("times: must be finite numbers in [0, 1]")
@@ -455,9 +466,12 @@ def _fast_path(pairs, times, method, carrier, spacing):
             except InvalidCurveError:
                 continue
             todo.append(k)
-    fast = morph_pairs(curves, times, method[: -len("-ball")] if todo else "circular", carrier, spacing)
     out = BatchResult.empty(len(pairs), len(times))
     if not todo:
+        return out
+    try:
+        fast = morph_pairs(curves, times, method[: -len("-ball")], carrier, spacing)
+    except Exception:
         return out
     # Spread the batch's results over all pairs (those it skipped take the general road).
     todo = np.asarray(todo)

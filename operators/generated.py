@@ -1,25 +1,32 @@
 """Which frames this add-on made, so a re-run replaces them and nothing else.
 
 Grease Pencil layers and frames cannot hold custom properties, so the record lives on the
-Grease Pencil data-block (saved with the .blend, restored by undo)::
+Grease Pencil data-block (saved with the .blend)::
 
-    grease_pencil["ballmorph_inbetween"] = {layer key: {"<frame number>": "<fingerprint>"}}
+    grease_pencil["ballmorph_inbetween"] = {layer key: {"<frame number>": "<fingerprint> ..."}}
 
-A frame counts as ours only while all of these hold: it is recorded for its layer and frame
-number, it is still a 'BREAKDOWN' keyframe, and its strokes still have the fingerprint we
-recorded (see :func:`.grease_pencil.fingerprint`). So a breakdown the animator redrew, moved,
-retyped or copied elsewhere becomes theirs and is never touched again; renaming a layer also
-makes its in-betweens the animator's (the safe direction).
+A frame counts as ours only while all of these hold: it is still a 'BREAKDOWN' keyframe, and
+its strokes have a fingerprint (see :func:`.grease_pencil.fingerprint`) that we recorded for
+its layer and frame number. So a breakdown the animator redrew, moved, retyped or copied
+elsewhere becomes theirs and is never touched again; renaming a layer also makes its
+in-betweens the animator's (the safe direction).
+
+Each frame number keeps the last few fingerprints written there, not only the latest: undo in
+Edit Mode restores the frames but not this record (Blender's edit-mode undo step stores the
+drawings and layers, not the data-block's custom properties), so after undoing a re-run the
+frames it replaced must still be recognised. Undo in Object or Draw Mode restores both.
 """
 
 import zlib
 
 from . import grease_pencil
 
-__all__ = ["is_generated", "mark", "unmark", "prune"]
+__all__ = ["is_generated", "mark", "save", "restore"]
 
 PROPERTY = "ballmorph_inbetween"
 _MAX_KEY = 63  # Blender's ID property names hold at most 63 bytes
+# Fingerprints kept per frame number: how many re-runs an edit-mode undo can go back through.
+_HISTORY = 8
 
 
 def _layer_key(layer):
@@ -30,7 +37,7 @@ def _layer_key(layer):
 
 
 def _records(grease_pencil_data, layer, create=False):
-    """The {frame number: fingerprint} group of a layer (None if absent and not created)."""
+    """The {frame number: fingerprints} group of a layer (None if absent and not created)."""
     root = grease_pencil_data.get(PROPERTY)
     if root is None:
         if not create:
@@ -51,28 +58,26 @@ def is_generated(grease_pencil_data, layer, frame):
     if records is None or frame.keyframe_type != "BREAKDOWN":
         return False
     recorded = records.get(str(frame.frame_number))
-    return recorded is not None and recorded == grease_pencil.fingerprint(frame.drawing)
+    return recorded is not None and grease_pencil.fingerprint(frame.drawing) in recorded.split()
 
 
 def mark(grease_pencil_data, layer, frame):
     """Record ``frame`` as written by this add-on (call after its strokes are written)."""
-    _records(grease_pencil_data, layer, create=True)[str(frame.frame_number)] = grease_pencil.fingerprint(frame.drawing)
+    records = _records(grease_pencil_data, layer, create=True)
+    number, new = str(frame.frame_number), grease_pencil.fingerprint(frame.drawing)
+    kept = [fingerprint for fingerprint in records.get(number, "").split() if fingerprint != new]
+    records[number] = " ".join([*kept[max(0, len(kept) + 1 - _HISTORY) :], new])
 
 
-def unmark(grease_pencil_data, layer, frame_number):
-    """Forget the record of a frame number (when that frame is removed)."""
-    records = _records(grease_pencil_data, layer)
-    if records is not None and str(frame_number) in records:
-        del records[str(frame_number)]
+def save(grease_pencil_data):
+    """A copy of the whole record (plain dicts), for :func:`restore`."""
+    root = grease_pencil_data.get(PROPERTY)
+    return root.to_dict() if root is not None else None
 
 
-def prune(grease_pencil_data, layer):
-    """Drop records of frames that no longer exist or are no longer ours."""
-    records = _records(grease_pencil_data, layer)
-    if records is None:
-        return
-    frames = {frame.frame_number: frame for frame in layer.frames}
-    for number in list(records.keys()):
-        frame = frames.get(int(number)) if number.lstrip("-").isdigit() else None
-        if frame is None or not is_generated(grease_pencil_data, layer, frame):
-            del records[number]
+def restore(grease_pencil_data, saved):
+    """Put back a record taken by :func:`save` (when a write is rolled back)."""
+    if saved is None:
+        grease_pencil_data.pop(PROPERTY, None)
+    else:
+        grease_pencil_data[PROPERTY] = saved

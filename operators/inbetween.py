@@ -10,6 +10,7 @@ every run stores its options back there, so F9 changes are remembered.
 import bpy
 
 from ..ballmorph_core import BallMorphError
+from ..ballmorph_core.inbetween import FALLBACK_METHOD
 from . import keys, morph, options, writer
 
 __all__ = ["BALLMORPH_OT_inbetween"]
@@ -23,6 +24,10 @@ def _frames_text(numbers):
     if len(numbers) > 2 and numbers[-1] - numbers[0] == len(numbers) - 1:
         return f"{numbers[0]}\u2013{numbers[-1]}"
     return ", ".join(str(n) for n in numbers)
+
+
+def _core_label(core_method):
+    return options.method_label(next(ident for ident, core in options.CORE_METHOD.items() if core == core_method))
 
 
 class BALLMORPH_OT_inbetween(bpy.types.Operator):
@@ -47,7 +52,7 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
         self._fill_options(context)
         obj = keys.grease_pencil_object(context)
         if obj is None:
-            return self._cancel("No Grease Pencil object is active: select one and run Ball-morph In-between again")
+            return self._cancel(self._no_object_text(context))
         if not options.method_available(self.method):
             return self._cancel(
                 f"The {options.method_label(self.method)} morph is not available in this version: choose another"
@@ -122,12 +127,23 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
             for i, interval in enumerate(intervals):
                 window_manager.progress_update(i)
                 if len(interval.targets) == 0:
-                    problems.append(("WARNING", f"{interval.name}: every frame between the keys is drawn by hand"))
+                    problems.append(
+                        (
+                            "WARNING",
+                            f"{interval.name}: every frame between the keys is drawn by hand: nothing was "
+                            "written (delete drawn frames there to make room for in-betweens)",
+                        )
+                    )
                     continue
                 try:
                     item = morph.morph_interval(interval, values, core_method)
-                except (BallMorphError, ValueError) as exc:
+                except (BallMorphError, ValueError) as exc:  # the keys themselves cannot be in-betweened
                     problems.append(("WARNING", f"{interval.name}: {exc}"))
+                    continue
+                except Exception as exc:  # a bug: never lose the other intervals to it
+                    item = self._fall_back(interval, values, exc, problems)
+                    if item is not None:
+                        morphed.append(item)
                     continue
                 if item is None:
                     problems.append(("WARNING", f"{interval.name}: both keys are empty: draw strokes in them first"))
@@ -137,6 +153,38 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
             window_manager.progress_end()
         return morphed
 
+    def _fall_back(self, interval, values, exc, problems):
+        """In-between an interval whose morph failed unexpectedly with the core's fallback morph.
+
+        The whole interval is redone with :data:`FALLBACK_METHOD` (so its frames are written with
+        one morph, never half of them); if that fails too, nothing is written for it and the
+        returned item is None.
+        """
+        failure = f"{type(exc).__name__}: {exc}"
+        if options.CORE_METHOD[self.method] != FALLBACK_METHOD:
+            try:
+                item = morph.morph_interval(interval, values, FALLBACK_METHOD)
+            except Exception as second:  # reported below: nothing written
+                failure += f"; then {_core_label(FALLBACK_METHOD)}: {type(second).__name__}: {second}"
+            else:
+                item.messages.insert(
+                    0,
+                    (
+                        "WARNING",
+                        f"the {options.method_label(self.method)} morph failed ({failure}): every in-between "
+                        f"here was made with {_core_label(FALLBACK_METHOD)} instead; please report this drawing",
+                    ),
+                )
+                return item
+        problems.append(
+            (
+                "WARNING",
+                f"{interval.name}: the morph failed ({failure}): nothing was written between these keys; "
+                "try another morph, or simplify the strokes, and please report this drawing",
+            )
+        )
+        return None
+
     def _interval_reports(self, item):
         """(level, text) reports for one computed interval: what was written, skipped, fell back."""
         interval = item.interval
@@ -145,7 +193,7 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
             (
                 "INFO",
                 f"{interval.name}: {len(interval.targets)} in-between(s) on frame(s) "
-                f"{_frames_text(interval.targets)} ({options.method_label(self.method)}{replaced})",
+                f"{_frames_text(interval.targets)} ({_core_label(item.method)}{replaced})",
             )
         ]
         if interval.skipped:
@@ -164,6 +212,17 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
                 shown = "; ".join(texts[:_MESSAGES_PER_REPORT]) + (f"; and {more} more" if more > 0 else "")
                 reports.append((level, f"{interval.name}: {shown}"))
         return reports
+
+    @staticmethod
+    def _no_object_text(context):
+        active = getattr(context, "active_object", None)
+        if active is None:
+            return "No Grease Pencil object is active: select one and run Ball-morph In-between again"
+        kind = active.type.replace("_", " ").lower()
+        return (
+            f"The active object '{active.name}' is a {kind}, not a Grease Pencil object: "
+            "make a Grease Pencil object active and run Ball-morph In-between again"
+        )
 
     def _cancel(self, text):
         self.report({"ERROR"}, text)

@@ -130,7 +130,10 @@ def find_intervals(grease_pencil_data, layer, current_frame, frame_count):
     intervals, problems = [], []
     for a, b in pairs:
         if b - a < 2:
-            problems.append(f"layer '{layer.name}': keys {a} and {b} have no frame between them")
+            problems.append(
+                f"layer '{layer.name}': keys {a} and {b} have no frame between them: "
+                "move them apart, or select two keys with frames between them"
+            )
             continue
         frames, fractions = frame_times(a, b, frame_count)
         between = [n for n in numbers if a < n < b]

@@ -29,11 +29,14 @@ class Morphed:
         One per ``interval.targets``, in layer space.
     messages : list of (level, text)
         For the animator (level INFO or WARNING).
+    method : str
+        The core method that made the frames.
     """
 
     interval: object
     frames: list
     messages: list = field(default_factory=list)
+    method: str = ""
 
 
 def _frame(layer, number):
@@ -91,12 +94,22 @@ def morph_interval(interval, options, core_method):
     matrix = grease_pencil.layer_matrix(layer)
     identity = np.array_equal(matrix, np.eye(4))
     if not identity and abs(np.linalg.det(matrix[:3, :3])) < _SINGULAR_DETERMINANT:
-        raise ValueError(f"layer '{layer.name}' has a flat transform (zero scale): it cannot be in-betweened")
+        raise ValueError(
+            f"layer '{layer.name}' has a flat transform (zero scale): give the layer a non-zero scale to in-between it"
+        )
     to_morph, to_layer = (None, None) if identity else (matrix, np.linalg.inv(matrix))
     key_a = grease_pencil.read_strokes(_frame(layer, interval.frame_a).drawing, to_morph)
     key_b = grease_pencil.read_strokes(_frame(layer, interval.frame_b).drawing, to_morph)
     if len(key_a) == 0 and len(key_b) == 0:
         return None
+    for number, key in ((interval.frame_a, key_a), (interval.frame_b, key_b)):
+        bad = ~np.isfinite(key.positions).all(axis=1)
+        if bad.any():
+            strokes = np.unique(np.searchsorted(key.offsets, np.flatnonzero(bad), side="right") - 1)
+            raise ValueError(
+                f"the key on frame {number} has points with invalid (NaN or infinite) coordinates in stroke(s) "
+                f"{', '.join(map(str, strokes[:6].tolist()))}: redraw or delete those strokes"
+            )
     messages, held = [], None
     if options["selected_only"]:
         key_a, key_b, held = _selection(key_a, key_b, messages)
@@ -112,4 +125,4 @@ def morph_interval(interval, options, core_method):
     )
     messages.extend((message.level, message.text) for message in result.messages)
     frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
-    return Morphed(interval, [_to_layer_space(frame, to_layer) for frame in frames], messages)
+    return Morphed(interval, [_to_layer_space(frame, to_layer) for frame in frames], messages, core_method)

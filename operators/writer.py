@@ -2,8 +2,8 @@
 
 Frames this add-on made earlier between the keys are removed first (their strokes are kept in
 memory); then every in-between frame is created and filled. If anything fails, the frames this
-run created are removed and the earlier ones restored, so the layer is as it was, and the
-error is raised again for the operator to report.
+run created are removed, the earlier ones restored and the record of generated frames put back,
+so the layers are as they were, and the error is raised again for the operator to report.
 """
 
 from dataclasses import dataclass
@@ -20,14 +20,13 @@ class _Removed:
     strokes: object  # StrokeSet in layer space
 
 
-def _remove_earlier(grease_pencil_data, morphed, removed):
+def _remove_earlier(morphed, removed):
     layer = morphed.interval.layer
     frames = {frame.frame_number: frame for frame in layer.frames}
     for number in morphed.interval.replace:
         strokes = grease_pencil.read_strokes(frames[number].drawing)
         layer.frames.remove(number)
         removed.append(_Removed(layer, number, strokes))
-        generated.unmark(grease_pencil_data, layer, number)
 
 
 def _new_breakdown(layer, number):
@@ -56,28 +55,26 @@ def write_all(grease_pencil_data, morphed_list):
         Frames written.
     """
     created, removed = [], []
+    record = generated.save(grease_pencil_data)
     try:
         for morphed in morphed_list:
-            _remove_earlier(grease_pencil_data, morphed, removed)
+            _remove_earlier(morphed, removed)
         for morphed in morphed_list:
             layer = morphed.interval.layer
             for number, strokes in zip(morphed.interval.targets.tolist(), morphed.frames):
                 frame = _new_breakdown(layer, number)
                 created.append((layer, number))
                 _fill(grease_pencil_data, layer, frame, strokes)
-        for layer in {id(m.interval.layer): m.interval.layer for m in morphed_list}.values():
-            generated.prune(grease_pencil_data, layer)
     except Exception:
-        _roll_back(grease_pencil_data, created, removed)
+        _roll_back(grease_pencil_data, created, removed, record)
         raise
     return len(created)
 
 
-def _roll_back(grease_pencil_data, created, removed):
+def _roll_back(grease_pencil_data, created, removed, record):
     for layer, number in reversed(created):
         if any(frame.frame_number == number for frame in layer.frames):
             layer.frames.remove(number)
-        generated.unmark(grease_pencil_data, layer, number)
     for item in removed:
-        frame = _new_breakdown(item.layer, item.frame_number)
-        _fill(grease_pencil_data, item.layer, frame, item.strokes)
+        grease_pencil.write_strokes(_new_breakdown(item.layer, item.frame_number).drawing, item.strokes)
+    generated.restore(grease_pencil_data, record)

@@ -1,4 +1,4 @@
-"""The main demo: the add-on in-betweens three shot-like Grease Pencil cases inside Blender.
+"""The main demo: the add-on in-betweens four shot-like Grease Pencil cases inside Blender.
 
 Run by ``make demo`` (tools/demo.sh) with bpy (Blender as a Python module), headless:
 
@@ -10,6 +10,10 @@ Run by ``make demo`` (tools/demo.sh) with bpy (Blender as a Python module), head
      linear interpolation (what Blender's own Interpolate does) for comparison,
    - "Squash and stretch": a ball falling (round, stretched, squashed on the floor: three
      selected keys, frames 1, 7, 9) with a gravity ease-in,
+   - "Head turn": keys drawn the way animators draw them (frames 1-11): the head moves and
+     turns so its outline crosses its first position, and the second key's outline starts
+     elsewhere and runs the other way; the brow is drawn the other way too; no stroke shares an
+     endpoint with its partner; and a sweat drop appears in the second key,
 3. runs ``bpy.ops.ballmorph.inbetween`` on each (the same call the Dope Sheet menu makes),
 4. saves out/demo.blend (open it in Blender 4.5+ and scrub the timeline) and draws
    out/demo.png, a contact sheet of the keys and in-betweens read back from Blender.
@@ -79,6 +83,58 @@ def ellipse(rx, rz, centre, n=96):
 
 def floor(n=30):
     return np.c_[np.linspace(-1.2, 1.2, n), np.zeros(n)]
+
+
+def pose(points, turn, centre):
+    """Points turned by ``turn`` radians about the origin, then moved to ``centre``."""
+    c, s = np.cos(turn), np.sin(turn)
+    return points @ np.array([[c, s], [-s, c]]) + np.asarray(centre)
+
+
+def head_outline(n=150):
+    """A head seen from the front: round skull, narrower jaw, pointed chin (a loop, anticlockwise)."""
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False) + np.pi / 2
+    low = np.clip(-np.sin(t), 0, None)  # 0 on the upper half, 1 at the chin
+    x = 0.9 * np.cos(t) * (1 - 0.35 * low**1.5)
+    return np.c_[x, 1.05 * np.sin(t) - 0.15 * low**3]
+
+
+def bowed(start, end, sag, n=40):
+    """A stroke from ``start`` to ``end`` bowed sideways by ``sag``."""
+    u = np.linspace(0, 1, n)[:, None]
+    start, end = np.asarray(start, float), np.asarray(end, float)
+    d = end - start
+    return start + u * d + sag * np.sin(np.pi * u) * np.array([-d[1], d[0]]) / np.linalg.norm(d)
+
+
+def teardrop(centre, size, n=50):
+    """A sweat drop: round at the bottom, pointed at the top (a loop)."""
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False) - np.pi / 2
+    return np.c_[centre[0] + size * np.cos(t) * (1 - np.sin(t)) / 2, centre[1] + size * np.sin(t)]
+
+
+def head_turn_keys():
+    """(strokes, cyclic, materials) for the two keys of the head-turn shot, frames 1 and 11."""
+    first_pose, second_pose = (0.0, (0.0, 0.0)), (0.35, (0.55, 0.15))
+    first = [
+        head_outline(),
+        bowed((-0.6, 0.42), (-0.15, 0.52), 0.06),  # brow, drawn left to right
+        ellipse(0.08, 0.1, (-0.35, 0.22), n=30),  # eye
+        bowed((-0.45, -0.45), (0.15, -0.5), -0.12, 50),  # mouth, a small smile
+    ]
+    second = [
+        # the outline, started at the chin and drawn clockwise this time
+        np.roll(head_outline()[::-1], 70, axis=0),
+        bowed((-0.1, 0.66), (-0.62, 0.5), -0.12),  # brow raised, drawn right to left
+        ellipse(0.1, 0.14, (-0.33, 0.24), n=30),  # eye wide open
+        bowed((-0.5, -0.42), (0.25, -0.38), -0.3, 50),  # mouth, a wide grin
+    ]
+    strokes_1 = [pose(s, *first_pose) for s in first]
+    strokes_2 = [pose(s, *second_pose) for s in second] + [teardrop((1.6, 1.05), 0.16)]  # new: sweat
+    return (
+        (strokes_1, [True, False, True, False], [0, 0, 0, 0]),
+        (strokes_2, [True, False, True, False, True], [0, 0, 0, 0, 1]),
+    )
 
 
 # -- Blender data ------------------------------------------------------------------------------
@@ -175,6 +231,13 @@ def build_scene():
         frame.select = True  # the animator selected the three keys in the Dope Sheet
     # Paired by drawing order: the ball travels too far for the automatic matching to pair it.
     options = {"method": "CIRCULAR_BALL", "easing_type": "QUAD", "easing": "EASE_IN", "matching": "INDEX"}
+    shots.append((obj, 2, options))
+
+    obj = new_shot("Head turn", 13.6, [ink, blue])
+    for number, (strokes, cyclic, materials) in zip((1, 11), head_turn_keys()):
+        add_key(obj, number, strokes, cyclic, materials, [0.03 if c else 0.025 for c in cyclic])
+    # Every option given: the scene remembers the previous shot's (By Index matching).
+    options = {"method": "CIRCULAR_BALL", "easing_type": "SINE", "easing": "EASE_IN_OUT", "matching": "AUTO"}
     shots.append((obj, 2, options))
     return module, shots
 

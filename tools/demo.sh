@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job (README's `make demo`): the add-on in-betweens three shot-like Grease Pencil
+# The main job (README's `make demo`): the add-on in-betweens four shot-like Grease Pencil
 # cases inside Blender 5.0 (headless) and writes out/demo.blend and out/demo.png; then the
 # core's own picture of a ball-morph, out/core_demo.png.
 set -euo pipefail

@@ -93,8 +93,8 @@ def frame_numbers(layer):
 def read_raw(drawing):
     """Every attribute of a drawing as {name: (domain, data_type, bytes)} plus the offsets."""
     out = {}
-    offsets = np.empty(len(drawing.curve_offsets), np.int32)
-    if len(offsets) > 1:  # an empty drawing reports one offset but stores none
+    offsets = np.zeros(len(drawing.curve_offsets), np.int32)  # zeros: an empty drawing ...
+    if len(offsets) > 1:  # ... reports one offset but stores none
         drawing.curve_offsets.foreach_get("value", offsets)
     out["curve_offsets"] = ("CURVE", "INT", offsets.tobytes())
     for attribute in drawing.attributes:
@@ -158,3 +158,24 @@ def view3d_override():
     area = next(a for a in window.screen.areas if a.type == "VIEW_3D")
     region = next(r for r in area.regions if r.type == "WINDOW")
     return bpy.context.temp_override(window=window, area=area, region=region)
+
+
+def snapshot(obj):
+    """Every frame of every layer of a Grease Pencil object, to compare byte for byte.
+
+    Returns ``{layer name: {frame number: (keyframe_type, read_raw(drawing))}}``: frame numbers,
+    keyframe types, stroke offsets and every attribute of every drawing.
+    """
+    return {
+        layer.name: {
+            frame.frame_number: (frame.keyframe_type, read_raw(frame.drawing))
+            for frame in sorted(layer.frames, key=lambda f: f.frame_number)
+        }
+        for layer in obj.data.layers
+    }
+
+
+def marks(obj):
+    """The add-on's record of the frames it wrote (a plain dict; {} when there is none)."""
+    record = obj.data.get("ballmorph_inbetween")
+    return record.to_dict() if record is not None else {}

@@ -131,7 +131,9 @@ def test_rerun_replaces_only_its_own_frames(shot, capfd):
     # fewer in-betweens: the earlier ones between the keys go, nothing else does
     assert bpy.ops.ballmorph.inbetween(frame_count=1) == {"FINISHED"}
     assert gp_data.frame_numbers(layer) == [1, 5, 9]
-    assert len(shot.data["ballmorph_inbetween"]["Ink"]) == 1
+    result, text = run(capfd, frame_count=1)
+    assert result == {"FINISHED"} and "replacing 1 earlier" in text
+    assert gp_data.frame_numbers(layer) == [1, 5, 9]
 
 
 def test_an_in_between_the_animator_edited_becomes_theirs(shot, capfd):
@@ -170,65 +172,10 @@ def test_marks_survive_save_and_reload(shot, tmp_path, capfd):
     assert gp_data.frame_numbers(ink(obj)) == list(range(1, 10))
 
 
-def test_no_grease_pencil_object_is_a_clear_cancel(addon):
-    bpy.context.view_layer.objects.active = None
-    with pytest.raises(RuntimeError, match="No Grease Pencil object is active"):
-        bpy.ops.ballmorph.inbetween()
-
-
-def test_one_keyframe_only_is_a_clear_cancel(addon):
-    obj = gp_data.new_object()
-    gp_data.add_key(ink(obj), 1, [gp_data.arc(0.3)])
-    with pytest.raises(RuntimeError, match="1 keyframe.*draw a second key"):
-        bpy.ops.ballmorph.inbetween()
-    assert gp_data.frame_numbers(ink(obj)) == [1]
-
-
-def test_empty_keys_are_a_clear_cancel(addon):
-    obj = gp_data.new_object()
-    ink(obj).frames.new(1)
-    ink(obj).frames.new(6)
-    bpy.context.scene.frame_current = 2
-    with pytest.raises(RuntimeError, match="both keys are empty"):
-        bpy.ops.ballmorph.inbetween()
-    assert gp_data.frame_numbers(ink(obj)) == [1, 6]
-
-
 def test_current_frame_after_the_last_key_is_a_clear_cancel(shot):
     bpy.context.scene.frame_current = 20
     with pytest.raises(RuntimeError, match="no keyframe after frame 20"):
         bpy.ops.ballmorph.inbetween()
-
-
-def test_locked_layer_is_not_written(addon, capfd):
-    obj = gp_data.new_object(layers=("Ink", "Paint"))
-    for name in ("Ink", "Paint"):
-        gp_data.add_key(obj.data.layers[name], 1, [gp_data.arc(0.3)])
-        gp_data.add_key(obj.data.layers[name], 5, [gp_data.arc(-0.3)])
-    obj.data.layers["Paint"].lock = True
-    result, text = run(capfd, layers="ALL")
-    assert result == {"FINISHED"}
-    assert gp_data.frame_numbers(obj.data.layers["Paint"]) == [1, 5]
-    assert gp_data.frame_numbers(obj.data.layers["Ink"]) == [1, 2, 3, 4, 5]
-    assert "layer 'Paint' is locked" in text
-    obj.data.layers.active = obj.data.layers["Paint"]
-    with pytest.raises(RuntimeError, match="'Paint' is locked"):
-        bpy.ops.ballmorph.inbetween(layers="ACTIVE")
-
-
-def test_hidden_group_keeps_its_layers_unwritten(addon, capfd):
-    obj = gp_data.new_object(layers=("Ink", "Paint"))
-    for name in ("Ink", "Paint"):
-        gp_data.add_key(obj.data.layers[name], 1, [gp_data.arc(0.3)])
-        gp_data.add_key(obj.data.layers[name], 4, [gp_data.arc(-0.3)])
-    group = obj.data.layer_groups.new("Hidden")
-    obj.data.layers.move_to_layer_group(obj.data.layers["Paint"], group)
-    group.hide = True
-    result, text = run(capfd, layers="ALL")
-    assert result == {"FINISHED"}
-    assert gp_data.frame_numbers(obj.data.layers["Paint"]) == [1, 4]
-    assert gp_data.frame_numbers(obj.data.layers["Ink"]) == [1, 2, 3, 4]
-    assert "'Paint' is hidden (group 'Hidden')" in text
 
 
 def test_all_layers_each_use_their_own_keys(addon):
@@ -326,30 +273,6 @@ def test_core_warnings_reach_the_report(addon, capfd):
     assert "Ink 1\u21925: " in text and "no partner" in text
 
 
-def test_a_failed_write_leaves_the_layer_as_it_was(shot, addon, monkeypatch):
-    layer = ink(shot)
-    assert bpy.ops.ballmorph.inbetween(frame_count=3) == {"FINISHED"}
-    before = {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in gp_data.frame_numbers(layer)}
-    io = __import__(f"{addon.__name__}.operators.grease_pencil", fromlist=["write_strokes"])
-    real, calls = io.write_strokes, []
-
-    def failing(drawing, strokes, matrix=None):
-        calls.append(1)
-        if len(calls) == 4:
-            raise MemoryError("simulated failure")
-        return real(drawing, strokes, matrix)
-
-    monkeypatch.setattr(io, "write_strokes", failing)
-    with pytest.raises(RuntimeError, match="nothing was changed: simulated failure"):
-        bpy.ops.ballmorph.inbetween(frame_count=0)
-    assert len(calls) >= 4
-    assert {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in gp_data.frame_numbers(layer)} == before
-    monkeypatch.undo()
-    # the restored in-betweens are still recognised as the tool's
-    assert bpy.ops.ballmorph.inbetween(frame_count=0) == {"FINISHED"}
-    assert gp_data.frame_numbers(layer) == list(range(1, 10))
-
-
 def test_preferences_are_the_defaults_and_runs_are_remembered(shot, addon):
     preferences = bpy.context.preferences.addons[addon.__name__].preferences
     settings = bpy.context.scene.ballmorph_inbetween
@@ -362,15 +285,3 @@ def test_preferences_are_the_defaults_and_runs_are_remembered(shot, addon):
     assert (settings.method, settings.frame_count) == ("PARABOLIC_BALL", 1)
     preferences.method = "CIRCULAR_BALL"
     assert settings.method == "PARABOLIC_BALL"  # the scene now has its own choice
-
-
-def test_keys_far_from_flat_are_reported(shot, capfd):
-    drawing = gp_data.frame_at(ink(shot), 9).drawing
-    positions = np.empty(len(drawing.attributes["position"].data) * 3, np.float32)
-    drawing.attributes["position"].data.foreach_get("vector", positions)
-    positions = positions.reshape(-1, 3)
-    positions[:, 1] = 0.6 * np.sin(3 * positions[:, 0])  # bumps off the XZ canvas
-    drawing.attributes["position"].data.foreach_set("vector", positions.ravel())
-    result, text = run(capfd, frame_count=1)
-    assert result == {"FINISHED"}
-    assert "Warning: Ink 1\u21929: " in text and "not flat" in text
