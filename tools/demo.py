@@ -68,12 +68,12 @@ def stem(base, top, n=20):
 
 def bend_arch(n=90):
     x = np.linspace(0, 2.4, n)
-    return np.c_[x, 0.75 * np.sin(np.pi * x / 2.4)]
+    return np.c_[x, 0.55 * np.sin(np.pi * x / 2.4)]
 
 
 def bend_down(n=90):
     x = np.linspace(0, 2.4, n)
-    return np.c_[x, -0.5 * np.sin(np.pi * x / 2.4) + 0.06 * np.sin(2 * np.pi * x / 2.4)]
+    return np.c_[x, -0.35 * np.sin(np.pi * x / 2.4) + 0.04 * np.sin(2 * np.pi * x / 2.4)]
 
 
 def ellipse(rx, rz, centre, n=96):
