@@ -1,7 +1,7 @@
 # Two commands matter: `make demo` (the main job) and `make test` (everything CI runs).
 # Both bootstrap their own cached Python 3.11 + bpy environments (tools/bootstrap.sh).
 
-.PHONY: demo test lint build core-demo evaluate
+.PHONY: demo test lint build core-demo evaluate bench fuzz
 
 demo:
 	tools/demo.sh
@@ -20,3 +20,16 @@ core-demo:
 
 evaluate:
 	$$(tools/bootstrap.sh 5.0.1) tools/evaluate.py
+
+# Both benchmark tools: tools/benchmark.py (inside bpy) runs tools/bench_ballmap.py (plain CPython)
+# itself and writes docs/benchmark.md; 10-12 minutes on two shared cores.
+bench:
+	timeout 3600 $$(tools/bootstrap.sh 5.0.1) tools/benchmark.py --write docs/benchmark.md
+
+# The long fuzz target (issue 7): thousands of random curve pairs and drawings per test
+# (HYPOTHESIS_PROFILE=fuzz, FUZZ_EXAMPLES to change the count); `make test` runs its short
+# profile. The address space is capped so a memory blow-up fails as a MemoryError instead of
+# exhausting the machine; pytest-timeout's per-test limit is lifted (a test runs ~20 minutes).
+fuzz:
+	py=$$(tools/bootstrap.sh 5.0.1) && ulimit -v 8000000 && \
+	HYPOTHESIS_PROFILE=fuzz timeout 14400 $$py -m pytest -q --timeout=0 tests/fuzz --hypothesis-show-statistics

@@ -246,14 +246,25 @@ def _lace(src, dst, eps):
     pos = np.zeros(len(X))
 
     def solve(samples, chain, e_lo, e_hi):
-        owner, local = ragged_arange(e_hi - e_lo + 1)
-        c = chain[owner]
-        e_local = e_lo[owner] + local
-        g = do[c] + np.where(closed[c], e_local % np.maximum(n_e[c], 1), e_local)
-        s = samples[owner]
-        rr, uu = _candidates(X[s], NX[s], A[g], B[g], NE[g], eps)
-        best = _segment_argmin(rr, owner, len(samples))
-        return rr[best], e_local[best] + uu[best]
+        # In chunks of at most CANDIDATE_BUDGET (sample, edge) pairs, to bound memory.
+        counts = e_hi - e_lo + 1
+        ends = np.cumsum(counts)
+        r_out, pos_out = np.empty(len(samples)), np.empty(len(samples))
+        start = 0
+        while start < len(samples):
+            base = ends[start - 1] if start else 0
+            stop = max(start + 1, int(np.searchsorted(ends, base + tol.CANDIDATE_BUDGET, side="right")))
+            sl = slice(start, stop)
+            owner, local = ragged_arange(counts[sl])
+            c = chain[sl][owner]
+            e_local = e_lo[sl][owner] + local
+            g = do[c] + np.where(closed[c], e_local % np.maximum(n_e[c], 1), e_local)
+            s = samples[sl][owner]
+            rr, uu = _candidates(X[s], NX[s], A[g], B[g], NE[g], eps)
+            best = _segment_argmin(rr, owner, stop - start)
+            r_out[sl], pos_out[sl] = rr[best], e_local[best] + uu[best]
+            start = stop
+        return r_out, pos_out
 
     chains = np.arange(n_chains)
     lo_idx, hi_idx = xo[:-1].copy(), xo[1:] - 1
@@ -402,7 +413,7 @@ def _assemble(src, chain, x, n, s_src, r, q, s_dst, n_edge, eps):
     return dict(src=x, dst=q, m=m, r=rr, ok=ok, s_src=s_src, s_dst=s_dst, n_src=n, n_dst=n_dst, chain=chain)
 
 
-def _full_search(x, n, dst, chain, eps, budget=2_000_000):
+def _full_search(x, n, dst, chain, eps, budget=tol.CANDIDATE_BUDGET):
     """Smallest disk at each sample over all edges of its chain's target (no lacing window)."""
     rg = dst.rg
     counts = rg.n_edges[chain]

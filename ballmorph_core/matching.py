@@ -61,6 +61,7 @@ from .curves import as_curve, curve_length, resample
 from .errors import InvalidCurveError
 from .morphs.linear import best_cyclic_alignment
 from .options import check_option
+from .ragged import Ragged
 
 __all__ = ["MODES", "Matching", "match_strokes", "solve_assignment"]
 
@@ -260,6 +261,8 @@ class _Key:
         self.ring = np.zeros((s, m, 2))
         self.valid = np.zeros(s, bool)
         self.length = np.zeros(s)
+        if self._batched(strokes, closed, m):
+            return
         lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
         for i, points in enumerate(strokes):
             clean = _clean(points, f"{name}[{i}]", bool(closed[i]))
@@ -274,6 +277,42 @@ class _Key:
             self.ring[i] = resample(clean, True, count=m, smooth=False) if closed[i] else self.open[i]
             self.length[i] = curve_length(clean, bool(closed[i]))
         self.diagonal = float(np.linalg.norm(hi - lo)) if self.valid.any() else 0.0
+
+    def _batched(self, strokes, closed, m):
+        """All descriptors at once for well-formed keys (finite points); False to go one by one."""
+        try:
+            arrays = [np.asarray(p, dtype=np.float64) for p in strokes]
+        except (TypeError, ValueError):
+            return False
+        if any(a.ndim != 2 or a.shape[1] != 2 for a in arrays if a.size):
+            return False  # the per-stroke road names the malformed stroke
+        arrays = [a.reshape(-1, 2) for a in arrays]
+        sizes = np.array([len(a) for a in arrays], dtype=np.int64)
+        pts = np.concatenate(arrays) if arrays else np.zeros((0, 2))
+        if not np.all(np.isfinite(pts)):
+            return False  # the per-stroke road names the bad stroke
+        self.valid = sizes > 0
+        if not self.valid.any():
+            self.diagonal = 0.0
+            return True
+        self.diagonal = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
+        offsets = np.concatenate([[0], np.cumsum(sizes)])
+        line = Ragged(pts, offsets, np.zeros(len(sizes), dtype=bool))
+        # Dots (one point, or all points the same) repeat their point.
+        dot = self.valid & (line.length <= tol.COINCIDENT * max(self.diagonal, 1e-300))
+        first = pts[np.minimum(offsets[:-1], max(len(pts) - 1, 0))]
+        self.open[dot] = self.ring[dot] = first[dot][:, None, :]
+        keep = np.flatnonzero(self.valid & ~dot)
+        if len(keep):
+            idx = np.concatenate([np.arange(offsets[i], offsets[i + 1]) for i in keep])
+            sub = np.concatenate([[0], np.cumsum(sizes[keep])])
+            opened = Ragged(pts[idx], sub, np.zeros(len(keep), dtype=bool))
+            looped = Ragged(pts[idx], sub, closed[keep])
+            self.open[keep] = opened.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
+            ring = looped.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
+            self.ring[keep] = np.where(closed[keep][:, None, None], ring, self.open[keep])
+            self.length[keep] = looped.length
+        return True
 
     def centroids(self):
         """Sample centroid of each stroke's own descriptor (ring for loops), shape (S, 2)."""

@@ -58,7 +58,7 @@ SUBDIVIDE_EDGE_RATIO = 4.0
 SUBDIVIDE_MAX_STEPS = 4
 
 #: Points along each trajectory used to tabulate arc length for uniform-speed traversal.
-ARC_TABLE_SAMPLES = 64
+ARC_TABLE_SAMPLES = 16
 
 #: Strokes whose points lie farther than this (times scale) from the fitted drawing plane are
 #: reported as non-planar.
@@ -165,3 +165,7 @@ IDENTITY = 1e-9
 #: A fitted drawing plane within this (1 - |cos|) of a world axis plane is taken as that plane,
 #: so a drawing on Blender's front canvas maps to plain (x, z) coordinates.
 PLANE_AXIS = 1e-6
+
+#: Most (sample, edge) candidate pairs evaluated at once by the ball-map's searches: bounds
+#: their temporary arrays (about 0.2 KB per pair) without slowing them down noticeably.
+CANDIDATE_BUDGET = 500_000

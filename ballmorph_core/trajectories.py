@@ -24,6 +24,9 @@ __all__ = ["KINDS", "BallPaths", "SampledPaths", "LevelPaths", "LinearPaths", "m
 
 KINDS = ("hat", "linear", "tangent", "circular", "parabolic")
 
+# 3-point Gauss-Legendre nodes and weights on [-1, 1].
+_GAUSS3 = ((-np.sqrt(0.6), 5.0 / 9.0), (0.0, 8.0 / 9.0), (np.sqrt(0.6), 5.0 / 9.0))
+
 
 def _cross(a, b):
     return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
@@ -211,28 +214,32 @@ class BallPaths:
         return 2.0 * np.linalg.norm(a + s[..., None] * b, axis=-1)
 
     def _init_parabola(self):
-        # Arc length L(s) tabulated with Simpson's rule; evaluated between nodes by cubic
-        # Hermite interpolation (dL/ds = speed), inverted by Newton steps from a linear guess.
+        # Arc length L(s): a table at ARC_TABLE_SAMPLES nodes, each interval integrated by
+        # 3-point Gauss-Legendre, and between nodes the same rule from the node below (so the
+        # table and the evaluation agree exactly); inverted by Newton steps from a linear guess.
         n = tol.ARC_TABLE_SAMPLES
         k = len(self.p)
         s = np.linspace(0.0, 1.0, n + 1)
-        self._v = self._speed(np.broadcast_to(s, (k, n + 1)))
-        v_mid = self._speed(np.broadcast_to((s[:-1] + s[1:]) / 2, (k, n)))
-        pieces = (self._v[:, :-1] + 4 * v_mid + self._v[:, 1:]) / (6 * n)
+        pieces = np.zeros((k, n))
+        for x, w in _GAUSS3:
+            pieces += w * self._speed(np.broadcast_to(s[:-1] + (1 + x) / (2 * n), (k, n)))
+        pieces /= 2 * n
         self._L = np.concatenate([np.zeros((k, 1)), np.cumsum(pieces, axis=1)], axis=1)
         self._par_len = self._L[:, -1]
         table = np.divide(self._L, self._par_len[:, None], out=np.tile(s, (k, 1)), where=self._par_len[:, None] > 0)
         self._s_of_tau = _invert_rows(table, s) / n
 
     def _arc_length(self, s):
-        """L(s) per path for s of shape (K,), by cubic Hermite interpolation of the table."""
+        """L(s) per path for s of shape (K,): the tabulated length at the node below s plus the
+        same Gauss-Legendre rule from there."""
         n = tol.ARC_TABLE_SAMPLES
-        j = np.clip(np.floor(s * n).astype(np.int64), 0, n - 1)[:, None]
-        u = s * n - j[:, 0]
-        l0, l1 = np.take_along_axis(self._L, j, 1)[:, 0], np.take_along_axis(self._L, j + 1, 1)[:, 0]
-        v0, v1 = np.take_along_axis(self._v, j, 1)[:, 0] / n, np.take_along_axis(self._v, j + 1, 1)[:, 0] / n
-        u2, u3 = u * u, u * u * u
-        return (2 * u3 - 3 * u2 + 1) * l0 + (u3 - 2 * u2 + u) * v0 + (-2 * u3 + 3 * u2) * l1 + (u3 - u2) * v1
+        j = np.clip(np.floor(s * n).astype(np.int64), 0, n - 1)
+        half = 0.5 * (s - j / n)
+        mid = j / n + half
+        total = np.zeros_like(s)
+        for x, w in _GAUSS3:
+            total += w * self._speed((mid + half * x)[:, None])[:, 0]
+        return np.take_along_axis(self._L, j[:, None], 1)[:, 0] + half * total
 
     def _parabola_parameter(self, t):
         f = t * tol.ARC_TABLE_SAMPLES
@@ -240,7 +247,7 @@ class BallPaths:
         u = f - j
         s = (1 - u) * self._s_of_tau[:, j] + u * self._s_of_tau[:, j + 1]
         target = t * self._par_len
-        for _ in range(2):
+        for _ in range(4):  # Newton on L(s) = target, from the table's guess
             speed = self._speed(s[:, None])[:, 0]
             step = np.divide(self._arc_length(s) - target, speed, out=np.zeros_like(s), where=speed > 0)
             s = np.clip(s - step, 0.0, 1.0)

@@ -34,7 +34,7 @@ def test_parabolic_path_is_the_quadratic_bezier_and_its_length():
     # Its length, by fine chords.
     s = np.linspace(0, 1, 20001)[:, None]
     curve = (1 - s) ** 2 * P1 + 2 * s * (1 - s) * M1 + s**2 * Q1
-    assert paths.lengths()[0] == pytest.approx(np.linalg.norm(np.diff(curve, axis=0), axis=1).sum(), rel=1e-8)
+    assert paths.lengths()[0] == pytest.approx(np.linalg.norm(np.diff(curve, axis=0), axis=1).sum(), rel=1e-6)
 
 
 def test_circular_path_degenerates_to_the_segment_when_tangents_are_parallel():
@@ -66,7 +66,7 @@ def test_every_kind_is_traversed_at_constant_speed(kind):
         [np.cos(psi) * d[:, 0] - np.sin(psi) * d[:, 1], np.sin(psi) * d[:, 0] + np.cos(psi) * d[:, 1]], axis=1
     )
     paths = BallPaths(p, m, q, kind)
-    ts = np.linspace(0, 1, 401)
+    ts = np.linspace(0, 1, 1601)  # fine enough that chords measure arc length to 1e-5
     pts = np.stack([paths.at(t) for t in ts])
     steps = np.linalg.norm(np.diff(pts, axis=0), axis=2)
     np.testing.assert_allclose(steps.sum(axis=0), paths.lengths(), rtol=1e-4)
