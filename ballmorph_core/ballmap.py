@@ -40,8 +40,8 @@ import numpy as np
 
 from . import tolerances as tol
 from .compat import CompatibilityReport, PairSetup, Violation, orient_pair
-from .curves import as_curve, default_spacing, densify, scale_of
-from .errors import IncompatibleCurvesError, InvalidCurveError
+from .curves import as_curve, densify, resolve_spacing, scale_of
+from .errors import IncompatibleCurvesError
 from .options import check_option
 from .ragged import Ragged
 from .spatial import CurveTree, ragged_arange
@@ -292,7 +292,12 @@ def _lace(src, dst, eps):
         e_lo = np.clip(np.floor(plo).astype(np.int64), 0, laps - 1)
         e_hi = np.clip(np.ceil(phi).astype(np.int64) - 1, e_lo, laps - 1)
         rr, pp = solve(mid, chain, e_lo, e_hi)
-        # No disk in the bracket: keep the order (the check reports the place).
+        # The window is whole edges, so the best contact may lie just outside the bracket: then
+        # the true image does not advance monotonically (or sits on the bracket's end). Clipping
+        # it would move the contact off its disk, so beyond round-off it counts as no disk found
+        # here; the check reports the sample and the repair searches it without a window.
+        outside = (pp < plo - tol.ROUNDOFF * laps) | (pp > phi + tol.ROUNDOFF * laps)
+        rr = np.where(outside, np.inf, rr)
         pp = np.where(np.isfinite(rr), np.clip(pp, plo, phi), plo)
         r[mid], pos[mid] = rr, pp
         chain, lo, hi, plo, phi = (
@@ -443,7 +448,7 @@ def _repair(one_way, src, dst, eps):
     restores them, so reports and the composite ball-morph see only the real trouble.
     """
     idx = np.flatnonzero(one_way["bad"])
-    if len(idx) == 0:
+    if len(idx) == 0 or len(idx) > tol.REPAIR_LIMIT:
         return
     chain = one_way["chain"][idx]
     x, n = one_way["src"][idx], one_way["n_src"][idx]
@@ -907,9 +912,6 @@ def ball_map(P, Q, closed=False, spacing=None, sampling="symmetric", check=True)
     check_option("sampling", sampling, SAMPLINGS)
     P = as_curve(P, "P", closed)
     Q = as_curve(Q, "Q", closed)
-    if spacing is None:
-        spacing = default_spacing(P, Q, closed=closed)
-    elif not (np.isfinite(spacing) and spacing > 0):
-        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
+    spacing = resolve_spacing(P, Q, closed, spacing)
     setup = orient_pair(P, Q, closed)
     return ball_maps([setup], [spacing], sampling, check)[0]

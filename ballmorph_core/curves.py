@@ -13,6 +13,7 @@ from .ragged import catmull_rom
 
 __all__ = [
     "as_curve",
+    "coarsen",
     "scale_of",
     "edges",
     "edge_lengths",
@@ -31,6 +32,7 @@ __all__ = [
     "turning_angles",
     "points_in_loop",
     "reverse",
+    "resolve_spacing",
     "subcurve",
     "as_complex",
     "from_complex",
@@ -76,6 +78,11 @@ def as_curve(points, name="P", closed=False, min_points=2):
         raise InvalidCurveError(f"{name}: point {bad} is not finite ({arr[bad].tolist()})")
     if len(arr) == 0:
         raise InvalidCurveError(f"{name}: the curve has no points")
+    if np.abs(arr).max() > tol.MAX_COORDINATE:
+        raise InvalidCurveError(
+            f"{name}: coordinates up to {np.abs(arr).max():.3g} are too large (at most {tol.MAX_COORDINATE:g}): "
+            "scale the drawing down"
+        )
     scale = max(float(np.ptp(arr, axis=0).max()), 1e-300)
     step = np.linalg.norm(np.diff(arr, axis=0), axis=1)
     keep = np.concatenate([[True], step > tol.COINCIDENT * scale])
@@ -174,6 +181,46 @@ def point_at(curve, closed, s, cum=None):
     edge, frac = locate(curve, closed, s, cum)
     ev = edges(curve, closed)
     return curve[edge] + frac[:, None] * ev[edge]
+
+
+def resolve_spacing(P, Q, closed, spacing):
+    """The sample spacing for a pair: ``spacing`` checked, or :func:`default_spacing` if None.
+
+    Raises
+    ------
+    InvalidCurveError
+        If ``spacing`` is not a positive finite number, or would put more than
+        ``tolerances.MAX_SAMPLES`` samples along either curve.
+    """
+    if spacing is None:
+        return default_spacing(P, Q, closed=closed)
+    try:
+        value = float(spacing)
+    except (TypeError, ValueError):
+        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}") from None
+    if not (np.isfinite(value) and value > 0):
+        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
+    longest = max(curve_length(P, closed), curve_length(Q, closed))
+    if longest / value > tol.MAX_SAMPLES:
+        raise InvalidCurveError(
+            f"spacing={value:.3g} would put {longest / value:.3g} samples along a curve of length {longest:.3g} "
+            f"(at most {tol.MAX_SAMPLES}): use a larger spacing"
+        )
+    return value
+
+
+def coarsen(curve, closed, spacing):
+    """A curve drawn far more densely than ``spacing``, resampled to ``COARSEN_RATIO`` points per
+    spacing on its spline (others are returned unchanged), shape (M, 2).
+
+    A 100,000-point stroke morphed at a spacing of 1/2000 of its length gains nothing from its
+    extra points but the cost of every intersection test on them.
+    """
+    length = curve_length(curve, closed)
+    wanted = int(np.ceil(tol.COARSEN_RATIO * length / spacing)) + 1
+    if len(curve) <= 2 * wanted:
+        return curve
+    return resample(curve, closed, count=wanted)
 
 
 def default_spacing(*curves, closed=False):

@@ -407,34 +407,44 @@ def inbetween(
     check_option("matching", matching, MATCHINGS)
     check_option("unmatched", unmatched, UNMATCHED)
     for name, key in (("key_a", key_a), ("key_b", key_b)):
-        if not np.all(np.isfinite(key.positions)):
-            points = np.flatnonzero(~np.all(np.isfinite(key.positions), axis=1))
-            bad = np.unique(np.searchsorted(key.offsets, points, "right") - 1).tolist()
-            raise InvalidCurveError(
-                f"{name}: stroke(s) {bad[:10]} have NaN or infinite coordinates: redraw or delete them"
-            )
-    times = np.asarray(times, dtype=np.float64).reshape(-1)
+        _check_key(name, key)
+    try:
+        times = np.asarray(times, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise InvalidCurveError(f"times: must be numbers in [0, 1], got {times!r}") from None
     if not np.all(np.isfinite(times)):
         raise InvalidCurveError("times: must be finite numbers in [0, 1]")
+    times = np.clip(times, 0.0, 1.0)  # a morph has nothing before its first key or after its last
+    if spacing is not None:
+        try:
+            spacing = float(spacing)
+        except (TypeError, ValueError):
+            raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}") from None
+        if not (np.isfinite(spacing) and spacing > 0):
+            raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
     plane = fit_plane(np.concatenate([key_a.positions, key_b.positions]))
     result = InbetweenResult(frames=[])
     ka, kb = _Key(key_a, plane), _Key(key_b, plane)
+    # Strokes without points have nothing to morph or show: leave them out, and say so.
+    live_a, live_b = np.flatnonzero(key_a.sizes > 0), np.flatnonzero(key_b.sizes > 0)
+    for name, key in (("first", key_a), ("second", key_b)):
+        for i in np.flatnonzero(key.sizes == 0):
+            result.messages.append(Message("INFO", f"stroke {i} of the {name} key has no points: left out"))
     pairing = match_strokes(
-        [ka.rg.curve(i) for i in range(len(key_a))],
-        [kb.rg.curve(j) for j in range(len(key_b))],
-        ka.rg.closed,
-        kb.rg.closed,
+        [ka.rg.curve(i) for i in live_a],
+        [kb.rg.curve(j) for j in live_b],
+        ka.rg.closed[live_a],
+        kb.rg.closed[live_b],
         mode=matching,
     )
+    pairing.pairs = [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
+    pairing.unmatched_a = [int(live_a[i]) for i in pairing.unmatched_a]
+    pairing.unmatched_b = [int(live_b[j]) for j in pairing.unmatched_b]
     if pairing.method != "index" or pairing.unmatched_a or pairing.unmatched_b:
         result.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
     unmatched_a, unmatched_b = list(pairing.unmatched_a), list(pairing.unmatched_b)
     pairs = []
     for i, j, flip in pairing.pairs:
-        if key_a.sizes[i] == 0 or key_b.sizes[j] == 0:  # an empty stroke has nothing to morph
-            unmatched_a += [i] if key_a.sizes[i] else []
-            unmatched_b += [j] if key_b.sizes[j] else []
-            continue
         pairs.append((ka.stroke(i), kb.stroke(j, flip), flip))
     fast = _fast_path(pairs, times, method, carrier, spacing)
     parts = []  # per pair: frames (T, K, 2), fractions on A and B, cyclic, the two strokes
@@ -452,6 +462,23 @@ def inbetween(
     result.frames = _assemble(parts, held, ka, kb, times, plane, unmatched)
     _check_planarity(result, key_a, key_b, plane)
     return result
+
+
+def _check_key(name, key):
+    """Reject what cannot be a drawing, naming the key, the attribute and the strokes."""
+    if not isinstance(key, StrokeSet):
+        raise InvalidCurveError(f"{name}: expected a StrokeSet, got {type(key).__name__}")
+    for attr, values in (
+        ("positions", key.positions),
+        ("radius", key.radius),
+        ("opacity", key.opacity),
+        ("vertex_color", key.vertex_color),
+    ):
+        if values.size and not np.all(np.isfinite(values)):
+            points = np.flatnonzero(~np.all(np.isfinite(values.reshape(len(values), -1)), axis=1))
+            bad = np.unique(np.searchsorted(key.offsets, points, "right") - 1).tolist()
+            what = "coordinates" if attr == "positions" else attr
+            raise InvalidCurveError(f"{name}: stroke(s) {bad[:10]} have NaN or infinite {what}: redraw or delete them")
 
 
 def _fast_path(pairs, times, method, carrier, spacing):

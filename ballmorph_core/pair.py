@@ -20,8 +20,9 @@ import numpy as np
 
 from . import tolerances as tol
 from .compat import classify, shared_endpoints
-from .curves import curve_length, default_spacing, orient_clockwise, reverse, scale_of, signed_area
+from .curves import coarsen, curve_length, orient_clockwise, resolve_spacing, reverse, scale_of, signed_area
 from .errors import BallMorphError, IncompatibleCurvesError
+from .intersections import is_simple
 from .morphs import make_morph
 from .morphs.base import Morph, PathMorph
 from .morphs.combine import CarriedMorph, PiecewiseMorph
@@ -125,7 +126,11 @@ def _shape_morph(P, Q, closed, method, spacing, notes):
     except IncompatibleCurvesError as exc:
         pieces, first_error = [], str(exc)
     if not pieces:
-        notes.append(f"curves are {config!r} and cannot be split into lenses: {FALLBACK} used")
+        if not (is_simple(P, closed) and is_simple(Q, closed)):
+            which = "the first key's" if not is_simple(P, closed) else "the second key's"
+            notes.append(f"{which} stroke crosses itself, which no ball-morph can follow: {FALLBACK} used")
+        else:
+            notes.append(f"curves are {config!r} and cannot be split into lenses: {FALLBACK} used")
         return make_morph(P, Q, FALLBACK, closed=closed, spacing=spacing)
     morphs = []
     for k, piece in enumerate(pieces):
@@ -189,9 +194,9 @@ def morph_pair(P, Q, closed, method="circular-ball", carrier="SIMILARITY", spaci
     check_option("carrier", carrier, CARRIERS)
     notes = []
     scale = scale_of(P, Q)
-    if spacing is None:
-        # One spacing for the whole pair (its lenses and fallbacks), from the curves as given.
-        spacing = default_spacing(P, Q, closed=closed)
+    # One spacing for the whole pair (its lenses and fallbacks), from the curves as given.
+    spacing = resolve_spacing(P, Q, closed, spacing)
+    P, Q = coarsen(P, closed, spacing), coarsen(Q, closed, spacing)
     if carrier == "NONE" or method not in BALL_METHODS:
         morph = _shape_morph(P, Q, closed, method, spacing, notes)
         return PairOutcome(morph, notes, morph.method)

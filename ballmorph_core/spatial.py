@@ -49,6 +49,16 @@ def _cells(boxes, origin, cell, ny):
     return cx * ny + cy, owner
 
 
+def _typical_size(boxes):
+    return float(np.median(np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1])))
+
+
+def _cell_entries(boxes, origin, cell):
+    lo = np.floor((boxes[:, :2] - origin) / cell)
+    hi = np.floor((boxes[:, 2:] - origin) / cell)
+    return float(np.prod(hi - lo + 1, axis=1).sum())
+
+
 def box_pairs(boxes_a, boxes_b=None, cell=None):
     """All pairs of overlapping axis-aligned boxes.
 
@@ -76,10 +86,15 @@ def box_pairs(boxes_a, boxes_b=None, cell=None):
     origin = both[:, :2].min(axis=0)
     extent = float(max((both[:, 2:] - origin).max(), 1e-300))
     if cell is None:
-        sizes = np.maximum(both[:, 2] - both[:, 0], both[:, 3] - both[:, 1])
-        cell = float(np.median(sizes))
-    # Bound the grid so a few huge boxes cannot explode the cell count.
+        # The larger of the two sets' typical box sizes: tiny boxes (points) against long ones
+        # (a coarse polygon's edges) must not make every long box span millions of cells.
+        cell = max(_typical_size(a), _typical_size(b))
     cell = max(cell, extent / 4096.0, 1e-300)
+    # Bound the number of (box, cell) entries: grow the cells while long boxes would fill too many.
+    for _ in range(16):
+        if _cell_entries(a, origin, cell) + _cell_entries(b, origin, cell) <= 16 * (len(a) + len(b)) + 1024:
+            break
+        cell *= 2.0
     ny = int(extent / cell) + 2
     key_a, own_a = _cells(a, origin, cell, ny)
     key_b, own_b = (key_a, own_a) if same else _cells(b, origin, cell, ny)

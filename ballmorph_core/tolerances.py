@@ -169,3 +169,20 @@ PLANE_AXIS = 1e-6
 #: Most (sample, edge) candidate pairs evaluated at once by the ball-map's searches: bounds
 #: their temporary arrays (about 0.2 KB per pair) without slowing them down noticeably.
 CANDIDATE_BUDGET = 500_000
+
+#: Coordinates beyond this magnitude are rejected: their squares (lengths, disk radii)
+#: would overflow float64.
+MAX_COORDINATE = 1e150
+
+#: Most samples a spacing may put along one curve; a smaller spacing is rejected rather than
+#: exhausting memory.
+MAX_SAMPLES = 1_000_000
+
+#: The ball-map redoes at most this many failed samples per direction with an unwindowed
+#: search (each costs a pass over the whole other curve); a pair with more failures is plainly
+#: not b-compatible and is reported as it is.
+REPAIR_LIMIT = 2048
+
+#: Input curves with more than twice this many points per sample spacing are resampled to it
+#: before morphing (see curves.coarsen).
+COARSEN_RATIO = 4.0

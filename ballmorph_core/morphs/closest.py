@@ -17,13 +17,12 @@ import numpy as np
 from .. import tolerances as tol
 from ..ballmap import SAMPLINGS
 from ..compat import orient_pair
-from ..curves import as_curve, curve_length, densify, edges, resample, reverse, scale_of
+from ..curves import as_curve, curve_length, densify, edges, resample, resolve_spacing, reverse, scale_of
 from ..errors import IncompatibleCurvesError
 from ..options import check_option
 from ..spatial import PointTree, ragged_arange
 from ..trajectories import LinearPaths
 from .base import PathMorph, register
-from .linear import resolve_spacing
 
 #: Candidate (query, vertex) pairs held at once by :meth:`Projector.project` (memory bound), and
 #: the fewest queries per chunk.

@@ -27,7 +27,7 @@ import numpy as np
 from .. import tolerances as tol
 from ..ballmap import dense_maps, disk_between
 from ..compat import orient_pair
-from ..curves import curve_length, default_spacing, subcurve
+from ..curves import curve_length, resolve_spacing, subcurve
 from ..errors import BallMorphError, IncompatibleCurvesError
 from ..splitting import distances_to_polyline
 from ..trajectories import SampledPaths
@@ -313,8 +313,7 @@ def build_composite(P, Q, closed, spacing, sampling, kind="circular"):
     """Composite ball-morph (see the module docstring). ``kind`` is the path of every stage's
     ball-morph ('circular', 'linear', 'parabolic', 'hat', 'tangent')."""
     setup = orient_pair(P, Q, closed)
-    if spacing is None:
-        spacing = default_spacing(P, Q, closed=closed)
+    spacing = resolve_spacing(P, Q, closed, spacing)
     method = f"{kind}-ball"
     if setup.coincident:
         return build(P, Q, method, closed, spacing, sampling)

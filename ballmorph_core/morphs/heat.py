@@ -36,14 +36,13 @@ import numpy as np
 from .. import tolerances as tol
 from ..ballmap import SAMPLINGS
 from ..compat import orient_pair
-from ..curves import resample, reverse
+from ..curves import resample, resolve_spacing, reverse
 from ..errors import InvalidCurveError
 from ..options import check_option
 from ..spatial import ragged_arange
 from ..trajectories import LevelPaths
 from .base import PathMorph, register
 from .closest import Projector
-from .linear import resolve_spacing
 
 __all__ = ["HeatField", "HeatMorph", "conjugate_gradient"]
 

@@ -9,13 +9,12 @@ import numpy as np
 
 from ..ballmap import SAMPLINGS
 from ..compat import shared_endpoints
-from ..curves import curve_length, default_spacing, resample, signed_area
-from ..errors import InvalidCurveError
+from ..curves import curve_length, resample, resolve_spacing, signed_area
 from ..options import check_option
 from ..trajectories import LinearPaths
 from .base import PathMorph, register
 
-__all__ = ["uniform_correspondence", "best_cyclic_alignment", "sample_count", "resolve_spacing"]
+__all__ = ["uniform_correspondence", "best_cyclic_alignment", "sample_count"]
 
 
 def best_cyclic_alignment(p, q, reverse=None):
@@ -92,16 +91,6 @@ def uniform_correspondence(P, Q, closed, count, match_orientation=False):
     if rev:
         idx = (-idx) % k
     return p, q[idx], u, u[idx]
-
-
-def resolve_spacing(P, Q, closed, spacing):
-    """The sample spacing a morph uses: ``spacing`` if it is valid, else the pair's default
-    (:func:`~ballmorph_core.curves.default_spacing`) when it is None (float)."""
-    if spacing is None:
-        return default_spacing(P, Q, closed=closed)
-    if not (np.isfinite(spacing) and spacing > 0):
-        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
-    return float(spacing)
 
 
 def sample_count(P, Q, closed, spacing, sampling):
