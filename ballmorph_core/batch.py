@@ -167,7 +167,8 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
     scale = np.maximum(_bbox_scale(R), _bbox_scale(Q))
     scale = np.where(scale > 0, scale, 1.0)
     eps = tol.COINCIDENT * scale
-    h = _default_spacing(P, Q) if spacing is None else np.full(n, float(spacing))
+    # Sample where the morph happens: between the registered P (Q's size) and Q.
+    h = _default_spacing(R, Q) if spacing is None else np.full(n, float(spacing))
     # Registered curves that coincide with their target: the carrier alone is the morph.
     coincident = residual <= tol.OVERLAP * scale
     pair, s_p, s_q = _crossings(R, Q, scale, ~coincident)

@@ -20,7 +20,16 @@ import numpy as np
 
 from . import tolerances as tol
 from .compat import classify, shared_endpoints
-from .curves import coarsen, curve_length, orient_clockwise, resolve_spacing, reverse, scale_of, signed_area
+from .curves import (
+    coarsen,
+    curve_length,
+    default_spacing,
+    orient_clockwise,
+    resolve_spacing,
+    reverse,
+    scale_of,
+    signed_area,
+)
 from .errors import BallMorphError, IncompatibleCurvesError
 from .intersections import is_simple
 from .morphs import make_morph
@@ -194,17 +203,23 @@ def morph_pair(P, Q, closed, method="circular-ball", carrier="SIMILARITY", spaci
     check_option("carrier", carrier, CARRIERS)
     notes = []
     scale = scale_of(P, Q)
-    # One spacing for the whole pair (its lenses and fallbacks), from the curves as given.
-    spacing = resolve_spacing(P, Q, closed, spacing)
-    P, Q = coarsen(P, closed, spacing), coarsen(Q, closed, spacing)
-    if carrier == "NONE" or method not in BALL_METHODS:
-        morph = _shape_morph(P, Q, closed, method, spacing, notes)
-        return PairOutcome(morph, notes, morph.method)
-    sim = registration(P, Q, closed)
-    if sim.is_identity(scale, tol.IDENTITY):
-        morph = _shape_morph(P, Q, closed, method, spacing, notes)
-        return PairOutcome(morph, notes, morph.method)
-    registered = sim(P)
+    if spacing is not None:
+        spacing = resolve_spacing(P, Q, closed, spacing)
+    # Curves drawn far more densely than they will be sampled are resampled first, each at its
+    # own default spacing (the keys may differ in size a lot).
+    P = coarsen(P, closed, spacing or default_spacing(P, closed=closed))
+    Q = coarsen(Q, closed, spacing or default_spacing(Q, closed=closed))
+    sim = None
+    if carrier != "NONE" and method in BALL_METHODS:
+        sim = registration(P, Q, closed)
+        if sim.is_identity(scale, tol.IDENTITY):
+            sim = None
+    registered = P if sim is None else sim(P)
+    # One spacing for the whole pair (its lenses and fallbacks), from the curves that are
+    # actually morphed: the registered P has Q's size.
+    spacing = resolve_spacing(registered, Q, closed, spacing)
     inner = _shape_morph(registered, Q, closed, method, spacing, notes)
+    if sim is None:
+        return PairOutcome(inner, notes, inner.method)
     morph = CarriedMorph(inner, Carrier(sim, carrier, centre_of(Q, closed)))
     return PairOutcome(morph, notes, f"{inner.method} on a {carrier.lower()} carrier")

@@ -28,7 +28,7 @@ from .. import tolerances as tol
 from ..ballmap import dense_maps, disk_between
 from ..compat import orient_pair
 from ..curves import curve_length, resolve_spacing, subcurve
-from ..errors import BallMorphError, IncompatibleCurvesError
+from ..errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from ..splitting import distances_to_polyline
 from ..trajectories import SampledPaths
 from .ball import input_fractions
@@ -171,7 +171,8 @@ def bridges(maps, side, window=16):
             [wb],
             maps.eps,
         )
-        if not np.isfinite(r[0]) or r[0] <= 0:
+        # A bridging disk larger than both curves together bridges nothing drawable.
+        if not np.isfinite(r[0]) or r[0] <= 0 or r[0] > own.length + other.length:
             raise IncompatibleCurvesError(f"composite ball-morph: no disk bridges {side} near s={s_a:.4g}")
         centre = x[0] + r[0] * nrm[0]
         dist, s_lips = distances_to_polyline(np.stack([qa[0], qb[0]]), own.pts, closed, 2 * maps.spacing)
@@ -241,7 +242,10 @@ def _extension(A, B, kind, spacing, from_b):
             return build(A, B, method, False, spacing, opts.get("sampling", "symmetric"))
         except BallMorphError:
             continue
-    return build(A, B, "linear-interpolation", False, spacing, "symmetric")
+    try:
+        return build(A, B, "linear-interpolation", False, spacing, "symmetric")
+    except InvalidCurveError as exc:  # a stretch or arc collapsed to a point
+        raise IncompatibleCurvesError(f"composite ball-morph: degenerate bridge ({exc})") from None
 
 
 def _unwrap(u):
@@ -403,6 +407,8 @@ def build_composite(P, Q, closed, spacing, sampling, kind="circular"):
     if setup.reversed_p:
         flip = np.r_[0, np.arange(len(full) - 1, 0, -1)] if closed else np.arange(len(full))[::-1]
         full, u_p, u_q = full[flip], u_p[flip], u_q[flip]
+    if len(full) < (3 if closed else 2):
+        raise IncompatibleCurvesError("composite ball-morph: the chained correspondence kept too few samples")
     morph = PathMorph("composite-ball", closed, SampledPaths(full), u_p, u_q)
     morph.stages = {"P'": P1, "Q'": Q1, "bridges_p": bridges_p, "bridges_q": bridges_q}
     return morph
