@@ -163,6 +163,41 @@ class PointTree:
         boxes[nonempty, 3] = np.maximum.reduceat(pts[:, 1], idx)
         return boxes
 
+    def nearest_d2(self, x):
+        """Squared distance from each query point to its nearest point of the tree, shape (K,).
+
+        All queries walk the tree level by level at once; a node is dropped when its box is
+        farther than the nearest *farthest corner* of the query's surviving nodes (a box holding
+        points has one within that distance), so only nodes near the minimum reach the leaves,
+        whose points are then measured.
+        """
+        x = np.asarray(x, dtype=np.float64).reshape(-1, 2)
+        k = len(x)
+        q = np.arange(k)
+        node = np.zeros(k, dtype=np.int64)
+        for depth, (_, _, boxes) in enumerate(self.levels):
+            bx, c = boxes[node], x[q]
+            near_x = np.maximum(np.maximum(bx[:, 0] - c[:, 0], c[:, 0] - bx[:, 2]), 0.0)
+            near_y = np.maximum(np.maximum(bx[:, 1] - c[:, 1], c[:, 1] - bx[:, 3]), 0.0)
+            far_x = np.maximum(np.abs(bx[:, 0] - c[:, 0]), np.abs(bx[:, 2] - c[:, 0]))
+            far_y = np.maximum(np.abs(bx[:, 1] - c[:, 1]), np.abs(bx[:, 3] - c[:, 1]))
+            empty = np.isnan(bx[:, 0])
+            near = np.where(empty, np.inf, near_x * near_x + near_y * near_y)
+            far = np.where(empty, np.inf, far_x * far_x + far_y * far_y)
+            bound = np.full(k, np.inf)
+            np.minimum.at(bound, q, far)
+            keep = near <= bound[q]
+            q, node = q[keep], node[keep]
+            if depth + 1 < len(self.levels):
+                q = np.repeat(q, 2)
+                node = np.stack([2 * node, 2 * node + 1], axis=1).ravel()
+        starts, ends, _ = self.levels[-1]
+        owner, local = ragged_arange(ends[node] - starts[node])
+        pts = self.perm[starts[node][owner] + local]
+        best = np.full(k, np.inf)
+        np.minimum.at(best, q[owner], np.sum(np.square(self.points[pts] - x[q[owner]]), axis=1))
+        return best
+
     def within(self, centres, radii, first_only=False):
         """Points strictly inside disks.
 

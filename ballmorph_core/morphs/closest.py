@@ -89,39 +89,8 @@ class Projector:
         self._tree = PointTree(self.dense)
 
     def _nearest_vertex_d2(self, x):
-        """Squared distance from each query to its nearest dense vertex, shape (K,).
-
-        The tree is walked level by level for all queries at once; a node is dropped when its
-        box is farther than the nearest *farthest corner* of the query's surviving nodes (a
-        box holding points has one within that distance), so only nodes near the minimum
-        survive to the leaves, whose points are then measured.
-        """
-        tree = self._tree
-        k = len(x)
-        q = np.arange(k)
-        node = np.zeros(k, dtype=np.int64)
-        for depth, (_, _, boxes) in enumerate(tree.levels):
-            bx, c = boxes[node], x[q]
-            near_x = np.maximum(np.maximum(bx[:, 0] - c[:, 0], c[:, 0] - bx[:, 2]), 0.0)
-            near_y = np.maximum(np.maximum(bx[:, 1] - c[:, 1], c[:, 1] - bx[:, 3]), 0.0)
-            far_x = np.maximum(np.abs(bx[:, 0] - c[:, 0]), np.abs(bx[:, 2] - c[:, 0]))
-            far_y = np.maximum(np.abs(bx[:, 1] - c[:, 1]), np.abs(bx[:, 3] - c[:, 1]))
-            empty = np.isnan(bx[:, 0])
-            near = np.where(empty, np.inf, near_x * near_x + near_y * near_y)
-            far = np.where(empty, np.inf, far_x * far_x + far_y * far_y)
-            bound = np.full(k, np.inf)
-            np.minimum.at(bound, q, far)
-            keep = near <= bound[q]
-            q, node = q[keep], node[keep]
-            if depth + 1 < len(tree.levels):
-                q = np.repeat(q, 2)
-                node = np.stack([2 * node, 2 * node + 1], axis=1).ravel()
-        starts, ends, _ = tree.levels[-1]
-        owner, local = ragged_arange(ends[node] - starts[node])
-        pts = tree.perm[starts[node][owner] + local]
-        best = np.full(k, np.inf)
-        np.minimum.at(best, q[owner], np.sum(np.square(tree.points[pts] - x[q[owner]]), axis=1))
-        return best
+        """Squared distance from each query to its nearest dense vertex, shape (K,)."""
+        return self._tree.nearest_d2(x)
 
     def project(self, points):
         """Closest points on the dense polyline.
