@@ -12,8 +12,8 @@ echo "== lint (ruff)"
 "$bin/ruff" check .
 "$bin/ruff" format --check .
 
-echo "== core tests (plain CPython, no bpy imported)"
-timeout 1200 "$py" -m pytest -q tests/core
+echo "== core tests (plain CPython, no bpy imported), with the fuzz target's short profile"
+timeout 1200 "$py" -m pytest -q tests/core tests/fuzz
 
 echo "== extension: validate and build with Blender's own tool"
 tools/build_extension.sh
