@@ -7,16 +7,18 @@ This package never imports bpy: it runs in plain CPython and vendored inside the
 from .ballmap import Correspondence, ball_map
 from .compat import CompatibilityReport, classify
 from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
-from .inbetween import InbetweenResult, StrokeSet, inbetween
+from .inbetween import InbetweenPlan, InbetweenResult, StrokeSet, inbetween, plan_inbetween
 from .measures import measure
 from .morphs import METHODS, Morph, make_morph
 from .trajectories import BallPaths, midpoint_locus
 
 __all__ = [
     "METHODS",
+    "InbetweenPlan",
     "InbetweenResult",
     "StrokeSet",
     "inbetween",
+    "plan_inbetween",
     "BallPaths",
     "Morph",
     "make_morph",

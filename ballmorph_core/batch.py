@@ -9,6 +9,11 @@ of every pair, one path evaluation per frame) and hands back the pairs that need
 (tangled crossings, incompatible lenses, a single touching point, non-ball methods) so the
 caller sends them through :func:`~ballmorph_core.pair.morph_pair`. Both roads give the same
 in-betweens; the tests check that they agree.
+
+Everything but the last step is independent of the in-between times: :func:`plan_pairs`
+computes it once and returns a :class:`BatchPlan`, whose :meth:`BatchPlan.frames` evaluates the
+paths and the carrier at any times (the operator keeps plans so that a redo with another frame
+count or easing only re-evaluates them).
 """
 
 from dataclasses import dataclass, field
@@ -25,7 +30,7 @@ from .registration import carrier_at, similarities
 from .spatial import box_pairs
 from .trajectories import BallPaths
 
-__all__ = ["BatchResult", "morph_pairs"]
+__all__ = ["BatchPlan", "BatchResult", "plan_pairs", "morph_pairs"]
 
 
 @dataclass
@@ -69,6 +74,71 @@ class BatchResult:
         """``(frames (T, K, 2), u_p, u_q)`` of pair ``c``."""
         sl = slice(self.offsets[c], self.offsets[c + 1])
         return self.frames[:, sl], self.u_p[sl], self.u_q[sl]
+
+
+@dataclass
+class BatchPlan:
+    """The time-independent part of the fast path: correspondences, paths and carriers.
+
+    Attributes
+    ----------
+    done, offsets, u_p, u_q, used, notes
+        As in :class:`BatchResult`.
+    paths : BallPaths or None
+        One path per sample (K samples), None when no pair was done.
+    pair_of : ndarray of int, shape (K,)
+        The pair of each sample.
+    a, b : ndarray of complex, shape (C,)
+        Each pair's registration ``z -> a z + b`` of P onto Q.
+    moving : ndarray of bool, shape (C,)
+        Pairs whose carrier is not the identity.
+    centre : ndarray of complex, shape (C,)
+        Centre of each Q (the scaling centre of a 'RIGID' carrier).
+    carrier : {'SIMILARITY', 'RIGID', 'NONE'}
+    """
+
+    done: np.ndarray
+    offsets: np.ndarray
+    u_p: np.ndarray
+    u_q: np.ndarray
+    used: list
+    notes: list
+    paths: object = None
+    pair_of: np.ndarray = None
+    a: np.ndarray = None
+    b: np.ndarray = None
+    moving: np.ndarray = None
+    centre: np.ndarray = None
+    carrier: str = "SIMILARITY"
+
+    @classmethod
+    def empty(cls, n):
+        nothing = BatchResult.empty(n, 0)
+        return cls(nothing.done, nothing.offsets, nothing.u_p, nothing.u_q, nothing.used, nothing.notes)
+
+    def frames(self, times):
+        """Every sample at every time.
+
+        Parameters
+        ----------
+        times : array_like, shape (T,)
+
+        Returns
+        -------
+        BatchResult
+        """
+        times = np.asarray(times, dtype=np.float64).reshape(-1)
+        frames = np.empty((len(times), len(self.u_p), 2))
+        # Carrier: C_t = S^-(1-t), undoing the registration progressively (identity if none).
+        kind = self.carrier if self.carrier != "NONE" else "SIMILARITY"
+        for ti, t in enumerate(times if self.paths is not None else ()):
+            z = self.paths.at(t)
+            if self.moving.any():
+                ca, cb = carrier_at(self.a, self.b, kind, self.centre, t)
+                ca, cb = np.where(self.moving, ca, 1.0), np.where(self.moving, cb, 0.0)
+                z = from_complex(ca[self.pair_of] * as_complex(z) + cb[self.pair_of])
+            frames[ti] = z
+        return BatchResult(self.done, self.offsets, frames, self.u_p, self.u_q, self.used, self.notes)
 
 
 def _bbox_scale(rg):
@@ -133,14 +203,31 @@ def _inside(points, curves, owner):
 
 
 def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=None):
-    """Morph many stroke pairs at once (see the module docstring).
+    """Morph many stroke pairs at once: ``plan_pairs(...).frames(times)``.
+
+    Parameters
+    ----------
+    pairs : list of tuple
+        See :func:`plan_pairs`.
+    times : ndarray, shape (T,)
+    kind, carrier, spacing
+        See :func:`plan_pairs`.
+
+    Returns
+    -------
+    BatchResult
+    """
+    return plan_pairs(pairs, kind, carrier, spacing).frames(times)
+
+
+def plan_pairs(pairs, kind="circular", carrier="SIMILARITY", spacing=None):
+    """Correspondences, paths and carriers of many stroke pairs at once (see the module docstring).
 
     Parameters
     ----------
     pairs : list of tuple
         ``(P, Q, closed)``: validated curves (see :func:`~ballmorph_core.curves.as_curve`),
         Q running the same way as P.
-    times : ndarray, shape (T,)
     kind : str
         Ball-morph path: 'circular', 'linear', 'parabolic', 'hat' or 'tangent'.
     carrier : {'SIMILARITY', 'RIGID', 'NONE'}
@@ -150,11 +237,10 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
 
     Returns
     -------
-    BatchResult
+    BatchPlan
     """
     if not pairs:
-        return BatchResult.empty(0, len(times))
-    times = np.asarray(times, dtype=np.float64)
+        return BatchPlan.empty(0)
     closed = np.array([c for _, _, c in pairs], dtype=bool)
     P = Ragged.from_list([p for p, _, _ in pairs], closed)
     Q = Ragged.from_list([q for _, q, _ in pairs], closed)
@@ -262,7 +348,7 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
         chain_pair.append(c)
         range_p.append((0.0, R.length[c]))
         range_q.append((0.0, Q.length[c]))
-    result = BatchResult.empty(n, len(times))
+    result = BatchPlan.empty(n)
     if not setups:
         return result
     chain_pair = np.asarray(chain_pair, dtype=np.int64)
@@ -310,18 +396,7 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
     cyc = closed[pair_of]
     u_p = np.where(cyc, np.mod(u_p, 1.0), np.clip(u_p, 0.0, 1.0))
     u_q = np.where(cyc, np.mod(u_q, 1.0), np.clip(u_q, 0.0, 1.0))
-    # Carrier: C_t = S^-(1-t), undoing the registration progressively (identity if none).
     moving = (carrier != "NONE") & ~((np.abs(a - 1) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale))
-    centres = Q.centroids()
-    centre = as_complex(centres)
-    frames = np.empty((len(times), len(pair_of), 2))
-    for ti, t in enumerate(times):
-        z = paths.at(t)
-        if moving.any():
-            ca, cb = carrier_at(a, b, carrier if carrier != "NONE" else "SIMILARITY", centre, t)
-            ca, cb = np.where(moving, ca, 1.0), np.where(moving, cb, 0.0)
-            z = from_complex(ca[pair_of] * as_complex(z) + cb[pair_of])
-        frames[ti] = z
     done = np.zeros(n, dtype=bool)
     done[chain_pair] = True
     lenses = np.bincount(chain_pair, minlength=n)
@@ -331,7 +406,9 @@ def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=Non
             result.notes[c] = [f"split at {lenses[c]} crossing/overlap pieces"]
     result.done = done
     result.offsets = np.concatenate([[0], np.cumsum(np.bincount(pair_of, minlength=n))])
-    result.frames, result.u_p, result.u_q = frames, u_p, u_q
+    result.u_p, result.u_q = u_p, u_q
+    result.paths, result.pair_of, result.a, result.b = paths, pair_of, a, b
+    result.moving, result.centre, result.carrier = moving, as_complex(Q.centroids()), carrier
     return result
 
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import tolerances as tol
-from .batch import BatchResult, morph_pairs
+from .batch import BatchResult, plan_pairs
 from .curves import as_curve
 from .errors import InvalidCurveError
 from .matching import MODES as MATCHINGS
@@ -32,7 +32,9 @@ __all__ = [
     "Message",
     "PairReport",
     "InbetweenResult",
+    "InbetweenPlan",
     "inbetween",
+    "plan_inbetween",
     "FALLBACK_METHOD",
     "CARRIERS",
     "MATCHINGS",
@@ -269,6 +271,7 @@ class _Key:
         order = np.argsort(x, kind="stable")
         self._x = x[order]
         self._v = np.concatenate([self.values, self.values[closing]])[order]
+        self._last = None  # (stroke, u, values): a plan evaluated again asks for the same
 
     def stroke(self, i, flip=False):
         """Stroke ``i`` for morphing (``_Stroke``), reversed if ``flip``."""
@@ -283,8 +286,13 @@ class _Key:
 
     def sample(self, stroke, u):
         """Per-point values at fractions ``u`` of given strokes (vectorised), shape (K, 7)."""
+        last = self._last
+        if last is not None and np.array_equal(stroke, last[0]) and np.array_equal(u, last[1]):
+            return last[2]
         x = np.clip(u, 0.0, 1.0) + 2.0 * stroke
-        return np.column_stack([np.interp(x, self._x, self._v[:, c]) for c in range(self._v.shape[1])])
+        values = np.column_stack([np.interp(x, self._x, self._v[:, c]) for c in range(self._v.shape[1])])
+        self._last = (stroke, u, values)
+        return values
 
 
 @dataclass
@@ -319,38 +327,69 @@ def _dot_frames(a, b, times):
     return np.stack([(1 - t) * xa + t * xb for t in times]), u, u
 
 
-def _pair_frames(a, b, times, method, carrier, spacing):
-    """Frames, attribute fractions and report of one stroke pair; never raises BallMorphError.
+class _PairPlan:
+    """The general road for one stroke pair: its morph, built once, evaluated at any times.
 
-    Returns (frames, u_a, u_b, closed, used, notes).
+    Never raises :class:`BallMorphError`: a pair the requested morph cannot handle (or whose
+    frames fail or are not finite at the requested times) falls back to
+    :data:`FALLBACK_METHOD`, then to straight point motion, and says why.
     """
-    closed = a.closed and b.closed
-    notes = []
-    if a.closed != b.closed:
-        notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
-    try:
-        P = as_curve(a.xy, "P", closed)
-        Q = as_curve(b.xy, "Q", closed)
-    except InvalidCurveError as exc:
-        frames, ua, ub = _dot_frames(a, b, times)
-        return frames, ua, ub, False, "straight point motion", [f"too few distinct points ({exc})"]
-    try:
-        outcome = morph_pair(P, Q, closed, method, carrier, spacing)
-        morph, used = outcome.morph, outcome.used
-        notes += outcome.notes
-        frames = morph.frames(times)
-    except Exception as exc:
-        notes.append(f"{method} failed ({type(exc).__name__}: {exc})")
+
+    def __init__(self, a, b, method, carrier, spacing):
+        self.a, self.b, self.method, self.spacing = a, b, method, spacing
+        self.closed = a.closed and b.closed
+        self.notes = []
+        if a.closed != b.closed:
+            self.notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
+        self.curves = self.morph = self.used = self.failure = self._fallback = None
         try:
-            morph = make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing)
-            used, frames = FALLBACK_METHOD, morph.frames(times)
-        except Exception as exc2:
-            frames, ua, ub = _dot_frames(a, b, times)
-            return frames, ua, ub, False, "straight point motion", notes + [f"{type(exc2).__name__}: {exc2}"]
-    if not np.all(np.isfinite(frames)):
-        frames, ua, ub = _dot_frames(a, b, times)
-        return frames, ua, ub, False, "straight point motion", notes + ["the morph produced non-finite points"]
-    return frames, morph.u_p, morph.u_q, morph.closed, used, notes
+            self.curves = (as_curve(a.xy, "P", self.closed), as_curve(b.xy, "Q", self.closed))
+        except InvalidCurveError as exc:
+            self.failure = f"too few distinct points ({exc})"
+            return
+        try:
+            outcome = morph_pair(*self.curves, self.closed, method, carrier, spacing)
+        except Exception as exc:
+            self.failure = f"{method} failed ({type(exc).__name__}: {exc})"
+            return
+        self.morph, self.used = outcome.morph, outcome.used
+        self.notes += outcome.notes
+
+    def frames(self, times):
+        """Frames, attribute fractions and report at ``times``.
+
+        Returns
+        -------
+        frames : ndarray, shape (T, K, 2)
+        u_a, u_b : ndarray, shape (K,)
+        closed : bool
+        used : str
+        notes : list of str
+        """
+        if self.curves is None:
+            frames, ua, ub = _dot_frames(self.a, self.b, times)
+            return frames, ua, ub, False, "straight point motion", [self.failure]
+        notes, morph, used, frames = list(self.notes), self.morph, self.used, None
+        if morph is None:
+            notes.append(self.failure)
+        else:
+            try:
+                frames = morph.frames(times)
+            except Exception as exc:
+                notes.append(f"{self.method} failed ({type(exc).__name__}: {exc})")
+        if frames is None:
+            try:
+                if self._fallback is None:
+                    self._fallback = make_morph(*self.curves, FALLBACK_METHOD, closed=self.closed, spacing=self.spacing)
+                morph, used = self._fallback, FALLBACK_METHOD
+                frames = morph.frames(times)
+            except Exception as exc:
+                frames, ua, ub = _dot_frames(self.a, self.b, times)
+                return frames, ua, ub, False, "straight point motion", notes + [f"{type(exc).__name__}: {exc}"]
+        if not np.all(np.isfinite(frames)):
+            frames, ua, ub = _dot_frames(self.a, self.b, times)
+            return frames, ua, ub, False, "straight point motion", notes + ["the morph produced non-finite points"]
+        return frames, morph.u_p, morph.u_q, morph.closed, used, notes
 
 
 #: What happens to a stroke without a partner in the other key.
@@ -367,14 +406,42 @@ def inbetween(
     unmatched="MIDDLE",
     spacing=None,
 ):
-    """In-between drawings of two keys.
+    """In-between drawings of two keys: ``plan_inbetween(key_a, key_b, ...).evaluate(times)``.
 
     Parameters
     ----------
     key_a, key_b : StrokeSet
         The two keys (not modified).
     times : array_like, shape (T,)
-        Morph times in [0, 1] (already eased).
+        Morph times in [0, 1] (already eased; values outside are clamped).
+    method, carrier, matching, unmatched, spacing
+        See :func:`plan_inbetween`.
+
+    Returns
+    -------
+    InbetweenResult
+    """
+    _check_inputs(key_a, key_b, method, carrier, matching, unmatched)
+    times = _check_times(times)
+    return plan_inbetween(key_a, key_b, method, carrier, matching, unmatched, spacing).evaluate(times)
+
+
+def plan_inbetween(
+    key_a,
+    key_b,
+    method="circular-ball",
+    carrier="SIMILARITY",
+    matching="AUTO",
+    unmatched="MIDDLE",
+    spacing=None,
+):
+    """Everything about the in-betweens of two keys that does not depend on the times.
+
+    Parameters
+    ----------
+    key_a, key_b : StrokeSet
+        The two keys (not modified; the plan keeps them, so do not modify them either while
+        the plan is in use).
     method : str
         A method of :data:`~ballmorph_core.METHODS`.
     carrier : {'SIMILARITY', 'RIGID', 'NONE'}
@@ -390,16 +457,108 @@ def inbetween(
 
     Returns
     -------
-    InbetweenResult
+    InbetweenPlan
 
     Notes
     -----
     Strokes are paired by :func:`~ballmorph_core.matching.match_strokes` (by index when the
     counts agree and the shapes fit, as Blender does; otherwise by an optimal assignment on a
-    shape distance); a stroke of the second key running the other way is flipped first. Each
-    pair goes through :func:`~ballmorph_core.pair.morph_pair` (carrier, crossing splits,
-    composite and linear fallbacks), so a pair never aborts the others.
+    shape distance); a stroke of the second key running the other way is flipped first. The
+    ball-morphs of all eligible pairs are planned at once (:func:`~ballmorph_core.batch.plan_pairs`);
+    every other pair goes through :func:`~ballmorph_core.pair.morph_pair` (carrier, crossing
+    splits, composite and linear fallbacks), so a pair never aborts the others. The matching,
+    the correspondences and the carriers are computed here, once; the plan's
+    :meth:`~InbetweenPlan.evaluate` only moves samples along their paths, which is what lets
+    the operator's redo (another frame count or easing) skip the expensive part.
     """
+    _check_inputs(key_a, key_b, method, carrier, matching, unmatched)
+    if spacing is not None:
+        try:
+            spacing = float(spacing)
+        except (TypeError, ValueError):
+            raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}") from None
+        if not (np.isfinite(spacing) and spacing > 0):
+            raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
+    return InbetweenPlan(key_a, key_b, method, carrier, matching, unmatched, spacing)
+
+
+class InbetweenPlan:
+    """The in-betweens of two keys, ready to evaluate at any times (see :func:`plan_inbetween`).
+
+    Evaluating a plan at ``times`` gives exactly what :func:`inbetween` gives for the same keys,
+    options and times.
+    """
+
+    def __init__(self, key_a, key_b, method, carrier, matching, unmatched, spacing):
+        self.method, self.carrier, self.unmatched, self.spacing = method, carrier, unmatched, spacing
+        self.plane = plane = fit_plane(np.concatenate([key_a.positions, key_b.positions]))
+        self.messages = []  # the plan's own, before the per-pair reports
+        self.ka, self.kb = ka, kb = _Key(key_a, plane), _Key(key_b, plane)
+        # Strokes without points have nothing to morph or show: leave them out, and say so.
+        live_a, live_b = np.flatnonzero(key_a.sizes > 0), np.flatnonzero(key_b.sizes > 0)
+        for name, key in (("first", key_a), ("second", key_b)):
+            for i in np.flatnonzero(key.sizes == 0):
+                self.messages.append(Message("INFO", f"stroke {i} of the {name} key has no points: left out"))
+        pairing = match_strokes(
+            [ka.rg.curve(i) for i in live_a],
+            [kb.rg.curve(j) for j in live_b],
+            ka.rg.closed[live_a],
+            kb.rg.closed[live_b],
+            mode=matching,
+        )
+        matched = [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
+        self.unmatched_a = [int(live_a[i]) for i in pairing.unmatched_a]
+        self.unmatched_b = [int(live_b[j]) for j in pairing.unmatched_b]
+        if pairing.method != "index" or self.unmatched_a or self.unmatched_b:
+            self.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
+        self.pairs = [(ka.stroke(i), kb.stroke(j, flip), flip) for i, j, flip in matched]
+        self.fast, self.fast_pairs = _fast_plan(self.pairs, method, carrier, spacing)
+        fast = set(self.fast_pairs.tolist())
+        # Pairs off the fast path are planned now; the fast ones only if their frames fail.
+        self._general = {
+            k: _PairPlan(a, b, method, carrier, spacing) for k, (a, b, _) in enumerate(self.pairs) if k not in fast
+        }
+        self.planarity = _planarity_messages(key_a, key_b, plane)
+
+    def _general_plan(self, k):
+        if k not in self._general:
+            a, b, _ = self.pairs[k]
+            self._general[k] = _PairPlan(a, b, self.method, self.carrier, self.spacing)
+        return self._general[k]
+
+    def evaluate(self, times):
+        """The in-betweens at ``times``.
+
+        Parameters
+        ----------
+        times : array_like, shape (T,)
+            Morph times in [0, 1] (already eased; values outside are clamped).
+
+        Returns
+        -------
+        InbetweenResult
+        """
+        times = _check_times(times)
+        result = InbetweenResult(frames=[], messages=list(self.messages))
+        fast = _spread(self.fast, self.fast_pairs, len(self.pairs), times)
+        parts = []  # per pair: frames (T, K, 2), fractions on A and B, cyclic, the two strokes
+        for k, (a, b, flip) in enumerate(self.pairs):
+            if fast.done[k]:
+                frames, ua, ub = fast.pair(k)
+                closed, used, notes = a.closed, fast.used[k], fast.notes[k]
+            else:
+                frames, ua, ub, closed, used, notes = self._general_plan(k).frames(times)
+            parts.append((frames, ua, _along_original(ub, flip, b.closed), closed, a, b))
+            _report_pair(result, a, b, flip, used, notes)
+        held = [(self.ka, i, True) for i in self.unmatched_a] + [(self.kb, j, False) for j in self.unmatched_b]
+        for _, i, from_a in held:
+            _report_unmatched(result, i, from_a, self.unmatched)
+        result.frames = _assemble(parts, held, self.ka, self.kb, times, self.plane, self.unmatched)
+        result.messages.extend(self.planarity)
+        return result
+
+
+def _check_inputs(key_a, key_b, method, carrier, matching, unmatched):
     from .morphs import METHODS  # local: the registry is complete once the package is imported
 
     check_option("method", method, METHODS)
@@ -408,60 +567,17 @@ def inbetween(
     check_option("unmatched", unmatched, UNMATCHED)
     for name, key in (("key_a", key_a), ("key_b", key_b)):
         _check_key(name, key)
+
+
+def _check_times(times):
+    """Times as a float array clamped to [0, 1] (a morph has nothing before or after its keys)."""
     try:
         times = np.asarray(times, dtype=np.float64).reshape(-1)
     except (TypeError, ValueError):
         raise InvalidCurveError(f"times: must be numbers in [0, 1], got {times!r}") from None
     if not np.all(np.isfinite(times)):
         raise InvalidCurveError("times: must be finite numbers in [0, 1]")
-    times = np.clip(times, 0.0, 1.0)  # a morph has nothing before its first key or after its last
-    if spacing is not None:
-        try:
-            spacing = float(spacing)
-        except (TypeError, ValueError):
-            raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}") from None
-        if not (np.isfinite(spacing) and spacing > 0):
-            raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
-    plane = fit_plane(np.concatenate([key_a.positions, key_b.positions]))
-    result = InbetweenResult(frames=[])
-    ka, kb = _Key(key_a, plane), _Key(key_b, plane)
-    # Strokes without points have nothing to morph or show: leave them out, and say so.
-    live_a, live_b = np.flatnonzero(key_a.sizes > 0), np.flatnonzero(key_b.sizes > 0)
-    for name, key in (("first", key_a), ("second", key_b)):
-        for i in np.flatnonzero(key.sizes == 0):
-            result.messages.append(Message("INFO", f"stroke {i} of the {name} key has no points: left out"))
-    pairing = match_strokes(
-        [ka.rg.curve(i) for i in live_a],
-        [kb.rg.curve(j) for j in live_b],
-        ka.rg.closed[live_a],
-        kb.rg.closed[live_b],
-        mode=matching,
-    )
-    pairing.pairs = [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
-    pairing.unmatched_a = [int(live_a[i]) for i in pairing.unmatched_a]
-    pairing.unmatched_b = [int(live_b[j]) for j in pairing.unmatched_b]
-    if pairing.method != "index" or pairing.unmatched_a or pairing.unmatched_b:
-        result.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
-    unmatched_a, unmatched_b = list(pairing.unmatched_a), list(pairing.unmatched_b)
-    pairs = []
-    for i, j, flip in pairing.pairs:
-        pairs.append((ka.stroke(i), kb.stroke(j, flip), flip))
-    fast = _fast_path(pairs, times, method, carrier, spacing)
-    parts = []  # per pair: frames (T, K, 2), fractions on A and B, cyclic, the two strokes
-    for k, (a, b, flip) in enumerate(pairs):
-        if fast.done[k]:
-            frames, ua, ub = fast.pair(k)
-            closed, used, notes = a.closed, fast.used[k], fast.notes[k]
-        else:
-            frames, ua, ub, closed, used, notes = _pair_frames(a, b, times, method, carrier, spacing)
-        parts.append((frames, ua, _along_original(ub, flip, b.closed), closed, a, b))
-        _report_pair(result, a, b, flip, used, notes)
-    held = [(ka, i, True) for i in unmatched_a] + [(kb, j, False) for j in unmatched_b]
-    for _, i, from_a in held:
-        _report_unmatched(result, i, from_a, unmatched)
-    result.frames = _assemble(parts, held, ka, kb, times, plane, unmatched)
-    _check_planarity(result, key_a, key_b, plane)
-    return result
+    return np.clip(times, 0.0, 1.0)
 
 
 def _check_key(name, key):
@@ -481,8 +597,15 @@ def _check_key(name, key):
             raise InvalidCurveError(f"{name}: stroke(s) {bad[:10]} have NaN or infinite {what}: redraw or delete them")
 
 
-def _fast_path(pairs, times, method, carrier, spacing):
-    """Batched ball-morph of every eligible pair (see :mod:`~ballmorph_core.batch`)."""
+def _fast_plan(pairs, method, carrier, spacing):
+    """Batched ball-morph plan of every eligible pair (see :mod:`~ballmorph_core.batch`).
+
+    Returns
+    -------
+    plan : BatchPlan or None
+    todo : ndarray of int
+        The pairs the plan covers, in its order.
+    """
     todo, curves = [], []
     if method in BALL_METHODS:
         for k, (a, b, _) in enumerate(pairs):
@@ -493,23 +616,33 @@ def _fast_path(pairs, times, method, carrier, spacing):
             except InvalidCurveError:
                 continue
             todo.append(k)
-    out = BatchResult.empty(len(pairs), len(times))
     if not todo:
-        return out
+        return None, np.zeros(0, dtype=np.int64)
     try:
-        fast = morph_pairs(curves, times, method[: -len("-ball")], carrier, spacing)
-    except Exception:
+        return plan_pairs(curves, method[: -len("-ball")], carrier, spacing), np.asarray(todo)
+    except Exception:  # the general road handles (and reports) every pair instead
+        return None, np.zeros(0, dtype=np.int64)
+
+
+def _spread(plan, todo, n_pairs, times):
+    """The fast plan's frames at ``times``, spread over all pairs; pairs whose frames are not
+    finite take the general road (not done here)."""
+    out = BatchResult.empty(n_pairs, len(times))
+    if plan is None:
         return out
-    # Spread the batch's results over all pairs (those it skipped take the general road).
-    todo = np.asarray(todo)
-    good = fast.done & np.array([np.all(np.isfinite(fast.pair(c)[0])) for c in range(len(todo))])
-    sizes = np.zeros(len(pairs), dtype=np.int64)
+    fast = plan.frames(times)
+    bad = np.concatenate([[0], np.cumsum(~np.isfinite(fast.frames).all(axis=(0, 2)))])
+    good = fast.done & (bad[fast.offsets[1:]] == bad[fast.offsets[:-1]])  # no non-finite sample
+    sizes = np.zeros(n_pairs, dtype=np.int64)
     sizes[todo[good]] = np.diff(fast.offsets)[good]
     keep = np.repeat(good, np.diff(fast.offsets))
     out.done[todo[good]] = True
     out.offsets = np.concatenate([[0], np.cumsum(sizes)])
     # Samples are grouped by pair in the batch's order, which follows ``pairs``.
-    out.frames, out.u_p, out.u_q = fast.frames[:, keep], fast.u_p[keep], fast.u_q[keep]
+    if keep.all():  # the usual case: no copy
+        out.frames, out.u_p, out.u_q = fast.frames, fast.u_p, fast.u_q
+    else:
+        out.frames, out.u_p, out.u_q = fast.frames[:, keep], fast.u_p[keep], fast.u_q[keep]
     for c, k in enumerate(todo):
         out.used[k], out.notes[k] = fast.used[c], fast.notes[c]
     return out
@@ -554,18 +687,31 @@ def _assemble(parts, held, ka, kb, times, plane, unmatched):
         va = vb = np.zeros((0, 7))
         cyclic, origin = np.zeros(0, bool), np.zeros((0, 2), np.int64)
         mat_a = mat_b = np.zeros(0, np.int64)
+    # Every time at once. Attributes the two keys agree on (often radius, opacity, colour and
+    # the offset from the plane) are shared, not mixed: a redo of a big drawing is mostly this.
+    tt = np.asarray(times, dtype=np.float64)[:, None, None]
+    differ = np.any(va != vb, axis=0)  # (7,)
+    mixed = (1 - tt) * va[:, differ] + tt * vb[:, differ]  # (T, K, D)
+    if differ[0]:
+        depth = mixed[..., 0].reshape(-1)
+    else:
+        depth = np.tile(va[:, 0], len(times)) if np.any(va[:, 0]) else None
+    lifted = plane.to_3d(frames.reshape(-1, 2), depth).reshape(frames.shape[:2] + (3,))
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
     out = []
     for ti, t in enumerate(times):
-        mix = (1 - t) * va + t * vb
-        pts = [plane.to_3d(frames[ti], mix[:, 0])]
-        vals = [mix[:, 1:]]
-        size_list = [sizes]
-        cyc = [cyclic]
-        mats = [mat_a if t < 0.5 else mat_b]
-        orig = [origin]
-        for key, i, from_a in held:
-            if unmatched != "HOLD" and (t >= 0.5 if from_a else t < 0.5):
-                continue
+        mix = va
+        if differ.any():
+            mix = va.copy()
+            mix[:, differ] = mixed[ti]
+        shown = [h for h in held if unmatched == "HOLD" or (t < 0.5 if h[2] else t >= 0.5)]
+        mats = mat_a if t < 0.5 else mat_b
+        if not shown:
+            out.append(StrokeSet(lifted[ti], offsets, cyclic, mats, mix[:, 1], mix[:, 2], mix[:, 3:7], origin=origin))
+            continue
+        pts, vals, size_list = [lifted[ti]], [mix[:, 1:]], [sizes]
+        cyc, mats, orig = [cyclic], [mats], [origin]
+        for key, i, from_a in shown:
             sl = key.strokes.points(i)
             pts.append(key.strokes.positions[sl])
             vals.append(key.values[sl, 1:])
@@ -590,18 +736,20 @@ def _assemble(parts, held, ka, kb, times, plane, unmatched):
     return out
 
 
-def _check_planarity(result, key_a, key_b, plane):
+def _planarity_messages(key_a, key_b, plane):
+    """A warning when the keys are not flat, as a list (empty when they are)."""
     pts = np.concatenate([key_a.positions, key_b.positions])
     if len(pts) < 3:
-        return
+        return []
     scale = float(np.linalg.norm(np.ptp(pts, axis=0)))
     _, depth = plane.to_2d(pts)
     worst = float(np.abs(depth).max())
     if scale > 0 and worst > tol.PLANARITY * scale:
-        result.messages.append(
+        return [
             Message(
                 "WARNING",
                 f"the keys are not flat (points up to {worst:.3g} off the drawing plane): strokes were "
                 "morphed in the best-fit plane, keeping each point's offset from it",
             )
-        )
+        ]
+    return []

@@ -37,10 +37,11 @@ class Plane:
     def to_3d(self, coords, offsets=None):
         """Lift coordinates (N, 2) (and optional normal offsets (N,)) back to 3D, shape (N, 3)."""
         coords = np.asarray(coords, dtype=np.float64).reshape(-1, 2)
-        if offsets is None:
-            return coords @ np.stack([self.u, self.v]) + self.origin
-        full = np.column_stack([coords, np.asarray(offsets, dtype=np.float64).reshape(-1)])
-        return full @ np.stack([self.u, self.v, self.normal]) + self.origin
+        out = coords @ np.stack([self.u, self.v])
+        out += self.origin
+        if offsets is not None:
+            out += np.asarray(offsets, dtype=np.float64).reshape(-1, 1) * self.normal
+        return out
 
 
 # World-axis frames, preferred when the fitted plane is (nearly) one of them, so a drawing on

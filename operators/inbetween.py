@@ -12,6 +12,7 @@ import bpy
 from ..ballmorph_core import BallMorphError
 from ..ballmorph_core.inbetween import FALLBACK_METHOD
 from . import keys, morph, options, writer
+from .plans import PLANS
 
 __all__ = ["BALLMORPH_OT_inbetween"]
 
@@ -123,6 +124,7 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
         window_manager = context.window_manager
         window_manager.progress_begin(0, max(len(intervals), 1))
         morphed = []
+        PLANS.begin()
         try:
             for i, interval in enumerate(intervals):
                 window_manager.progress_update(i)
@@ -150,6 +152,7 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
                     continue
                 morphed.append(item)
         finally:
+            PLANS.end()
             window_manager.progress_end()
         return morphed
 

@@ -8,9 +8,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..ballmorph_core import StrokeSet, inbetween
+from ..ballmorph_core import StrokeSet
 from ..ballmorph_core.timing import ease
 from . import grease_pencil
+from .plans import PLANS
 
 __all__ = ["Morphed", "morph_interval"]
 
@@ -114,15 +115,17 @@ def morph_interval(interval, options, core_method):
     if options["selected_only"]:
         key_a, key_b, held = _selection(key_a, key_b, messages)
     times = ease(interval.fractions, options["easing_type"], options["easing"])
-    result = inbetween(
+    # The times only enter at the evaluation: a redo with another frame count or easing reuses
+    # the plan (matching, ball-maps, carriers) of the same keys and options.
+    plan = PLANS.plan(
         key_a,
         key_b,
-        times,
         method=core_method,
         carrier=options["carrier"],
         matching=options["matching"],
         unmatched=options["unmatched"],
     )
+    result = plan.evaluate(times)
     messages.extend((message.level, message.text) for message in result.messages)
     frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
     return Morphed(interval, [_to_layer_space(frame, to_layer) for frame in frames], messages, core_method)

@@ -18,7 +18,10 @@ wobble, so the strokes really morph), puts each in Edit Mode in the factory scre
 
 each as the median of several runs (``time.perf_counter`` around the operator call; more runs
 for fast cases), the frames made by a run being removed before the next one, so every run starts
-from the same drawing (as a redo from F9 does: Blender undoes the previous run first). It splits
+from the same drawing (as a redo from F9 does: Blender undoes the previous run first). Our runs
+are cold: the plans the operator keeps for a redo (operators/plans.py) are dropped before each.
+The *redo* column times what F9 then costs: the same keys, another easing each run, so the kept
+plan is re-evaluated at new times and written. It splits
 one circular-ball run into stages by wrapping the add-on's functions (keys, read, core:
 matching / ball-map / frames evaluation / assembly, write-back), and measures the peak memory of one cold
 run of every operator on the largest drawing (and the goal sizes), each in a fresh bpy process
@@ -34,6 +37,7 @@ import datetime
 import functools
 import gc
 import importlib
+import itertools
 import json
 import math
 import os
@@ -108,7 +112,7 @@ OURS_OPTIONS = {
 STAGES = {
     "keys": [("operators.keys", "find_intervals")],
     "read": [("operators.grease_pencil", "read_strokes")],
-    "core": [("operators.morph", "inbetween")],
+    "core": [("operators.plans", "PlanCache.plan"), ("ballmorph_core.inbetween", "InbetweenPlan.evaluate")],
     "match": [("ballmorph_core.inbetween", "match_strokes")],
     "ball-map": [
         ("ballmorph_core.ballmap", "ball_maps"),
@@ -436,7 +440,7 @@ class StageClock:
             finally:
                 self.total[stage] += time.perf_counter() - start
                 self.depth[stage] -= 1
-            if stage == "core":
+            if stage == "core" and type(result).__name__ == "InbetweenResult":
                 self.results.append(result)
             return result
 
@@ -507,6 +511,7 @@ class Case:
     inbetweens: int
     builtin: Timing = None
     ours: dict = field(default_factory=dict)
+    redo: Timing = None
     replace: Timing = None
     stages: dict = None
     memory: dict = None
@@ -536,11 +541,47 @@ def _checker(obj, case):
     return check
 
 
+def forget_plans():
+    """Drop the plans our operator keeps for a redo, so the next run is cold."""
+    addon_module("operators.plans").PLANS.clear()
+
+
+def _cold(obj, case):
+    """Before each run: the drawing as built, and no plan kept from an earlier run."""
+
+    def clean():
+        clear_between(obj, case.last)
+        forget_plans()
+
+    return clean
+
+
 def _timed(case, obj, op):
-    """:func:`measure` of one operator on its object (left clean afterwards)."""
-    timing = measure(lambda: call(op), lambda: clear_between(obj, case.last), _checker(obj, case))
+    """:func:`measure` of one operator on its object, from cold (left clean afterwards)."""
+    timing = measure(lambda: call(op), _cold(obj, case), _checker(obj, case))
     timing.points = points_per_frame(obj, case.last)  # the last run's frames are still there
     clear_between(obj, case.last)
+    return timing
+
+
+# A redo from F9 with another easing: the easings alternate so every run has new times.
+REDO_EASINGS = (("SINE", "EASE_IN_OUT"), ("QUAD", "EASE_OUT"))
+
+
+def _redo_timed(case, obj):
+    """:func:`measure` of our operator re-run on the same keys with another easing each time
+    (what dragging an F9 option costs): the plan of the primed first run is reused."""
+    easings = itertools.cycle(REDO_EASINGS)
+
+    def run():
+        easing_type, easing = next(easings)
+        options = {**OURS_OPTIONS, "easing_type": easing_type, "easing": easing}
+        return bpy.ops.ballmorph.inbetween("EXEC_DEFAULT", method=GOAL_METHOD, **options)
+
+    forget_plans()
+    timing = measure(run, lambda: clear_between(obj, case.last), _checker(obj, case), prime=True)
+    clear_between(obj, case.last)
+    forget_plans()
     return timing
 
 
@@ -558,16 +599,16 @@ def run_case(case, methods, replace):
             for method in methods:
                 case.ours[method] = _timed(case, ours_obj, method)
             if GOAL_METHOD in methods:
-                clean = functools.partial(clear_between, ours_obj, case.last)
+                case.redo = _redo_timed(case, ours_obj)
+                clean = _cold(ours_obj, case)
                 slow = case.ours[GOAL_METHOD].median > STAGE_SLOW
                 core_name = addon_module("operators.options").CORE_METHOD[GOAL_METHOD]
                 runs = 1 if slow else STAGE_RUNS
                 case.stages = stage_times(lambda: call(GOAL_METHOD), clean, runs, core_name)
                 if replace:
                     # Re-running over the frames it made: the operator replaces them itself.
-                    case.replace = measure(
-                        lambda: call(GOAL_METHOD), lambda: None, _checker(ours_obj, case), prime=True
-                    )
+                    check = _checker(ours_obj, case)
+                    case.replace = measure(lambda: call(GOAL_METHOD), forget_plans, check, prime=True)
                 clean()
     finally:
         remove_object(builtin_obj)
@@ -696,6 +737,15 @@ def goals(cases, ballmap_rows, methods):
                     ratio <= limit,
                 )
             )
+            if case.redo is not None:
+                ratio = case.redo.median / case.builtin.median
+                rows.append(
+                    (
+                        f"the same, redo (F9 with another easing: the kept plan re-evaluated) ({kind}) <= {limit}",
+                        f"{ratio:.2f} ({_ms(case.redo.median)} ms / {_ms(case.builtin.median)} ms)",
+                        ratio <= limit,
+                    )
+                )
     for which in bench_ballmap.SPACINGS:
         growth = bench_ballmap.goal(ballmap_rows, which) if ballmap_rows else None
         if growth is not None:
@@ -758,19 +808,24 @@ def report(cases, methods, ballmap_rows, info, wall, argv):
             f"## {title}",
             "",
             "Median operator time in ms (runs in brackets); ratio = ours / built-in; points = points"
-            " of one in-between frame.",
+            " of one in-between frame. Our runs are cold (no plan kept from an earlier run);"
+            " *redo* is a circular run on the same keys with another easing, as F9 does (the"
+            " kept plan re-evaluated at the new times, then written).",
             "",
             "| strokes x points x in-betweens | built-in | "
             + " | ".join(short.get(m, m) for m in methods)
-            + " | "
+            + " | redo | "
             + " | ".join(f"{short.get(m, m)} / built-in" for m in methods)
-            + " | points built-in / ours |",
-            "|---|" + "---:|" * (1 + 2 * len(methods) + 1),
+            + " | redo / built-in | points built-in / ours |",
+            "|---|" + "---:|" * (1 + 2 * len(methods) + 3),
         ]
         for c in rows:
+            redo = c.redo.median if c.redo is not None else None
             cells = [f"{_ms(c.builtin.median)} ({len(c.builtin.seconds)})"]
             cells += [f"{_ms(c.ours[m].median)} ({len(c.ours[m].seconds)})" for m in methods]
+            cells.append(f"{_ms(redo)} ({len(c.redo.seconds)})" if redo is not None else "n/a")
             cells += [f"{c.ours[m].median / c.builtin.median:.1f}" for m in methods]
+            cells.append(f"{redo / c.builtin.median:.1f}" if redo is not None else "n/a")
             ours_points = c.ours[methods[0]].points
             cells.append(f"{c.builtin.points} / {ours_points}")
             lines.append(f"| {c.label} | " + " | ".join(cells) + " |")
@@ -782,7 +837,7 @@ def report(cases, methods, ballmap_rows, info, wall, argv):
                 "",
                 f"Instrumented operator runs (median of {STAGE_RUNS}; one for runs over {STAGE_SLOW:g} s)."
                 " *keys*: finding the keys and target frames; *read*: reading both keys into"
-                " StrokeSets; *core*: `ballmorph_core.inbetween` on them, and inside it *match*"
+                " StrokeSets; *core*: planning (`plan_inbetween`) and evaluating the plan, and inside it *match*"
                 " (stroke pairing), *ball-map* (`ball_maps`, all stroke pairs; *per pair* = ball-map"
                 " / pairs), *frames* (frames evaluation: building the trajectories, evaluating them"
                 " and the carrier at every in-between time), *assemble* (attributes and StrokeSets"

@@ -1,7 +1,10 @@
 """Where the operator runs from (Dope Sheet, 3D viewport), and what F9 does (undo, redo: test_robustness)."""
 
+import importlib
+
 import bpy
 import gp_data
+import numpy as np
 
 
 def ink(obj):
@@ -63,3 +66,43 @@ def test_redo_reruns_with_the_changed_options(shot):
     assert bpy.ops.ballmorph.inbetween("EXEC_DEFAULT", True, **options) == {"FINISHED"}
     assert gp_data.frame_numbers(ink(bpy.data.objects["Drawing"])) == [1, 5, 9]
     assert bpy.context.scene.ballmorph_inbetween.method == "LINEAR_BALL"
+
+
+def test_redo_reuses_the_plan_of_unchanged_keys_and_writes_the_same_frames(shot, addon):
+    """F9 with another frame count or easing reuses the last run's plan (matching, ball-maps,
+    carriers: the expensive part), and what it writes is exactly what a fresh run writes. Keys
+    edited since, or another morph, are planned again."""
+    plans = importlib.import_module(f"{addon.__name__}.operators.plans").PLANS
+
+    def drawing():  # undo replaces the scene's data: look the object up again each time
+        return bpy.data.objects["Drawing"]
+
+    bpy.ops.ed.undo_push(message="before")
+    assert bpy.ops.ballmorph.inbetween("EXEC_DEFAULT", True, frame_count=3) == {"FINISHED"}
+    assert (plans.misses, plans.hits) == (1, 0)
+    redo = {"frame_count": 5, "easing_type": "SINE", "easing": "EASE_IN_OUT"}
+    with _window():
+        assert bpy.ops.ed.undo() == {"FINISHED"}
+    assert bpy.ops.ballmorph.inbetween("EXEC_DEFAULT", True, **redo) == {"FINISHED"}
+    assert (plans.misses, plans.hits) == (1, 1)
+    reused = gp_data.snapshot(drawing())
+    assert gp_data.frame_numbers(ink(drawing())) == [1, 2, 4, 5, 6, 8, 9]
+
+    plans.clear()  # the same redo from scratch
+    with _window():
+        assert bpy.ops.ed.undo() == {"FINISHED"}
+    assert bpy.ops.ballmorph.inbetween("EXEC_DEFAULT", True, **redo) == {"FINISHED"}
+    assert (plans.misses, plans.hits) == (2, 1)
+    assert gp_data.snapshot(drawing()) == reused
+
+    # Another morph, then an edited key: planned again.
+    assert bpy.ops.ballmorph.inbetween("EXEC_DEFAULT", True, method="LINEAR_BALL", **redo) == {"FINISHED"}
+    assert (plans.misses, plans.hits) == (3, 1)
+    key = gp_data.frame_at(ink(drawing()), 9).drawing
+    position = key.attributes["position"]
+    points = np.empty(len(position.data) * 3, np.float32)
+    position.data.foreach_get("vector", points)
+    points[0] += 0.05
+    position.data.foreach_set("vector", points)
+    assert bpy.ops.ballmorph.inbetween("EXEC_DEFAULT", True, method="LINEAR_BALL", **redo) == {"FINISHED"}
+    assert (plans.misses, plans.hits) == (4, 1)

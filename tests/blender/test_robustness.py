@@ -458,16 +458,16 @@ def test_an_interval_failing_for_every_morph_leaves_its_layer_untouched(addon, c
     before = gp_data.snapshot(obj)
     assert sorted(before["Ink"]) == sorted(before["Paint"]) == [1, 5, 9]
 
-    morph = importlib.import_module(f"{addon.__name__}.operators.morph")
-    real, calls = morph.inbetween, []
+    plans = importlib.import_module(f"{addon.__name__}.operators.plans")
+    real, calls = plans.plan_inbetween, []
 
-    def broken(key_a, key_b, times, method, **kwargs):
+    def broken(key_a, key_b, method, **kwargs):
         calls.append((len(key_a), method))
         if len(key_a) == 2:  # the Ink keys
             raise FloatingPointError("simulated core bug")
-        return real(key_a, key_b, times, method=method, **kwargs)
+        return real(key_a, key_b, method=method, **kwargs)
 
-    monkeypatch.setattr(morph, "inbetween", broken)
+    monkeypatch.setattr(plans, "plan_inbetween", broken)
     result, said = run(capfd, layers="ALL", method="CURVATURE_INTERPOLATION", frame_count=0)
     assert result == {"FINISHED"}
     assert (2, "curvature-interpolation") in calls and (2, "linear-interpolation") in calls

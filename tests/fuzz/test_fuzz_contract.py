@@ -177,7 +177,14 @@ def test_inbetween_contract(keys, method, carrier, matching, unmatched, times, s
     note(f"strokes {len(key_a)} -> {len(key_b)}, sizes {key_a.sizes.tolist()} -> {key_b.sizes.tolist()}")
     times = [0.0, *times, 1.0]
     before_a, before_b = _copy(key_a), _copy(key_b)
-    result = _without_memory_error(lambda: bm.inbetween(key_a, key_b, times, method, carrier, matching, unmatched))
+    # ``inbetween`` is ``plan_inbetween(...).evaluate(times)``; the plan is what the operator
+    # keeps for a redo, so evaluate it twice.
+    plan = _without_memory_error(lambda: bm.plan_inbetween(key_a, key_b, method, carrier, matching, unmatched))
+    result = plan.evaluate(times)
+    again = plan.evaluate(times[::-1])
+    for frame, other in zip(result.frames, again.frames[::-1]):
+        assert np.array_equal(frame.positions, other.positions), "a plan's second evaluation differs"
+        assert np.array_equal(frame.offsets, other.offsets), "a plan's second evaluation differs"
     # The keys are never touched.
     assert _unchanged(key_a, before_a) and _unchanged(key_b, before_b), "a key was modified"
     assert len(result.frames) == len(times)
