@@ -513,10 +513,12 @@ class InbetweenPlan:
             self.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
         self.pairs = [(ka.stroke(i), kb.stroke(j, flip), flip) for i, j, flip in matched]
         self.fast, self.fast_pairs = _fast_plan(self.pairs, method, carrier, spacing)
-        fast = set(self.fast_pairs.tolist())
+        fast = np.zeros(len(self.pairs), dtype=bool)
+        if self.fast is not None:
+            fast[self.fast_pairs[self.fast.done]] = True
         # Pairs off the fast path are planned now; the fast ones only if their frames fail.
         self._general = {
-            k: _PairPlan(a, b, method, carrier, spacing) for k, (a, b, _) in enumerate(self.pairs) if k not in fast
+            k: _PairPlan(a, b, method, carrier, spacing) for k, (a, b, _) in enumerate(self.pairs) if not fast[k]
         }
         self.planarity = _planarity_messages(key_a, key_b, plane)
 
@@ -687,29 +689,26 @@ def _assemble(parts, held, ka, kb, times, plane, unmatched):
         va = vb = np.zeros((0, 7))
         cyclic, origin = np.zeros(0, bool), np.zeros((0, 2), np.int64)
         mat_a = mat_b = np.zeros(0, np.int64)
-    # Every time at once. Attributes the two keys agree on (often radius, opacity, colour and
-    # the offset from the plane) are shared, not mixed: a redo of a big drawing is mostly this.
-    tt = np.asarray(times, dtype=np.float64)[:, None, None]
+    # Attributes the two keys agree on (often radius, opacity, colour and the offset from the
+    # plane) are shared by every frame, not mixed: a redo of a big drawing is mostly this loop.
     differ = np.any(va != vb, axis=0)  # (7,)
-    mixed = (1 - tt) * va[:, differ] + tt * vb[:, differ]  # (T, K, D)
-    if differ[0]:
-        depth = mixed[..., 0].reshape(-1)
-    else:
-        depth = np.tile(va[:, 0], len(times)) if np.any(va[:, 0]) else None
-    lifted = plane.to_3d(frames.reshape(-1, 2), depth).reshape(frames.shape[:2] + (3,))
+    va_d, vb_d = va[:, differ], vb[:, differ]
+    depth = va[:, 0] if np.any(va[:, 0]) else None
     offsets = np.concatenate([[0], np.cumsum(sizes)])
     out = []
     for ti, t in enumerate(times):
         mix = va
         if differ.any():
             mix = va.copy()
-            mix[:, differ] = mixed[ti]
+            mix[:, differ] = (1 - t) * va_d + t * vb_d
+            depth = mix[:, 0] if differ[0] else depth
+        lifted = plane.to_3d(frames[ti], depth)
         shown = [h for h in held if unmatched == "HOLD" or (t < 0.5 if h[2] else t >= 0.5)]
         mats = mat_a if t < 0.5 else mat_b
         if not shown:
-            out.append(StrokeSet(lifted[ti], offsets, cyclic, mats, mix[:, 1], mix[:, 2], mix[:, 3:7], origin=origin))
+            out.append(StrokeSet(lifted, offsets, cyclic, mats, mix[:, 1], mix[:, 2], mix[:, 3:7], origin=origin))
             continue
-        pts, vals, size_list = [lifted[ti]], [mix[:, 1:]], [sizes]
+        pts, vals, size_list = [lifted], [mix[:, 1:]], [sizes]
         cyc, mats, orig = [cyclic], [mats], [origin]
         for key, i, from_a in shown:
             sl = key.strokes.points(i)

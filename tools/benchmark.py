@@ -929,17 +929,20 @@ def method_notes(cases):
 - **Runs.** `time.perf_counter()` around the operator call. Before every run the frames between
   the keys are removed (and the add-on's record of them), so every run starts from the same
   drawing, as a redo from F9 does (Blender undoes the previous run before running it again; in
-  background mode undo is off for both operators, so its cost is in neither number). Re-running
+  background mode undo is off for both operators, so its cost is in neither number). Our
+  operator's kept plans (operators/plans.py) are dropped before each run, so these runs are
+  cold; the *redo* column keeps them and changes the easing every run (Sine In-Out, Quad Out):
+  the times change, the keys do not, as when an option is dragged in the F9 panel. Re-running
   without removing them (the operator then finds and replaces its own earlier in-betweens,
   fingerprinting each) is timed separately at {replaced}. A first run under {WARM_UP:g} s is a
   discarded warm-up; then at least {MIN_RUNS} runs and {BUDGET:g} s, at most {MAX_RUNS}; runs over
   {SLOW:g} s stop after {SLOW_RUNS}. The median is reported.
 - **Stages.** Separate runs of the circular ball-morph with the add-on's functions wrapped
   (outermost call of each stage, `perf_counter`): `keys.find_intervals`, `grease_pencil.read_strokes`,
-  `ballmorph_core.inbetween` and inside it `match_strokes`, `ball_maps`/`dense_maps`, the
-  trajectories (`BallPaths` construction, every paths class's `at`, `Morph.frames`/`__call__`,
-  the batch's `carrier_at`), `_assemble`; `writer.write_all`. The wrappers add a few microseconds per
-  call; stages that the core no longer has show n/a.
+  `PlanCache.plan` and `InbetweenPlan.evaluate` (the core) and inside them `match_strokes`,
+  `ball_maps`/`dense_maps`, the trajectories (`BallPaths` construction, every paths class's
+  `at`, `Morph.frames`/`__call__`, the batch's `carrier_at`), `_assemble`; `writer.write_all`.
+  The wrappers add a few microseconds per call; stages that the core no longer has show n/a.
 - **Peak memory.** One cold run per operator and drawing, each in a fresh bpy process (this
   script with `--probe`): factory settings, the add-on enabled (for both operators, so both
   processes start alike), the drawing built, then freed heap handed back (`malloc_trim(0)`),

@@ -444,6 +444,39 @@ def test_a_pair_failing_mid_run_falls_back_for_that_pair_only(shot, addon, capfd
         np.testing.assert_allclose(got.positions, expected.positions, atol=1e-6)
 
 
+def test_an_interval_whose_morph_fails_is_redone_whole_with_the_fallback(shot, addon, capfd, monkeypatch):
+    """The pipeline raises for the requested morph (outside the per-pair guard): the interval is
+    redone whole with the fallback morph, so its frames come from one morph, and it says so."""
+    plans = importlib.import_module(f"{addon.__name__}.operators.plans")
+    real = plans.plan_inbetween
+
+    def broken(key_a, key_b, method, **kwargs):
+        if method == "laplace-blending":
+            raise FloatingPointError("simulated core bug")
+        return real(key_a, key_b, method=method, **kwargs)
+
+    monkeypatch.setattr(plans, "plan_inbetween", broken)
+    layer = shot.data.layers["Ink"]
+    before = gp_data.snapshot(shot)
+    result, said = run(capfd, method="LAPLACE_BLENDING", frame_count=3)
+    assert result == {"FINISHED"}
+    assert (
+        "Warning",
+        "Ink 1\u21929: the Laplace Blending morph failed (FloatingPointError: simulated core bug): every "
+        "in-between here was made with Linear Interpolation instead; please report this drawing",
+    ) in said
+    after = gp_data.snapshot(shot)
+    unchanged_frames(before, after)
+    reader = importlib.import_module(f"{addon.__name__}.operators.grease_pencil")
+    key_a = reader.read_strokes(gp_data.frame_at(layer, 1).drawing)
+    key_b = reader.read_strokes(gp_data.frame_at(layer, 9).drawing)
+    numbers, fractions = frame_times(1, 9, 3)
+    want = _core_inbetween(addon).inbetween(key_a, key_b, fractions, method="linear-interpolation")
+    for number, expected in zip(numbers.tolist(), want.frames):
+        got = gp_data.read_strokes(gp_data.frame_at(layer, number).drawing)
+        np.testing.assert_allclose(got.positions, expected.positions, atol=1e-6)
+
+
 def test_an_interval_failing_for_every_morph_leaves_its_layer_untouched(addon, capfd, monkeypatch):
     """The whole pipeline raises for one layer's keys, and again with the fallback: nothing is
     written on that layer, the other layers still are, and the report says why."""

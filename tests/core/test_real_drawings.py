@@ -1,5 +1,7 @@
 """Real drawings (issue 5): carriers, crossing splits, overlaps, composite ball-morph, pipeline."""
 
+import importlib
+
 import numpy as np
 import pytest
 from shapes import circle, distance_to_polyline
@@ -255,7 +257,7 @@ def _same_drawing(got, want):
 
 
 @pytest.mark.parametrize("method", ["circular-ball", "parabolic-ball", "laplace-blending"])
-def test_a_plan_evaluates_to_what_inbetween_gives_at_any_times(method):
+def test_a_plan_evaluates_to_what_inbetween_gives_at_any_times(method, monkeypatch):
     """The operator's redo reuses a plan with other times: each evaluation must be exactly the
     in-betweens computed from scratch, including pairs on the general road and fallbacks."""
     key_a, key_b = _drawing_4_and_5()
@@ -266,8 +268,18 @@ def test_a_plan_evaluates_to_what_inbetween_gives_at_any_times(method):
     key_a = bm.StrokeSet.concatenate([key_a, extra_a])
     key_b = bm.StrokeSet.concatenate([key_b, extra_b])
     plan = bm.plan_inbetween(key_a, key_b, method)
+    pipeline = importlib.import_module("ballmorph_core.inbetween")  # the package exports a function of that name
+    real, planned = pipeline.morph_pair, []
+
+    def counted(*args, **kwargs):
+        planned.append(args)
+        return real(*args, **kwargs)
+
     for times in ([0.5], np.linspace(0, 1, 9), [0.1, 0.9, 0.3], [-1.0, 2.0]):
-        got = plan.evaluate(times)
+        with monkeypatch.context() as patch:
+            patch.setattr(pipeline, "morph_pair", counted)
+            got = plan.evaluate(times)
+        assert not planned, "evaluating a plan planned a stroke pair again"
         want = bm.inbetween(key_a, key_b, times, method)
         _same_drawing(got, want)
     used = [p.method for p in got.pairs]
