@@ -601,7 +601,9 @@ def _merge(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
         order = np.argsort(gx + base[gc], kind="stable")
         sp_b = np.where(closed[cb], np.mod(bwd["s_src"], len_p[cb]), bwd["s_src"])
         ref = np.interp(sp_b + base[cb], (gx + base[gc])[order], gy[order])
-        sq_b = np.where(closed[cb], bwd["s_dst"] + len_q[cb] * np.round((ref - bwd["s_dst"]) / len_q[cb]), bwd["s_dst"])
+        # Whole laps to add (loops only; a zero-length chain has none).
+        laps = np.divide(ref - bwd["s_dst"], len_q[cb], out=np.zeros_like(ref), where=closed[cb] & (len_q[cb] > 0))
+        sq_b = bwd["s_dst"] + len_q[cb] * np.round(laps)
         bwd = dict(bwd, s_src=sp_b, s_dst=sq_b)
     keys = ("src", "dst", "m", "r", "ok", "s_src", "s_dst", "n_src", "n_dst", "chain")
     allp = {k: np.concatenate([fwd[k], bwd[k]]) for k in keys}

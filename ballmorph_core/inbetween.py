@@ -633,8 +633,10 @@ def _spread(plan, todo, n_pairs, times):
     if plan is None:
         return out
     fast = plan.frames(times)
-    bad = np.concatenate([[0], np.cumsum(~np.isfinite(fast.frames).all(axis=(0, 2)))])
-    good = fast.done & (bad[fast.offsets[1:]] == bad[fast.offsets[:-1]])  # no non-finite sample
+    good = fast.done.copy()
+    if not np.isfinite(fast.frames.sum()):  # (a sum of finite frames cannot overflow: MAX_COORDINATE)
+        bad = np.concatenate([[0], np.cumsum(~np.isfinite(fast.frames).all(axis=(0, 2)))])
+        good &= bad[fast.offsets[1:]] == bad[fast.offsets[:-1]]  # no non-finite sample
     sizes = np.zeros(n_pairs, dtype=np.int64)
     sizes[todo[good]] = np.diff(fast.offsets)[good]
     keep = np.repeat(good, np.diff(fast.offsets))

