@@ -29,7 +29,8 @@ bench:
 # The long fuzz target (issue 7): thousands of random curve pairs and drawings per test
 # (HYPOTHESIS_PROFILE=fuzz, FUZZ_EXAMPLES to change the count); `make test` runs its short
 # profile. The address space is capped so a memory blow-up fails as a MemoryError instead of
-# exhausting the machine; pytest-timeout's per-test limit is lifted (a test runs ~20 minutes).
+# exhausting the machine; pytest-timeout's per-test limit is lifted (3,000 examples per test:
+# about 5 minutes in all on two cores).
 fuzz:
 	py=$$(tools/bootstrap.sh 5.0.1) && ulimit -v 8000000 && \
 	HYPOTHESIS_PROFILE=fuzz timeout 14400 $$py -m pytest -q --timeout=0 tests/fuzz --hypothesis-show-statistics

@@ -599,7 +599,8 @@ def _merge(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
         gc = np.concatenate([cf, np.arange(n_chains)])
         base = np.concatenate([[0.0], np.cumsum(len_p + 1.0)])[:-1]
         order = np.argsort(gx + base[gc], kind="stable")
-        sp_b = np.where(closed[cb], np.mod(bwd["s_src"], len_p[cb]), bwd["s_src"])
+        wraps = closed[cb] & (len_p[cb] > 0)  # loops of zero length (degenerate chains) do not wrap
+        sp_b = np.where(wraps, np.mod(bwd["s_src"], np.where(wraps, len_p[cb], 1.0)), bwd["s_src"])
         ref = np.interp(sp_b + base[cb], (gx + base[gc])[order], gy[order])
         # Whole laps to add (loops only; a zero-length chain has none).
         laps = np.divide(ref - bwd["s_dst"], len_q[cb], out=np.zeros_like(ref), where=closed[cb] & (len_q[cb] > 0))
