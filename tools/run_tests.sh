@@ -22,7 +22,7 @@ for version in $BPY_VERSIONS; do
     echo "== Blender tests in bpy $version"
     bpy_py=$(tools/bootstrap.sh "$version")
     # bpy can hang at exit if something stays registered: the timeout turns that into a failure.
-    timeout 1500 "$bpy_py" -m pytest -q -p no:cacheprovider --import-mode=importlib \
+    timeout 1500 "$bpy_py" -m pytest -q -p no:cacheprovider -p tests.root_dir_plugin --import-mode=importlib \
         -o testpaths=tests/blender -o addopts= tests/blender
 done
 echo "== all tests passed"
