@@ -355,7 +355,16 @@ def plan_pairs(pairs, kind="circular", carrier="SIMILARITY", spacing=None):
     order = np.argsort(chain_pair, kind="stable")
     setups = [setups[k] for k in order]
     chain_pair, range_p, range_q = chain_pair[order], np.asarray(range_p)[order], np.asarray(range_q)[order]
-    corrs = ball_maps(setups, h[chain_pair], "symmetric", check=False, eps=eps[chain_pair])
+    # In batches of about BALLMAP_BATCH_POINTS input points (whole pairs: each pair's chains
+    # share one tolerance), which bounds the ball-map's temporaries on huge drawings.
+    starts = np.cumsum([0] + [len(s.P) + len(s.Q) for s in setups])[:-1] // tol.BALLMAP_BATCH_POINTS
+    first_of_pair = np.r_[True, chain_pair[1:] != chain_pair[:-1]]
+    batch_of = np.maximum.accumulate(np.where(first_of_pair, starts, 0))
+    corrs = []
+    for number in np.unique(batch_of):
+        members = np.flatnonzero(batch_of == number)
+        owners = chain_pair[members]
+        corrs += ball_maps([setups[i] for i in members], h[owners], "symmetric", check=False, eps=eps[owners])
     failed = np.zeros(n, dtype=bool)
     failed[[c for corr, c in zip(corrs, chain_pair) if corr.report.violations]] = True
     good = np.flatnonzero(~failed[chain_pair])

@@ -555,7 +555,9 @@ class InbetweenPlan:
         held = [(self.ka, i, True) for i in self.unmatched_a] + [(self.kb, j, False) for j in self.unmatched_b]
         for _, i, from_a in held:
             _report_unmatched(result, i, from_a, self.unmatched)
-        result.frames = _assemble(parts, held, self.ka, self.kb, times, self.plane, self.unmatched)
+        # Every pair from the fast path, in order: its frames are already the concatenation.
+        whole = fast.frames if fast.done.all() else None
+        result.frames = _assemble(parts, held, self.ka, self.kb, times, self.plane, self.unmatched, whole)
         result.messages.extend(self.planarity)
         return result
 
@@ -673,10 +675,13 @@ def _report_unmatched(result, index, from_a, unmatched):
     result.messages.append(Message("WARNING", f"stroke {index} of the {key} key has no partner: {what}"))
 
 
-def _assemble(parts, held, ka, kb, times, plane, unmatched):
-    """One StrokeSet per time from every pair's frames and the unmatched strokes (vectorised)."""
+def _assemble(parts, held, ka, kb, times, plane, unmatched, frames=None):
+    """One StrokeSet per time from every pair's frames and the unmatched strokes (vectorised).
+
+    ``frames``, shape (T, K, 2), is the pairs' frames concatenated when the caller has it.
+    """
     if parts:
-        frames = np.concatenate([p[0] for p in parts], axis=1)  # (T, K, 2)
+        frames = np.concatenate([p[0] for p in parts], axis=1) if frames is None else frames  # (T, K, 2)
         sizes = np.array([p[0].shape[1] for p in parts])
         stroke_a = np.repeat([p[4].index for p in parts], sizes)
         stroke_b = np.repeat([p[5].index for p in parts], sizes)

@@ -170,6 +170,10 @@ PLANE_AXIS = 1e-6
 #: their temporary arrays (about 0.2 KB per pair) without slowing them down noticeably.
 CANDIDATE_BUDGET = 500_000
 
+#: The fast path ball-maps its lenses in batches of about this many input points: one batch
+#: for a typical drawing, several for a huge one, which bounds the ball-map's temporaries.
+BALLMAP_BATCH_POINTS = 60_000
+
 #: Coordinates beyond this magnitude are rejected: their squares (lengths, disk radii)
 #: would overflow float64.
 MAX_COORDINATE = 1e150

@@ -316,3 +316,19 @@ def test_fast_path_and_general_road_agree(method, carrier):
         assert frames.shape == general.shape
         assert _cyclic_match(frames, general, closed) < 1e-9
         assert _cyclic_match(u_a[None, :, None], g_a[None, :, None], closed) < 1e-9
+
+
+def test_ball_mapping_in_batches_changes_nothing(monkeypatch):
+    """A huge drawing's lenses are ball-mapped in batches (tolerances.BALLMAP_BATCH_POINTS):
+    cutting the same drawing into one batch per pair gives the same in-betweens."""
+    from ballmorph_core import tolerances
+
+    key_a, key_b = _drawing_4_and_5()
+    times = np.linspace(0, 1, 5)
+    one = bm.inbetween(key_a, key_b, times)
+    monkeypatch.setattr(tolerances, "BALLMAP_BATCH_POINTS", 10)  # every pair a batch of its own
+    many = bm.inbetween(key_a, key_b, times)
+    assert [p.method for p in many.pairs] == [p.method for p in one.pairs]
+    for a, b in zip(one.frames, many.frames):
+        np.testing.assert_array_equal(a.offsets, b.offsets)
+        np.testing.assert_allclose(a.positions, b.positions, atol=1e-9)
