@@ -9,6 +9,7 @@ import numpy as np
 
 from . import tolerances as tol
 from .errors import InvalidCurveError
+from .options import check_positive
 from .ragged import catmull_rom
 
 __all__ = [
@@ -194,12 +195,7 @@ def resolve_spacing(P, Q, closed, spacing):
     """
     if spacing is None:
         return default_spacing(P, Q, closed=closed)
-    try:
-        value = float(spacing)
-    except (TypeError, ValueError):
-        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}") from None
-    if not (np.isfinite(value) and value > 0):
-        raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
+    value = check_positive("spacing", spacing)
     longest = max(curve_length(P, closed), curve_length(Q, closed))
     if longest / value > tol.MAX_SAMPLES:
         raise InvalidCurveError(

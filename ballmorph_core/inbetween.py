@@ -21,7 +21,7 @@ from .errors import InvalidCurveError
 from .matching import MODES as MATCHINGS
 from .matching import match_strokes
 from .morphs import make_morph
-from .options import check_option
+from .options import check_option, check_positive
 from .pair import BALL_METHODS, morph_pair
 from .plane import fit_plane
 from .ragged import Ragged
@@ -423,7 +423,9 @@ def inbetween(
     """
     _check_inputs(key_a, key_b, method, carrier, matching, unmatched)
     times = _check_times(times)
-    return plan_inbetween(key_a, key_b, method, carrier, matching, unmatched, spacing).evaluate(times)
+    spacing = None if spacing is None else check_positive("spacing", spacing)
+    # The inputs are checked: build the plan directly rather than check the keys twice.
+    return InbetweenPlan(key_a, key_b, method, carrier, matching, unmatched, spacing).evaluate(times)
 
 
 def plan_inbetween(
@@ -472,13 +474,7 @@ def plan_inbetween(
     the operator's redo (another frame count or easing) skip the expensive part.
     """
     _check_inputs(key_a, key_b, method, carrier, matching, unmatched)
-    if spacing is not None:
-        try:
-            spacing = float(spacing)
-        except (TypeError, ValueError):
-            raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}") from None
-        if not (np.isfinite(spacing) and spacing > 0):
-            raise InvalidCurveError(f"spacing must be a positive finite number, got {spacing!r}")
+    spacing = None if spacing is None else check_positive("spacing", spacing)
     return InbetweenPlan(key_a, key_b, method, carrier, matching, unmatched, spacing)
 
 

@@ -251,6 +251,14 @@ class PointTree:
         return np.concatenate(found_q), np.concatenate(found_p)
 
 
+def _union_boxes(lows, highs, start):
+    """Bounding boxes of consecutive ranges ``[start[k], start[k + 1])``, shape (len(start), 4).
+
+    ``lows`` and ``highs``, shape (N, 2), are the corners (the same array for points).
+    """
+    return np.concatenate([np.minimum.reduceat(lows, start, axis=0), np.maximum.reduceat(highs, start, axis=0)], axis=1)
+
+
 class CurveTree:
     """A bounding-volume hierarchy over polylines, built from runs of consecutive vertices.
 
@@ -288,15 +296,7 @@ class CurveTree:
             c_start = first[owner] + 2 * local
             c_end = np.minimum(c_start + 2, first[owner] + count[owner])
             prev = self.levels[-1][2]
-            boxes = np.stack(
-                [
-                    np.minimum.reduceat(prev[:, 0], c_start),
-                    np.minimum.reduceat(prev[:, 1], c_start),
-                    np.maximum.reduceat(prev[:, 2], c_start),
-                    np.maximum.reduceat(prev[:, 3], c_start),
-                ],
-                axis=1,
-            )
+            boxes = _union_boxes(prev[:, :2], prev[:, 2:], c_start)
             # reduceat over [c_start, next c_start): the last parent of a curve may have one child.
             single = c_end - c_start == 1
             boxes[single] = prev[c_start[single]]
@@ -306,19 +306,10 @@ class CurveTree:
         self.has_points = sizes > 0
 
     def _boxes(self, start, end):
-        pts = self.points
         if len(start) == 0:
             return np.zeros((0, 4))
-        boxes = np.stack(
-            [
-                np.minimum.reduceat(pts[:, 0], start),
-                np.minimum.reduceat(pts[:, 1], start),
-                np.maximum.reduceat(pts[:, 0], start),
-                np.maximum.reduceat(pts[:, 1], start),
-            ],
-            axis=1,
-        )
-        return boxes  # runs tile the point array, so reduceat's ranges are exactly the runs
+        # Runs tile the point array, so reduceat's ranges are exactly the runs.
+        return _union_boxes(self.points, self.points, start)
 
     def within(self, centres, radii, curves, first_only=False):
         """Vertices of given curves strictly inside disks.

@@ -401,6 +401,13 @@ def _core_inbetween(addon):
     return importlib.import_module(f"{addon.__name__}.ballmorph_core.inbetween")
 
 
+def _keys_as_the_addon_reads_them(addon, layer, first=1, last=9):
+    """The two keys read by the add-on's own reader: the core checks keys are its own
+    StrokeSet class, and the add-on's vendored core is a different module from the tests'."""
+    reader = importlib.import_module(f"{addon.__name__}.operators.grease_pencil")
+    return tuple(reader.read_strokes(gp_data.frame_at(layer, n).drawing) for n in (first, last))
+
+
 def test_a_pair_failing_mid_run_falls_back_for_that_pair_only(shot, addon, capfd, monkeypatch):
     """One stroke pair raises (a simulated core bug): that pair is made with the fallback morph
     and reported; the other pairs keep the requested morph; keys untouched."""
@@ -428,11 +435,7 @@ def test_a_pair_failing_mid_run_falls_back_for_that_pair_only(shot, addon, capfd
     assert sorted(after["Ink"]) == [1, 3, 5, 7, 9]
     # What was written is what the core gives with the same failure: the first pair morphed by
     # laplace-blending, the failing pair by linear interpolation.
-    # Read with the add-on's own reader: the core checks keys are its own StrokeSet class, and
-    # the add-on's vendored core is a different module from the tests' ``ballmorph_core``.
-    reader = importlib.import_module(f"{addon.__name__}.operators.grease_pencil")
-    key_a = reader.read_strokes(gp_data.frame_at(layer, 1).drawing)
-    key_b = reader.read_strokes(gp_data.frame_at(layer, 9).drawing)
+    key_a, key_b = _keys_as_the_addon_reads_them(addon, layer)
     numbers, fractions = frame_times(1, 9, 3)
     calls.clear()
     want = core.inbetween(key_a, key_b, fractions, method="laplace-blending")
@@ -467,9 +470,7 @@ def test_an_interval_whose_morph_fails_is_redone_whole_with_the_fallback(shot, a
     ) in said
     after = gp_data.snapshot(shot)
     unchanged_frames(before, after)
-    reader = importlib.import_module(f"{addon.__name__}.operators.grease_pencil")
-    key_a = reader.read_strokes(gp_data.frame_at(layer, 1).drawing)
-    key_b = reader.read_strokes(gp_data.frame_at(layer, 9).drawing)
+    key_a, key_b = _keys_as_the_addon_reads_them(addon, layer)
     numbers, fractions = frame_times(1, 9, 3)
     want = _core_inbetween(addon).inbetween(key_a, key_b, fractions, method="linear-interpolation")
     for number, expected in zip(numbers.tolist(), want.frames):
