@@ -9,8 +9,7 @@ every run stores its options back there, so F9 changes are remembered.
 
 import bpy
 
-from ..ballmorph_core import BallMorphError
-from ..ballmorph_core.inbetween import FALLBACK_METHOD
+from ..ballmorph_core import FALLBACK_METHOD, BallMorphError
 from . import keys, morph, options, writer
 from .plans import PLANS
 

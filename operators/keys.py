@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..ballmorph_core.timing import frame_times
+from ..ballmorph_core import frame_times
 from . import generated
 
 __all__ = ["Interval", "grease_pencil_object", "target_layers", "layer_blocker", "find_intervals"]

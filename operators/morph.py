@@ -8,8 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..ballmorph_core import StrokeSet
-from ..ballmorph_core.timing import ease
+from ..ballmorph_core import StrokeSet, ease
 from . import grease_pencil
 from .plans import PLANS
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import ballmorph_core as bm
-from ballmorph_core.timing import ease, frame_times
+from ballmorph_core import ease, frame_times
 
 
 def run(capfd, **options):

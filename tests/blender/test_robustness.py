@@ -19,7 +19,7 @@ import gp_data
 import numpy as np
 import pytest
 
-from ballmorph_core.timing import frame_times
+from ballmorph_core import frame_times
 
 LEVELS = ("Info", "Warning", "Error")
 
