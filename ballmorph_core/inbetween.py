@@ -421,7 +421,7 @@ def inbetween(
     -------
     InbetweenResult
     """
-    _check_inputs(key_a, key_b, method, carrier, matching, unmatched)
+    method, carrier, matching, unmatched = _check_inputs(key_a, key_b, method, carrier, matching, unmatched)
     times = _check_times(times)
     spacing = None if spacing is None else check_positive("spacing", spacing)
     # The inputs are checked: build the plan directly rather than check the keys twice.
@@ -473,7 +473,7 @@ def plan_inbetween(
     :meth:`~InbetweenPlan.evaluate` only moves samples along their paths, which is what lets
     the operator's redo (another frame count or easing) skip the expensive part.
     """
-    _check_inputs(key_a, key_b, method, carrier, matching, unmatched)
+    method, carrier, matching, unmatched = _check_inputs(key_a, key_b, method, carrier, matching, unmatched)
     spacing = None if spacing is None else check_positive("spacing", spacing)
     return InbetweenPlan(key_a, key_b, method, carrier, matching, unmatched, spacing)
 
@@ -561,12 +561,15 @@ class InbetweenPlan:
 def _check_inputs(key_a, key_b, method, carrier, matching, unmatched):
     from .morphs import METHODS  # local: the registry is complete once the package is imported
 
-    check_option("method", method, METHODS)
-    check_option("carrier", carrier, CARRIERS)
-    check_option("matching", matching, MATCHINGS)
-    check_option("unmatched", unmatched, UNMATCHED)
+    options = (
+        check_option("method", method, METHODS),
+        check_option("carrier", carrier, CARRIERS),
+        check_option("matching", matching, MATCHINGS),
+        check_option("unmatched", unmatched, UNMATCHED),
+    )
     for name, key in (("key_a", key_a), ("key_b", key_b)):
         _check_key(name, key)
+    return options
 
 
 def _check_times(times):

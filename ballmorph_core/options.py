@@ -7,8 +7,15 @@ from .errors import InvalidCurveError
 __all__ = ["check_option", "check_positive"]
 
 
+def _canonical(value):
+    return value.strip().lower().replace("_", "-") if isinstance(value, str) else value
+
+
 def check_option(name, value, valid):
-    """Return ``value`` if it is one of ``valid``, else raise a clear error.
+    """The entry of ``valid`` that ``value`` names, else raise a clear error.
+
+    Matching ignores case and treats ``_`` as ``-``, so Blender's enum ids (``'EASE_IN'``,
+    ``'CIRCULAR_BALL'``) name the core's values (``'ease-in'``, ``'circular-ball'``).
 
     Parameters
     ----------
@@ -22,7 +29,7 @@ def check_option(name, value, valid):
     Returns
     -------
     str
-        ``value`` unchanged.
+        The entry of ``valid`` (its spelling, not the caller's).
 
     Raises
     ------
@@ -33,15 +40,21 @@ def check_option(name, value, valid):
     --------
     >>> check_option("closed_mode", "loop", ("loop", "stroke"))
     'loop'
+    >>> check_option("closed_mode", "LOOP", ("loop", "stroke"))
+    'loop'
     >>> check_option("closed_mode", "ring", ("loop", "stroke"))
     Traceback (most recent call last):
     ...
     ballmorph_core.errors.InvalidCurveError: closed_mode='ring' is not valid; expected one of 'loop', 'stroke'
     """
-    if value not in valid:
-        listed = ", ".join(repr(v) for v in valid)
-        raise InvalidCurveError(f"{name}={value!r} is not valid; expected one of {listed}")
-    return value
+    if value in valid:
+        return value
+    wanted = _canonical(value)
+    for entry in valid:
+        if _canonical(entry) == wanted:
+            return entry
+    listed = ", ".join(repr(v) for v in valid)
+    raise InvalidCurveError(f"{name}={value!r} is not valid; expected one of {listed}")
 
 
 def check_positive(name, value):

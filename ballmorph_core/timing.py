@@ -71,8 +71,8 @@ def ease(x, kind="LINEAR", mode="AUTO"):
     >>> ease([0.25], "QUAD", "EASE_IN_OUT").tolist()
     [0.125]
     """
-    check_option("kind", kind, EASING_TYPES)
-    check_option("mode", mode, EASING_MODES)
+    kind = check_option("kind", kind, EASING_TYPES)
+    mode = check_option("mode", mode, EASING_MODES)
     x = np.clip(np.asarray(x, dtype=np.float64), 0.0, 1.0)
     if kind == "LINEAR":
         return x
