@@ -4,10 +4,9 @@ Whited & Rossignac, "Ball-morph: Definition, Implementation and Comparative Eval
 This package never imports bpy: it runs in plain CPython and vendored inside the add-on.
 """
 
-from .ballmap import Correspondence, ball_map
-from .compat import CompatibilityReport, classify
-from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
-from .inbetween import (
+from .ballmap.correspondence import Correspondence, ball_map
+from .ballmap.topology import CompatibilityReport, classify
+from .drawing.plan import (
     CARRIERS,
     FALLBACK_METHOD,
     MATCHINGS,
@@ -18,10 +17,11 @@ from .inbetween import (
     inbetween,
     plan_inbetween,
 )
-from .measures import measure
+from .drawing.timing import EASING_MODES, EASING_TYPES, ease, frame_times
+from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from .morphs import METHODS, Morph, make_morph
-from .timing import EASING_MODES, EASING_TYPES, ease, frame_times
-from .trajectories import BallPaths, midpoint_locus
+from .morphs.paths import BallPaths, midpoint_locus
+from .study.measures import measure
 
 __all__ = [
     "METHODS",

@@ -30,7 +30,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, ROOT)
 
 import ballmorph_core as bm  # noqa: E402  (after the path set-up)
-from ballmorph_core.curves import default_spacing  # noqa: E402
+from ballmorph_core.geometry.polyline import default_spacing  # noqa: E402
 
 SIZES = (500, 1000, 2000, 4000)
 SPACINGS = ("default", "per-vertex")

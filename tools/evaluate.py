@@ -41,8 +41,8 @@ sys.path.insert(0, TOOLS)
 from paper_cases import Case, paper_cases  # noqa: E402
 
 import ballmorph_core as bm  # noqa: E402
-from ballmorph_core.curves import curve_length, scale_of  # noqa: E402
-from ballmorph_core.measures import MEASURES, strip_mesh  # noqa: E402
+from ballmorph_core.geometry.polyline import curve_length, scale_of  # noqa: E402
+from ballmorph_core.study.measures import MEASURES, strip_mesh  # noqa: E402
 
 DEFAULT_OUT = os.path.join(ROOT, "docs", "evaluation")
 DEFAULT_STEPS = 40

@@ -2,10 +2,10 @@
 
 import numpy as np
 
-from ..ballmap import ball_map
-from ..curves import curve_length
-from ..trajectories import BallPaths
+from ..ballmap.correspondence import ball_map
+from ..geometry.polyline import curve_length
 from .base import PathMorph, register
+from .paths import BallPaths
 
 __all__ = ["BallMorph"]
 

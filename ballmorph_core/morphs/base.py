@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from ..curves import as_curve
+from ..geometry.polyline import as_curve
 from ..options import check_option
 
 __all__ = ["Morph", "PathMorph", "KeyedMorph", "register", "registered", "build"]

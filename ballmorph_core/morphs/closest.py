@@ -15,14 +15,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap import SAMPLINGS
-from ..compat import orient_pair
-from ..curves import as_curve, curve_length, densify, edges, resample, resolve_spacing, reverse, scale_of
+from ..ballmap.correspondence import SAMPLINGS
+from ..ballmap.topology import orient_pair
 from ..errors import IncompatibleCurvesError
+from ..geometry.polyline import as_curve, curve_length, densify, edges, resample, resolve_spacing, reverse, scale_of
+from ..geometry.spatial import PointTree, ragged_arange
 from ..options import check_option
-from ..spatial import PointTree, ragged_arange
-from ..trajectories import LinearPaths
 from .base import PathMorph, register
+from .paths import LinearPaths
 
 #: Candidate (query, vertex) pairs held at once by :meth:`Projector.project` (memory bound), and
 #: the fewest queries per chunk.

@@ -25,14 +25,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap import dense_maps, disk_between
-from ..compat import orient_pair
-from ..curves import curve_length, resolve_spacing, subcurve
+from ..ballmap.correspondence import dense_maps, disk_between
+from ..ballmap.topology import orient_pair
+from ..drawing.splitting import distances_to_polyline
 from ..errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
-from ..splitting import distances_to_polyline
-from ..trajectories import SampledPaths
+from ..geometry.polyline import curve_length, resolve_spacing, subcurve
 from .ball import input_fractions
 from .base import PathMorph, build, register, registered
+from .paths import SampledPaths
 
 __all__ = ["Bridge", "bridges", "blend"]
 

@@ -12,8 +12,8 @@ transformation").
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap import SAMPLINGS
-from ..curves import as_complex, edges, turning_angles
+from ..ballmap.correspondence import SAMPLINGS
+from ..geometry.polyline import as_complex, edges, turning_angles
 from ..options import check_option
 from .base import KeyedMorph, register
 from .linear import sample_count, uniform_correspondence

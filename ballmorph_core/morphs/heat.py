@@ -34,15 +34,15 @@ which. Shared stroke endpoints stay put. Nothing non-finite reaches the frames.
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap import SAMPLINGS
-from ..compat import orient_pair
-from ..curves import resample, resolve_spacing, reverse
+from ..ballmap.correspondence import SAMPLINGS
+from ..ballmap.topology import orient_pair
 from ..errors import InvalidCurveError
+from ..geometry.polyline import resample, resolve_spacing, reverse
+from ..geometry.spatial import ragged_arange
 from ..options import check_option
-from ..spatial import ragged_arange
-from ..trajectories import LevelPaths
 from .base import PathMorph, register
 from .closest import Projector
+from .paths import LevelPaths
 
 __all__ = ["HeatField", "HeatMorph", "conjugate_gradient"]
 

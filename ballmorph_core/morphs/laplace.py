@@ -27,8 +27,8 @@ frame costs two FFTs.
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap import SAMPLINGS
-from ..curves import as_complex, scale_of
+from ..ballmap.correspondence import SAMPLINGS
+from ..geometry.polyline import as_complex, scale_of
 from ..options import check_option
 from .base import KeyedMorph, register
 from .linear import sample_count, uniform_correspondence

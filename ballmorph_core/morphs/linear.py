@@ -7,12 +7,12 @@ same number of uniformly distributed samples on each curve").
 
 import numpy as np
 
-from ..ballmap import SAMPLINGS
-from ..compat import shared_endpoints
-from ..curves import curve_length, resample, resolve_spacing, signed_area
+from ..ballmap.correspondence import SAMPLINGS
+from ..ballmap.topology import shared_endpoints
+from ..geometry.polyline import curve_length, resample, resolve_spacing, signed_area
 from ..options import check_option
-from ..trajectories import LinearPaths
 from .base import PathMorph, register
+from .paths import LinearPaths
 
 __all__ = ["uniform_correspondence", "best_cyclic_alignment", "sample_count"]
 

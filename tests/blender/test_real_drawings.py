@@ -14,8 +14,8 @@ import gp_data
 import numpy as np
 import pytest
 
-from ballmorph_core.curves import curve_length
-from ballmorph_core.intersections import crossings, is_simple
+from ballmorph_core.geometry.intersections import crossings, is_simple
+from ballmorph_core.geometry.polyline import curve_length
 
 HEAD, BROW, MOUTH, CURL, NEW = range(5)
 

@@ -398,7 +398,7 @@ def test_undo_in_edit_mode_leaves_the_earlier_in_betweens_the_tools(shot, capfd)
 
 def _core_inbetween(addon):
     """The add-on's own copy of the core's drawing pipeline (the module the operator calls)."""
-    return importlib.import_module(f"{addon.__name__}.ballmorph_core.inbetween")
+    return importlib.import_module(f"{addon.__name__}.ballmorph_core.drawing.plan")
 
 
 def _keys_as_the_addon_reads_them(addon, layer, first=1, last=9):

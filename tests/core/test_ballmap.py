@@ -16,8 +16,8 @@ from shapes import (
 
 import ballmorph_core as bm
 from ballmorph_core import tolerances as tol
-from ballmorph_core.curves import vertex_normals
-from ballmorph_core.intersections import is_simple
+from ballmorph_core.geometry.intersections import is_simple
+from ballmorph_core.geometry.polyline import vertex_normals
 
 # ---------------------------------------------------------------- analytic cases
 
@@ -218,8 +218,8 @@ def _check_contact_invariants(P, Q, closed, corr, slope_p=None, slope_q=None):
     assert distance_to_polyline(corr.q, Q, closed).max() < 0.1 * edge
     # Maximality: no point of P or Q inside any disk, beyond the documented slack (a disk may be
     # entered by DISK_PENETRATION dense spacings near its contacts, NONLOCAL_* farther away).
-    fine_p = bm.curves.resample(P, closed, count=4 * len(P))
-    fine_q = bm.curves.resample(Q, closed, count=4 * len(Q))
+    fine_p = bm.geometry.polyline.resample(P, closed, count=4 * len(P))
+    fine_q = bm.geometry.polyline.resample(Q, closed, count=4 * len(Q))
     pts = np.concatenate([fine_p, fine_q])
     d = np.linalg.norm(pts[None, :, :] - corr.centers[:, None, :], axis=2).min(axis=1)
     slack = tol.NONLOCAL_RELATIVE * r + tol.NONLOCAL_PENETRATION * corr.spacing

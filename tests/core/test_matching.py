@@ -10,15 +10,15 @@ from hypothesis import strategies as st
 from shapes import circle
 
 from ballmorph_core import tolerances as tol
-from ballmorph_core.curves import resample, reverse, signed_area
-from ballmorph_core.errors import InvalidCurveError
-from ballmorph_core.matching import (
+from ballmorph_core.drawing.matching import (
     _assign_within,
     _loop_shape,
     _padded_total,
     match_strokes,
     solve_assignment,
 )
+from ballmorph_core.errors import InvalidCurveError
+from ballmorph_core.geometry.polyline import resample, reverse, signed_area
 from ballmorph_core.morphs.linear import best_cyclic_alignment
 
 

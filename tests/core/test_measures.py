@@ -7,7 +7,9 @@ from hypothesis import strategies as st
 from shapes import circle, graph_stroke
 
 import ballmorph_core as bm
-from ballmorph_core.measures import (
+from ballmorph_core.morphs.base import PathMorph
+from ballmorph_core.morphs.paths import BallPaths
+from ballmorph_core.study.measures import (
     MEASURES,
     accelerations,
     distortions,
@@ -18,8 +20,6 @@ from ballmorph_core.measures import (
     strip_mesh,
     travel_distances,
 )
-from ballmorph_core.morphs.base import PathMorph
-from ballmorph_core.trajectories import BallPaths
 
 
 def ellipse(a, b, n):

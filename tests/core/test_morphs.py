@@ -7,8 +7,8 @@ from hypothesis import strategies as st
 from shapes import circle, distance_to_polyline, graph_stroke, polar_loop
 
 import ballmorph_core as bm
-from ballmorph_core.curves import curve_length, edge_lengths, point_at, resample, reverse
-from ballmorph_core.intersections import is_simple
+from ballmorph_core.geometry.intersections import is_simple
+from ballmorph_core.geometry.polyline import curve_length, edge_lengths, point_at, resample, reverse
 from ballmorph_core.morphs.closest import Projector, c_compatibility
 from ballmorph_core.morphs.curvature import CurvatureMorph
 from ballmorph_core.morphs.laplace import LaplaceMorph
@@ -51,7 +51,7 @@ def check_invariants(m, P, Q, closed, tol_on=2e-3):
     k = len(m)
     assert frames.shape == (len(TIMES), k, 2)
     assert np.all(np.isfinite(frames))
-    scale = bm.curves.scale_of(P, Q)
+    scale = bm.geometry.polyline.scale_of(P, Q)
     assert distance_to_polyline(m(0.0), P, closed).max() <= tol_on * scale
     assert distance_to_polyline(m(1.0), Q, closed).max() <= tol_on * scale
     for u in (m.u_p, m.u_q):
@@ -243,7 +243,7 @@ def test_curvature_interpolation_of_opposite_loops_keeps_the_turning_direction()
     # Q drawn clockwise: paired so both turn the same way, every frame keeps P's orientation.
     P, Q = loop_pair()
     m = bm.make_morph(P, reverse(Q, True), "curvature-interpolation", closed=True)
-    assert all(bm.curves.signed_area(f) > 0 for f in m.frames(TIMES))
+    assert all(bm.geometry.polyline.signed_area(f) > 0 for f in m.frames(TIMES))
 
 
 # ---------------------------------------------------------------- laplace blending

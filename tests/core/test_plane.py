@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from ballmorph_core.plane import fit_plane
+from ballmorph_core.geometry.plane import fit_plane
 
 
 def _tilted(points_2d, depth, angle):

@@ -7,11 +7,11 @@ import pytest
 from shapes import circle, distance_to_polyline
 
 import ballmorph_core as bm
-from ballmorph_core.curves import curve_length, orient_clockwise
-from ballmorph_core.intersections import crossings, is_simple
-from ballmorph_core.pair import morph_pair
-from ballmorph_core.registration import Carrier, Similarity, endpoint_similarity, fit_similarity
-from ballmorph_core.splitting import split_pair
+from ballmorph_core.drawing.pair import morph_pair
+from ballmorph_core.drawing.registration import Carrier, Similarity, endpoint_similarity, fit_similarity
+from ballmorph_core.drawing.splitting import split_pair
+from ballmorph_core.geometry.intersections import crossings, is_simple
+from ballmorph_core.geometry.polyline import curve_length, orient_clockwise
 
 # ------------------------------------------------------------------ registration
 
@@ -268,7 +268,7 @@ def test_a_plan_evaluates_to_what_inbetween_gives_at_any_times(method, monkeypat
     key_a = bm.StrokeSet.concatenate([key_a, extra_a])
     key_b = bm.StrokeSet.concatenate([key_b, extra_b])
     plan = bm.plan_inbetween(key_a, key_b, method)
-    pipeline = importlib.import_module("ballmorph_core.inbetween")  # the package exports a function of that name
+    pipeline = importlib.import_module("ballmorph_core.drawing.plan")  # the package exports a function of that name
     real, planned = pipeline.morph_pair, []
 
     def counted(*args, **kwargs):
@@ -301,7 +301,7 @@ def _cyclic_match(fast, general, closed):
 def test_fast_path_and_general_road_agree(method, carrier):
     """The batched fast path (all pairs in one numpy pass) gives each pair the in-betweens
     :func:`morph_pair` gives it alone (loops possibly starting at another sample)."""
-    from ballmorph_core.inbetween import _PairPlan, _spread
+    from ballmorph_core.drawing.plan import _PairPlan, _spread
 
     key_a, key_b = _drawing_4_and_5()
     times = np.linspace(0, 1, 5)

@@ -5,7 +5,7 @@ import pytest
 from shapes import circle
 
 import ballmorph_core as bm
-from ballmorph_core.trajectories import KINDS, BallPaths, LevelPaths, SampledPaths
+from ballmorph_core.morphs.paths import KINDS, BallPaths, LevelPaths, SampledPaths
 
 # A right-angle contact: p on the x axis, m above it, q to the right of m (r = 1, psi = 90 deg).
 P1, M1, Q1 = np.array([[0.0, 0.0]]), np.array([[0.0, 1.0]]), np.array([[1.0, 1.0]])

@@ -24,8 +24,8 @@ from hypothesis import strategies as st
 
 import ballmorph_core as bm
 from ballmorph_core import tolerances as tol
-from ballmorph_core.compat import CONFIGURATIONS
-from ballmorph_core.inbetween import CARRIERS, FALLBACK_METHOD, MATCHINGS, UNMATCHED, StrokeSet
+from ballmorph_core.ballmap.topology import CONFIGURATIONS
+from ballmorph_core.drawing.plan import CARRIERS, FALLBACK_METHOD, MATCHINGS, UNMATCHED, StrokeSet
 
 #: Relative sizes: fewer distinct points than needed at this resolution is clearly malformed;
 #: at the core's own resolution (tolerances.COINCIDENT) clearly well formed. In between,
@@ -102,7 +102,7 @@ def test_ball_map_contract(pair):
     assert np.all(corr.radii >= 0)
     # Every contact is on its disk (the definition of the correspondence), up to the slack of
     # strokes whose endpoints count as shared (a zero disk at p, q within SHARED_ENDPOINT).
-    slack = 1e-4 * corr.radii.max() + tol.SHARED_ENDPOINT * bm.curves.scale_of(P, Q)
+    slack = 1e-4 * corr.radii.max() + tol.SHARED_ENDPOINT * bm.geometry.polyline.scale_of(P, Q)
     for contact in (corr.p, corr.q):
         gap = np.abs(np.linalg.norm(corr.centers - contact, axis=1) - corr.radii)
         assert gap.max() <= slack, "a contact is off its disk"

@@ -20,10 +20,10 @@ the paper leaves open is made once here and is the same for every method.
 
 import numpy as np
 
-from . import tolerances as tol
-from .curves import as_curve, curve_length, scale_of
-from .errors import InvalidCurveError
-from .morphs import make_morph
+from .. import tolerances as tol
+from ..errors import InvalidCurveError
+from ..geometry.polyline import as_curve, curve_length, scale_of
+from ..morphs import make_morph
 
 __all__ = [
     "MEASURES",

@@ -18,9 +18,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import tolerances as tol
-from .compat import classify, shared_endpoints
-from .curves import (
+from .. import tolerances as tol
+from ..ballmap.topology import classify, shared_endpoints
+from ..errors import BallMorphError, IncompatibleCurvesError
+from ..geometry.intersections import is_simple
+from ..geometry.polyline import (
     coarsen,
     curve_length,
     default_spacing,
@@ -30,15 +32,13 @@ from .curves import (
     scale_of,
     signed_area,
 )
-from .errors import BallMorphError, IncompatibleCurvesError
-from .intersections import is_simple
-from .morphs import make_morph
-from .morphs.base import Morph, PathMorph
-from .morphs.combine import CarriedMorph, PiecewiseMorph
-from .options import check_option
+from ..morphs import make_morph
+from ..morphs.base import Morph, PathMorph
+from ..morphs.combine import CarriedMorph, PiecewiseMorph
+from ..morphs.paths import LinearPaths
+from ..options import check_option
 from .registration import CARRIERS, Carrier, centre_of, registration
 from .splitting import split_pair
-from .trajectories import LinearPaths
 
 __all__ = ["PairOutcome", "morph_pair", "FALLBACK", "BALL_METHODS"]
 
@@ -96,7 +96,7 @@ def _fallbacks(P, Q, closed, method, spacing, notes, where, reason=None):
 
 
 def _methods():
-    from .morphs import METHODS
+    from ..morphs import METHODS
 
     return METHODS
 

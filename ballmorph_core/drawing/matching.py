@@ -56,12 +56,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import tolerances as tol
-from .curves import as_curve, curve_length, resample
-from .errors import InvalidCurveError
-from .morphs.linear import best_cyclic_alignment
-from .options import check_option
-from .ragged import Ragged
+from .. import tolerances as tol
+from ..errors import InvalidCurveError
+from ..geometry.polyline import as_curve, curve_length, resample
+from ..geometry.ragged import Ragged
+from ..morphs.linear import best_cyclic_alignment
+from ..options import check_option
 
 __all__ = ["MODES", "Matching", "match_strokes", "solve_assignment"]
 

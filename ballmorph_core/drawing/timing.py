@@ -7,7 +7,7 @@ EASE_IN_OUT, AUTO), using Robert Penner's equations as Blender does.
 
 import numpy as np
 
-from .options import check_option
+from ..options import check_option
 
 __all__ = ["EASING_TYPES", "EASING_MODES", "ease", "frame_times"]
 

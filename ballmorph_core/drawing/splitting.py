@@ -11,11 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import tolerances as tol
-from .curves import cumulative_length, edges, resample, scale_of, subcurve
-from .errors import IncompatibleCurvesError
-from .intersections import crossings
-from .spatial import box_pairs
+from .. import tolerances as tol
+from ..errors import IncompatibleCurvesError
+from ..geometry.intersections import crossings
+from ..geometry.polyline import cumulative_length, edges, resample, scale_of, subcurve
+from ..geometry.spatial import box_pairs
 
 __all__ = ["Piece", "split_pair", "distances_to_polyline"]
 

@@ -17,8 +17,8 @@ as polylines (heat-propagation gradients, composite ball-morph arcs) with the sa
 
 import numpy as np
 
-from . import tolerances as tol
-from .options import check_option
+from .. import tolerances as tol
+from ..options import check_option
 
 __all__ = ["KINDS", "BallPaths", "SampledPaths", "LevelPaths", "LinearPaths", "midpoint_locus"]
 

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import tolerances as tol
+from .. import tolerances as tol
 
 __all__ = ["Plane", "fit_plane"]
 

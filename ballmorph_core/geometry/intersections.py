@@ -6,8 +6,8 @@ with the number of segments and crossings, not with their product.
 
 import numpy as np
 
-from . import tolerances as tol
-from .curves import cumulative_length, edges, scale_of
+from .. import tolerances as tol
+from .polyline import cumulative_length, edges, scale_of
 from .spatial import box_pairs
 
 __all__ = ["Crossings", "crossings", "self_crossings", "is_simple", "segment_hits"]

@@ -10,11 +10,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import tolerances as tol
-from .curves import as_curve, orient_clockwise, points_in_loop, scale_of, signed_area
-from .errors import IncompatibleCurvesError
-from .intersections import crossings, is_simple
-from .spatial import PointTree
+from .. import tolerances as tol
+from ..errors import IncompatibleCurvesError
+from ..geometry.intersections import crossings, is_simple
+from ..geometry.polyline import as_curve, orient_clockwise, points_in_loop, scale_of, signed_area
+from ..geometry.spatial import PointTree
 
 __all__ = [
     "CONFIGURATIONS",

@@ -20,15 +20,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import tolerances as tol
-from .ballmap import ball_maps
-from .compat import PairSetup
-from .curves import as_complex, from_complex
-from .intersections import segment_hits
-from .ragged import Ragged
+from .. import tolerances as tol
+from ..ballmap.correspondence import ball_maps
+from ..ballmap.topology import PairSetup
+from ..geometry.intersections import segment_hits
+from ..geometry.polyline import as_complex, from_complex
+from ..geometry.ragged import Ragged
+from ..geometry.spatial import box_pairs
+from ..morphs.paths import BallPaths
 from .registration import carrier_at, similarities
-from .spatial import box_pairs
-from .trajectories import BallPaths
 
 __all__ = ["BatchPlan", "BatchResult", "plan_pairs", "morph_pairs"]
 

@@ -9,7 +9,7 @@ the same few numpy calls. Edges are indexed by their first vertex (edge ``i`` ru
 
 import numpy as np
 
-from . import tolerances as tol
+from .. import tolerances as tol
 from .spatial import ragged_arange
 
 __all__ = ["Ragged", "catmull_rom"]

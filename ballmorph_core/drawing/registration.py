@@ -27,10 +27,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import tolerances as tol
-from .curves import as_complex, from_complex
-from .options import check_option
-from .ragged import Ragged
+from .. import tolerances as tol
+from ..geometry.polyline import as_complex, from_complex
+from ..geometry.ragged import Ragged
+from ..options import check_option
 
 __all__ = [
     "Similarity",

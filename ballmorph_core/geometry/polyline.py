@@ -7,9 +7,9 @@ their input.
 
 import numpy as np
 
-from . import tolerances as tol
-from .errors import InvalidCurveError
-from .options import check_positive
+from .. import tolerances as tol
+from ..errors import InvalidCurveError
+from ..options import check_positive
 from .ragged import catmull_rom
 
 __all__ = [

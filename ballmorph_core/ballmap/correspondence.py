@@ -38,13 +38,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import tolerances as tol
-from .compat import CompatibilityReport, PairSetup, Violation, orient_pair
-from .curves import as_curve, densify, resolve_spacing, scale_of
-from .errors import IncompatibleCurvesError
-from .options import check_option
-from .ragged import Ragged
-from .spatial import CurveTree, ragged_arange
+from .. import tolerances as tol
+from ..errors import IncompatibleCurvesError
+from ..geometry.polyline import as_curve, densify, resolve_spacing, scale_of
+from ..geometry.ragged import Ragged
+from ..geometry.spatial import CurveTree, ragged_arange
+from ..options import check_option
+from .topology import CompatibilityReport, PairSetup, Violation, orient_pair
 
 __all__ = ["Correspondence", "ball_map", "ball_maps", "SAMPLINGS", "DenseMaps", "dense_maps", "disk_between"]
 

@@ -14,17 +14,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import tolerances as tol
+from .. import tolerances as tol
+from ..errors import InvalidCurveError
+from ..geometry.plane import fit_plane
+from ..geometry.polyline import as_curve
+from ..geometry.ragged import Ragged
+from ..morphs import make_morph
+from ..options import check_option, check_positive
 from .batch import BatchResult, plan_pairs
-from .curves import as_curve
-from .errors import InvalidCurveError
 from .matching import MODES as MATCHINGS
 from .matching import match_strokes
-from .morphs import make_morph
-from .options import check_option, check_positive
 from .pair import BALL_METHODS, morph_pair
-from .plane import fit_plane
-from .ragged import Ragged
 from .registration import CARRIERS
 
 __all__ = [
@@ -559,7 +559,7 @@ class InbetweenPlan:
 
 
 def _check_inputs(key_a, key_b, method, carrier, matching, unmatched):
-    from .morphs import METHODS  # local: the registry is complete once the package is imported
+    from ..morphs import METHODS  # local: the registry is complete once the package is imported
 
     options = (
         check_option("method", method, METHODS),
