@@ -4,8 +4,7 @@ Whited & Rossignac, "Ball-morph: Definition, Implementation and Comparative Eval
 This package never imports bpy: it runs in plain CPython and vendored inside the add-on.
 """
 
-from .ballmap.correspondence import Correspondence, ball_map
-from .ballmap.topology import CompatibilityReport, classify
+from .ballmap import CompatibilityReport, Correspondence, ball_map, classify
 from .drawing.plan import (
     CARRIERS,
     FALLBACK_METHOD,

@@ -1,10 +1,35 @@
-"""One helper validates every option string of the core (shapely style), one every positive length."""
+"""The core's option vocabularies (lowercase strings) and their one validator (shapely style), and
+the one check of positive lengths."""
 
 import numpy as np
 
 from .errors import InvalidCurveError
 
-__all__ = ["check_option", "check_positive"]
+__all__ = [
+    "CARRIERS",
+    "MATCHINGS",
+    "UNMATCHED",
+    "SAMPLINGS",
+    "PATH_KINDS",
+    "EASING_TYPES",
+    "EASING_MODES",
+    "check_option",
+    "check_positive",
+]
+
+#: Carrier motion of a stroke pair (see :mod:`~ballmorph_core.drawing.registration`).
+CARRIERS = ("similarity", "rigid", "none")
+#: How the strokes of two keys are paired (see :mod:`~ballmorph_core.drawing.matching`).
+MATCHINGS = ("auto", "index")
+#: What a stroke without a partner does: switch at the middle, or hold on every in-between.
+UNMATCHED = ("middle", "hold")
+#: Which curve a correspondence samples uniformly (the paper's approaches 3 and 2).
+SAMPLINGS = ("symmetric", "p", "q")
+#: The five ball-morph paths (paper section 4.2).
+PATH_KINDS = ("hat", "linear", "tangent", "circular", "parabolic")
+#: Easing types and modes, as Blender's Grease Pencil interpolation names them.
+EASING_TYPES = ("linear", "sine", "quad", "cubic", "quart", "quint", "expo", "circ", "back", "bounce", "elastic")
+EASING_MODES = ("auto", "ease-in", "ease-out", "ease-in-out")
 
 
 def _canonical(value):

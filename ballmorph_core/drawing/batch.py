@@ -24,8 +24,8 @@ from .. import tolerances as tol
 from ..ballmap.correspondence import ball_maps
 from ..ballmap.topology import PairSetup
 from ..geometry.intersections import segment_hits
-from ..geometry.polyline import as_complex, from_complex
 from ..geometry.ragged import Ragged
+from ..geometry.similarity import as_complex, from_complex
 from ..geometry.spatial import box_pairs
 from ..morphs.paths import BallPaths
 from .registration import carrier_at, similarities

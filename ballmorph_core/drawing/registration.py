@@ -23,21 +23,17 @@ arc-length samples, over the cyclic shift and direction that fit best. Then a st
 circle that moves stays a circle.
 """
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from .. import tolerances as tol
-from ..geometry.polyline import as_complex, from_complex
 from ..geometry.ragged import Ragged
+from ..geometry.similarity import Similarity, as_complex, power
 from ..options import check_option
 
 __all__ = [
-    "Similarity",
     "endpoint_similarity",
     "fit_similarity",
     "similarities",
-    "power",
     "carrier_at",
     "Carrier",
     "CARRIERS",
@@ -50,25 +46,6 @@ FIT_SAMPLES = 128
 
 
 # ------------------------------------------------------------------ vectorised core
-
-
-def power(a, b, s):
-    """``S^s`` for similarities ``z -> a z + b`` (arrays), along the steady interpolation.
-
-    ``S^s(z) = c + a^s (z - c)`` with ``c = b / (1 - a)`` the fixed point (a logarithmic spiral;
-    a translation ``z + s b`` when ``a = 1``). The angle of ``a`` is taken in (-pi, pi], so the
-    motion turns the short way.
-
-    Returns
-    -------
-    a_s, b_s : ndarray of complex
-    """
-    a = np.asarray(a, dtype=complex)
-    b = np.asarray(b, dtype=complex)
-    a_s = np.exp(s * (np.log(np.abs(a)) + 1j * np.angle(a)))
-    near_one = np.abs(a - 1) < tol.ROUNDOFF
-    c = np.where(near_one, 0, b / np.where(near_one, 1, 1 - a))
-    return a_s, np.where(near_one, s * b, c - a_s * c)
 
 
 def carrier_at(a, b, kind, centre, t):
@@ -183,45 +160,6 @@ def similarities(P, Q):
 
 
 # ------------------------------------------------------------------ one pair
-
-
-@dataclass
-class Similarity:
-    """The map ``z -> a z + b`` on complex coordinates.
-
-    Attributes
-    ----------
-    a, b : complex
-        ``|a|`` is the scale, ``arg a`` the rotation.
-    """
-
-    a: complex = 1.0 + 0j
-    b: complex = 0j
-
-    def __call__(self, points):
-        """Apply to points, shape (..., 2) -> (..., 2)."""
-        return from_complex(self.a * as_complex(points) + self.b)
-
-    def inverse(self):
-        """The inverse similarity."""
-        return Similarity(1.0 / self.a, -self.b / self.a)
-
-    @property
-    def scale(self):
-        return float(abs(self.a))
-
-    @property
-    def angle(self):
-        return float(np.angle(self.a))
-
-    def power(self, s):
-        """``S^s`` along the steady (log-spiral) interpolation; ``S^0`` is the identity."""
-        a_s, b_s = power(self.a, self.b, s)
-        return Similarity(complex(a_s), complex(b_s))
-
-    def is_identity(self, scale, slack=tol.IDENTITY):
-        """True when it moves no point of a drawing of size ``scale`` by more than slack*scale."""
-        return abs(self.a - 1) <= slack and abs(self.b) <= slack * scale
 
 
 def _one(P, Q, closed):

@@ -1,4 +1,4 @@
-"""Planar polylines: validation, arc length, resampling, subdivision, normals, orientation.
+"""One planar polyline: validation, arc length, resampling, normals, orientation, reversal.
 
 A curve is an ``(N, 2)`` float64 array. A loop (``closed=True``) is given without repeating its
 first point; its last edge joins the last point back to the first. Functions here never mutate
@@ -10,7 +10,7 @@ import numpy as np
 from .. import tolerances as tol
 from ..errors import InvalidCurveError
 from ..options import check_positive
-from .ragged import catmull_rom
+from .ragged import Ragged, unit_left
 
 __all__ = [
     "as_curve",
@@ -23,8 +23,6 @@ __all__ = [
     "locate",
     "point_at",
     "resample",
-    "subdivide",
-    "densify",
     "default_spacing",
     "signed_area",
     "orient_clockwise",
@@ -35,8 +33,8 @@ __all__ = [
     "reverse",
     "resolve_spacing",
     "subcurve",
-    "as_complex",
-    "from_complex",
+    "reversed_fractions",
+    "reversal_order",
 ]
 
 
@@ -235,112 +233,6 @@ def default_spacing(*curves, closed=False):
     return float(np.clip(med, longest / tol.DEFAULT_SAMPLES_MAX, longest / tol.DEFAULT_SAMPLES_MIN))
 
 
-def _catmull_rom(curve, closed, edge, frac):
-    """Points on the centripetal Catmull-Rom spline through the vertices, at (edge, frac).
-
-    Resampling on this spline instead of on the chords keeps new samples on the smooth curve
-    the polyline approximates (second-order closer on a circle), and it passes through every
-    original vertex, so corners stay where they were drawn. Shape (K, 2).
-    """
-    if closed:
-        ctrl = curve[(edge[:, None] + np.arange(-1, 3)[None, :]) % len(curve)]
-    else:
-        ext = np.concatenate([[2 * curve[0] - curve[1]], curve, [2 * curve[-1] - curve[-2]]])
-        ctrl = ext[edge[:, None] + np.arange(0, 4)[None, :]]
-    return catmull_rom(ctrl[:, 0], ctrl[:, 1], ctrl[:, 2], ctrl[:, 3], frac)
-
-
-def resample(curve, closed, spacing=None, count=None, smooth=True):
-    """Resample at uniform arc length.
-
-    Parameters
-    ----------
-    curve : ndarray, shape (N, 2)
-    closed : bool
-    spacing : float, optional
-        Target geodesic distance between samples; the count is rounded so the spacing is uniform.
-    count : int, optional
-        Number of samples instead of a spacing (for a stroke, both endpoints included).
-    smooth : bool
-        Place samples on the centripetal Catmull-Rom spline through the vertices (default)
-        rather than on the straight edges.
-
-    Returns
-    -------
-    ndarray, shape (K, 2)
-        For a stroke the first and last samples are the endpoints; a loop starts at vertex 0 and
-        does not repeat it.
-    """
-    cum = cumulative_length(curve, closed)
-    total = cum[-1]
-    if count is None:
-        if spacing is None or not spacing > 0:
-            raise InvalidCurveError(f"spacing must be a positive number, got {spacing!r}")
-        count = int(round(total / spacing)) + (0 if closed else 1)
-    count = max(int(count), 3 if closed else 2)
-    if closed:
-        s = np.arange(count) * (total / count)
-    else:
-        s = np.linspace(0.0, total, count)
-    edge, frac = locate(curve, closed, s, cum)
-    if smooth and len(curve) >= 3:
-        out = _catmull_rom(curve, closed, edge, frac)
-    else:
-        out = curve[edge] + frac[:, None] * edges(curve, closed)[edge]
-    if not closed:
-        out[0], out[-1] = curve[0], curve[-1]
-    return out
-
-
-def subdivide(curve, closed, steps=1):
-    """Interpolating four-point subdivision (Dyn, Levin and Gregory, weight 1/16).
-
-    Every step keeps the existing vertices and inserts one new vertex per edge, so the drawn
-    points stay on the curve while the polyline becomes smoother. At a stroke's ends the
-    missing neighbour is extrapolated linearly.
-
-    Parameters
-    ----------
-    curve : ndarray, shape (N, 2)
-    closed : bool
-    steps : int
-
-    Returns
-    -------
-    ndarray, shape (M, 2)
-        ``M = 2^steps N`` for a loop, ``2^steps (N - 1) + 1`` for a stroke.
-    """
-    out = np.asarray(curve, dtype=np.float64)
-    for _ in range(int(steps)):
-        if closed:
-            a, b, c, d = (np.roll(out, k, axis=0) for k in (1, 0, -1, -2))
-        else:
-            ext = np.concatenate([[2 * out[0] - out[1]], out, [2 * out[-1] - out[-2]]])
-            a, b, c, d = ext[:-3], ext[1:-2], ext[2:-1], ext[3:]
-        mid = (9.0 * (b + c) - (a + d)) / 16.0
-        n_new = len(out) if closed else len(out) - 1
-        res = np.empty((len(out) + n_new, 2))
-        res[0::2] = out
-        res[1::2] = mid
-        out = res
-    return out
-
-
-def densify(curve, closed, spacing):
-    """Subdivide a coarse polyline until no edge is much longer than ``spacing``.
-
-    At most ``tolerances.SUBDIVIDE_MAX_STEPS`` steps; a dense curve is returned unchanged.
-
-    Returns
-    -------
-    ndarray, shape (M, 2)
-    """
-    longest = float(edge_lengths(curve, closed).max())
-    ratio = longest / (tol.SUBDIVIDE_EDGE_RATIO * spacing)
-    steps = 0 if ratio <= 1 else min(int(np.ceil(np.log2(ratio))), tol.SUBDIVIDE_MAX_STEPS)
-    return subdivide(curve, closed, steps) if steps else curve
-
-
 def signed_area(loop):
     """Shoelace area: positive for counter-clockwise loops (float)."""
     x, y = loop[:, 0], loop[:, 1]
@@ -360,18 +252,9 @@ def reverse(curve, closed):
     return curve[::-1].copy()
 
 
-def _left(v):
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-
-
-def _unit(v):
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
-    return np.divide(v, n, out=np.zeros_like(v), where=n > 0)
-
-
 def edge_normals(curve, closed):
     """Unit left normals of the edges (tangent turned +90 degrees), shape (E, 2)."""
-    return _left(_unit(edges(curve, closed)))
+    return unit_left(edges(curve, closed))
 
 
 def vertex_normals(curve, closed):
@@ -387,7 +270,7 @@ def vertex_normals(curve, closed):
         chord[1:-1] = curve[2:] - curve[:-2]
         chord[0] = curve[1] - curve[0]
         chord[-1] = curve[-1] - curve[-2]
-    return _left(_unit(chord))
+    return unit_left(chord)
 
 
 def turning_angles(curve, closed):
@@ -436,7 +319,35 @@ def points_in_loop(points, loop):
     return inside
 
 
-def subcurve(curve, closed, s0, s1, cum=None):
+def resample(curve, closed, spacing=None, count=None, smooth=True):
+    """Resample at uniform arc length.
+
+    Parameters
+    ----------
+    curve : ndarray, shape (N, 2)
+    closed : bool
+    spacing : float, optional
+        Target geodesic distance between samples; the count is rounded so the spacing is uniform.
+    count : int, optional
+        Number of samples instead of a spacing (for a stroke, both endpoints included).
+    smooth : bool
+        Place samples on the centripetal Catmull-Rom spline through the vertices (default)
+        rather than on the straight edges.
+
+    Returns
+    -------
+    ndarray, shape (K, 2)
+        For a stroke the first and last samples are the endpoints; a loop starts at vertex 0 and
+        does not repeat it.
+    """
+    if count is None:
+        if spacing is None or not spacing > 0:
+            raise InvalidCurveError(f"spacing must be a positive number, got {spacing!r}")
+        count = int(round(curve_length(curve, closed) / spacing)) + (0 if closed else 1)
+    return Ragged.from_list([curve], [closed]).resample([count], smooth=smooth).pts
+
+
+def subcurve(curve, closed, s0, s1):
     """The part of a curve between two arc-length positions, as a stroke.
 
     Parameters
@@ -446,39 +357,28 @@ def subcurve(curve, closed, s0, s1, cum=None):
     s0, s1 : float
         Start and end positions. For a loop, ``s1 < s0`` (or ``s1 > length``) wraps past the
         first vertex; ``s1 = s0 + length`` is the whole loop.
-    cum : ndarray, optional
-        :func:`cumulative_length` if already known.
 
     Returns
     -------
     ndarray, shape (K, 2)
         The point at ``s0``, the vertices strictly between, the point at ``s1``.
     """
-    if cum is None:
-        cum = cumulative_length(curve, closed)
-    total = cum[-1]
+    rg = Ragged.from_list([curve], [closed])
+    total = float(rg.length[0])
     if closed:
         s0 = float(np.mod(s0, total))
         s1 = float(s0 + np.mod(s1 - s0, total)) if not np.isclose(s1 - s0, total) else s0 + total
-        # Vertex positions over two laps, so a wrapped range is a plain slice.
-        verts = np.concatenate([curve, curve, curve[:1]])
-        vs = np.concatenate([cum[:-1], cum[:-1] + total, [2 * total]])
     else:
         s0, s1 = float(np.clip(s0, 0, total)), float(np.clip(s1, 0, total))
-        verts, vs = curve, cum
-    inner = (vs > s0) & (vs < s1)
-    start = point_at(curve, closed, np.array([s0]), cum)
-    end = point_at(curve, closed, np.array([s1]), cum)
-    return np.concatenate([start, verts[inner], end])
+    return rg.pieces(np.zeros(1, np.int64), np.array([s0]), np.array([s1])).pts
 
 
-def as_complex(points):
-    """Points as complex numbers ``x + iy``, shape (...,) from (..., 2)."""
-    points = np.asarray(points, dtype=np.float64)
-    return points[..., 0] + 1j * points[..., 1]
+def reversed_fractions(u, closed):
+    """Arc-length fractions along a curve read backwards: ``1 - u``, for a loop ``-u mod 1``
+    (it keeps its first point, see :func:`reverse`)."""
+    return np.mod(-u, 1.0) if closed else 1.0 - u
 
 
-def from_complex(z):
-    """Complex numbers back to points, shape (..., 2)."""
-    z = np.asarray(z)
-    return np.stack([z.real, z.imag], axis=-1)
+def reversal_order(n, closed):
+    """Indices that reverse ``n`` samples: a loop keeps its first sample (see :func:`reverse`)."""
+    return np.r_[0, np.arange(n - 1, 0, -1)] if closed else np.arange(n)[::-1]

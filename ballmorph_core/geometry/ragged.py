@@ -10,41 +10,87 @@ the same few numpy calls. Edges are indexed by their first vertex (edge ``i`` ru
 import numpy as np
 
 from .. import tolerances as tol
-from .spatial import ragged_arange
+from .spline import catmull_rom
 
-__all__ = ["Ragged", "catmull_rom"]
+__all__ = ["Ragged", "ragged_arange", "budget_slices", "group_argmin", "unit_left"]
 
 
-def catmull_rom(p0, p1, p2, p3, frac):
-    """Centripetal Catmull-Rom spline between p1 and p2 at fractions ``frac``.
+def ragged_arange(counts):
+    """Concatenated ``arange(c)`` for every count, and the owner of each entry.
 
     Parameters
     ----------
-    p0, p1, p2, p3 : ndarray, shape (K, 2)
-        Control points (the segment runs from p1 to p2).
-    frac : ndarray, shape (K,)
+    counts : ndarray of int, shape (G,)
 
     Returns
     -------
-    ndarray, shape (K, 2)
-        Passes through p1 at 0 and p2 at 1; the centripetal knots (alpha = 1/2) avoid cusps
-        and overshoot on unevenly spaced points.
+    owner : ndarray of int, shape (sum(counts),)
+        Group index of each entry.
+    local : ndarray of int, shape (sum(counts),)
+        Position of each entry inside its group.
+
+    Examples
+    --------
+    >>> owner, local = ragged_arange(np.array([2, 0, 3]))
+    >>> owner.tolist(), local.tolist()
+    ([0, 0, 2, 2, 2], [0, 1, 0, 1, 2])
     """
-    floor = tol.ROUNDOFF  # repeated control points: keep the knots distinct
-    d01 = np.maximum(np.linalg.norm(p1 - p0, axis=1) ** 0.5, floor)
-    d12 = np.maximum(np.linalg.norm(p2 - p1, axis=1) ** 0.5, floor)
-    d23 = np.maximum(np.linalg.norm(p3 - p2, axis=1) ** 0.5, floor)
-    t1 = d01[:, None]
-    t2 = t1 + d12[:, None]
-    t3 = t2 + d23[:, None]
-    t = t1 + frac[:, None] * d12[:, None]
-    # Barry-Goldman pyramid (t0 = 0).
-    a1 = ((t1 - t) * p0 + t * p1) / t1
-    a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1)
-    a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2)
-    b1 = ((t2 - t) * a1 + t * a2) / t2
-    b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
-    return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
+    counts = np.asarray(counts, dtype=np.int64)
+    owner = np.repeat(np.arange(len(counts)), counts)
+    starts = np.cumsum(counts) - counts
+    local = np.arange(int(counts.sum()), dtype=np.int64) - np.repeat(starts, counts)
+    return owner, local
+
+
+def budget_slices(costs, budget):
+    """Consecutive runs of items whose summed cost stays within a memory budget.
+
+    Parameters
+    ----------
+    costs : array_like of int, shape (G,)
+        What each item costs (for example the candidate pairs it expands to).
+    budget : int
+        Most cost per run; an item costing more still gets a run of its own.
+
+    Yields
+    ------
+    slice
+        Runs covering ``0..G`` in order.
+
+    Examples
+    --------
+    >>> [(s.start, s.stop) for s in budget_slices([3, 3, 3, 9, 1], 6)]
+    [(0, 2), (2, 3), (3, 4), (4, 5)]
+    """
+    ends = np.cumsum(np.asarray(costs, dtype=np.int64))
+    start = 0
+    while start < len(ends):
+        base = ends[start - 1] if start else 0
+        stop = max(start + 1, int(np.searchsorted(ends, base + budget, side="right")))
+        yield slice(start, stop)
+        start = stop
+
+
+def group_argmin(values, owner, n_groups):
+    """Index of the first minimum of ``values`` within each group (groups contiguous), shape (n_groups,).
+
+    Groups without entries get 0.
+    """
+    starts = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
+    mins = np.minimum.reduceat(values, starts)
+    counts = np.diff(np.r_[starts, len(values)])
+    hit = np.flatnonzero(values == np.repeat(mins, counts))
+    groups, first = np.unique(owner[hit], return_index=True)
+    out = np.zeros(n_groups, dtype=np.int64)
+    out[groups] = hit[first]
+    return out
+
+
+def unit_left(v):
+    """Unit vectors turned +90 degrees (zero for zero vectors), shape (..., 2)."""
+    norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    u = np.divide(v, norm, out=np.zeros_like(v), where=norm > 0)
+    return np.stack([-u[..., 1], u[..., 0]], axis=-1)
 
 
 class Ragged:
@@ -275,14 +321,8 @@ class Ragged:
         nxt = np.where(self.nxt >= 0, self.nxt, np.arange(len(self.pts)))
         prv = np.where(self.prv >= 0, self.prv, np.arange(len(self.pts)))
         chord = self.pts[nxt] - self.pts[prv]
-        return _left_unit(chord)
+        return unit_left(chord)
 
     def edge_normals(self):
         """Unit left normals of the edges by first vertex (zero where no edge), shape (N, 2)."""
-        return _left_unit(self.edge)
-
-
-def _left_unit(v):
-    norm = np.linalg.norm(v, axis=1, keepdims=True)
-    u = np.divide(v, norm, out=np.zeros_like(v), where=norm > 0)
-    return np.stack([-u[:, 1], u[:, 0]], axis=1)
+        return unit_left(self.edge)

@@ -7,34 +7,9 @@ every pair, and both run without any per-pair Python loop.
 
 import numpy as np
 
-__all__ = ["ragged_arange", "box_pairs", "PointTree", "CurveTree"]
+from .ragged import ragged_arange
 
-
-def ragged_arange(counts):
-    """Concatenated ``arange(c)`` for every count, and the owner of each entry.
-
-    Parameters
-    ----------
-    counts : ndarray of int, shape (G,)
-
-    Returns
-    -------
-    owner : ndarray of int, shape (sum(counts),)
-        Group index of each entry.
-    local : ndarray of int, shape (sum(counts),)
-        Position of each entry inside its group.
-
-    Examples
-    --------
-    >>> owner, local = ragged_arange(np.array([2, 0, 3]))
-    >>> owner.tolist(), local.tolist()
-    ([0, 0, 2, 2, 2], [0, 1, 0, 1, 2])
-    """
-    counts = np.asarray(counts, dtype=np.int64)
-    owner = np.repeat(np.arange(len(counts)), counts)
-    starts = np.cumsum(counts) - counts
-    local = np.arange(int(counts.sum()), dtype=np.int64) - np.repeat(starts, counts)
-    return owner, local
+__all__ = ["box_pairs", "PointTree", "CurveTree"]
 
 
 def _cells(boxes, origin, cell, ny):

@@ -25,7 +25,7 @@ def make_morph(P, Q, method="circular-ball", closed=False, spacing=None, samplin
         Loops (True) or strokes (False).
     spacing : float, optional
         Geodesic sample spacing (default from the curves' size and edge lengths).
-    sampling : {'symmetric', 'P', 'Q'}
+    sampling : {'symmetric', 'p', 'q'}
         Which curve is sampled uniformly (see :func:`~ballmorph_core.ballmap.ball_map`); the
         measures use ``'P'`` and ``'Q'``. Methods that need no correspondence of their own
         accept and ignore it where it has no meaning.

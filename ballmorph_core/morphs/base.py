@@ -3,7 +3,7 @@
 import numpy as np
 
 from ..geometry.polyline import as_curve
-from ..options import check_option
+from ..options import SAMPLINGS, check_option
 
 __all__ = ["Morph", "PathMorph", "KeyedMorph", "register", "registered", "build"]
 
@@ -28,7 +28,8 @@ def registered():
 
 def build(P, Q, method, closed, spacing, sampling, **options):
     """Validate the inputs and call the method's builder (see :func:`make_morph`)."""
-    check_option("method", method, registered())
+    method = check_option("method", method, registered())
+    sampling = check_option("sampling", sampling, SAMPLINGS)
     P = as_curve(P, "P", closed)
     Q = as_curve(Q, "Q", closed)
     return _REGISTRY[method](P, Q, closed=closed, spacing=spacing, sampling=sampling, **options)

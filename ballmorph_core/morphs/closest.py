@@ -15,12 +15,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap.correspondence import SAMPLINGS
 from ..ballmap.topology import orient_pair
 from ..errors import IncompatibleCurvesError
-from ..geometry.polyline import as_curve, curve_length, densify, edges, resample, resolve_spacing, reverse, scale_of
-from ..geometry.spatial import PointTree, ragged_arange
-from ..options import check_option
+from ..geometry.polyline import as_curve, curve_length, edges, resample, resolve_spacing, reverse, scale_of
+from ..geometry.ragged import ragged_arange
+from ..geometry.spatial import PointTree
+from ..geometry.spline import densify
 from .base import PathMorph, register
 from .paths import LinearPaths
 
@@ -370,8 +370,8 @@ class _ClosestPair:
 def build(P, Q, closed, spacing, sampling):
     """Closest-projection morph: straight trajectories to the closest points.
 
-    ``sampling='P'`` (and ``'symmetric'``, the same: this morph is not symmetric) samples P
-    uniformly at ``spacing`` and moves each sample to its closest point on Q; ``'Q'`` samples
+    ``sampling='p'`` (and ``'symmetric'``, the same: this morph is not symmetric) samples P
+    uniformly at ``spacing`` and moves each sample to its closest point on Q; ``'q'`` samples
     Q uniformly, pairs each sample with its closest point on P and moves from there. Samples
     are ordered along P as given.
 
@@ -382,7 +382,6 @@ def build(P, Q, closed, spacing, sampling):
         not a homeomorphism at this sampling); the message says where and ``error.report``
         lists the :class:`ProjectionDefect` found.
     """
-    check_option("sampling", sampling, SAMPLINGS)
     pair = _ClosestPair(P, Q, closed, resolve_spacing(P, Q, closed, spacing))
     if pair.defects:
         listed = "; ".join(d.describe() for d in pair.defects[: tol.DEFECTS_LISTED])
@@ -395,7 +394,7 @@ def build(P, Q, closed, spacing, sampling):
             + "; use a ball-morph or the heat-propagation morph instead",
             pair.defects,
         )
-    if sampling == "Q":
+    if sampling == "q":
         q, p, u_q, u_p = pair.maps["Q"]
         if pair.flip:  # keep the samples in P's direction
             order = np.r_[0, np.arange(len(q) - 1, 0, -1)] if closed else np.arange(len(q))[::-1]

@@ -25,7 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap.correspondence import dense_maps, disk_between
+from ..ballmap.candidates import disk_between
+from ..ballmap.correspondence import dense_maps
 from ..ballmap.topology import orient_pair
 from ..drawing.splitting import distances_to_polyline
 from ..errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
@@ -115,7 +116,7 @@ def bridges(maps, side, window=16):
     n = len(own.pts)
     # Incompatible stretches a few samples apart are one feature (a notch's two walls and
     # its lips): bridge them together.
-    bad = own_map["bad"].copy()
+    bad = own_map.bad.copy()
     for first, last in _runs(~bad, closed):
         if (last - first) % n + 1 <= tol.COMPOSITE_MERGE_GAP and (closed or (first > 0 and last < n - 1)):
             bad[np.arange(first, first + (last - first) % n + 1) % n] = True
@@ -136,7 +137,7 @@ def bridges(maps, side, window=16):
         s_b = own.cum[lip_b] + (own.length if closed and lip_b <= lip_a else 0.0)
         # The samples of the other curve whose images come last before the stretch and first
         # after it (cyclically for loops): the bridging disk's tangent point lies between.
-        img = other_map["s_dst"]
+        img = other_map.s_dst
         width = s_b - s_a
         if closed:
             d = np.mod(img - s_a, own.length)
@@ -158,12 +159,12 @@ def bridges(maps, side, window=16):
             wa, wb = wa % n_edges, wb % n_edges
         else:
             wa, wb = wa[(wa >= 0) & (wa < n_edges)], wb[(wb >= 0) & (wb < n_edges)]
-        src = other_map["src"]
+        src = other_map.src
         x, nrm, r, qa, qb = disk_between(
             src[i : i + 1],
-            other_map["n_src"][i : i + 1],
+            other_map.n_src[i : i + 1],
             src[j : j + 1],
-            other_map["n_src"][j : j + 1],
+            other_map.n_src[j : j + 1],
             a_e,
             b_e,
             own.enormals,
@@ -223,7 +224,7 @@ def blend(curve, closed, cum, length, items):
             s0, s1 = item
             if s1 - s0 <= 0:
                 continue
-            pts = subcurve(curve, closed, s0, s1, cum)
+            pts = subcurve(curve, closed, s0, s1)
             offsets.append((s0, s1, t))
         parts.append(pts if not parts else pts[1:])
         t += curve_length(pts, False)
@@ -235,7 +236,7 @@ def blend(curve, closed, cum, length, items):
 
 def _extension(A, B, kind, spacing, from_b):
     """Morph a stretch into its arc (or back), with the paper's fallbacks (Morph)."""
-    for method, opts in ((f"{kind}-ball", {}), ("closest-projection", {"sampling": "Q" if from_b else "P"})):
+    for method, opts in ((f"{kind}-ball", {}), ("closest-projection", {"sampling": "q" if from_b else "p"})):
         if method not in registered():
             continue
         try:
@@ -359,12 +360,12 @@ def build_composite(P, Q, closed, spacing, sampling, kind="circular"):
     # Extension stages: P stretch -> P' arc (M-1), Q' arc -> Q stretch (M1).
     ext_p = []
     for br in bridges_p:
-        stretch = subcurve(sp.pts, closed, br.s0, br.s1, sp.cum)
+        stretch = subcurve(sp.pts, closed, br.s0, br.s1)
         morph = _extension(stretch, br.arc, kind, spacing, from_b=False)
         ext_p.append((_Stage(morph, curve_length(stretch, False), curve_length(br.arc, False), False), br))
     ext_q = []
     for br in bridges_q:
-        stretch = subcurve(sq.pts, closed, br.s0, br.s1, sq.cum)
+        stretch = subcurve(sq.pts, closed, br.s0, br.s1)
         morph = _extension(br.arc, stretch, kind, spacing, from_b=True)
         ext_q.append((_Stage(morph, curve_length(br.arc, False), curve_length(stretch, False), False), br))
 

@@ -12,8 +12,8 @@ transformation").
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap.correspondence import SAMPLINGS
-from ..geometry.polyline import as_complex, edges, turning_angles
+from ..geometry.polyline import edges, turning_angles
+from ..geometry.similarity import as_complex
 from ..options import check_option
 from .base import KeyedMorph, register
 from .linear import sample_count, uniform_correspondence
@@ -142,7 +142,6 @@ def build(P, Q, closed, spacing, sampling, stroke_fit="similarity"):
     """Curvature interpolation on the uniform arc-length correspondence (see
     :class:`CurvatureMorph`); the sample count follows ``sampling`` as for linear
     interpolation, and loops are paired so both turn the same way."""
-    check_option("sampling", sampling, SAMPLINGS)
     count = sample_count(P, Q, closed, spacing, sampling)
     p, q, u_p, u_q = uniform_correspondence(P, Q, closed, count, match_orientation=True)
     return CurvatureMorph(p, q, u_p, u_q, closed, stroke_fit)

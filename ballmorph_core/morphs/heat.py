@@ -34,12 +34,10 @@ which. Shared stroke endpoints stay put. Nothing non-finite reaches the frames.
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap.correspondence import SAMPLINGS
 from ..ballmap.topology import orient_pair
 from ..errors import InvalidCurveError
 from ..geometry.polyline import resample, resolve_spacing, reverse
-from ..geometry.spatial import ragged_arange
-from ..options import check_option
+from ..geometry.ragged import ragged_arange
 from .base import PathMorph, register
 from .closest import Projector
 from .paths import LevelPaths
@@ -418,7 +416,7 @@ def build(P, Q, closed, spacing, sampling, grid=None, levels=None):
     Parameters
     ----------
     P, Q, closed, spacing : see :func:`~ballmorph_core.morphs.make_morph`
-    sampling : {'symmetric', 'P', 'Q'}
+    sampling : {'symmetric', 'p', 'q'}
         ``'P'`` and ``'symmetric'`` trace from uniform samples of P; ``'Q'`` traces backwards
         from uniform samples of Q. Samples are ordered along P as given.
     grid : int, optional
@@ -431,7 +429,6 @@ def build(P, Q, closed, spacing, sampling, grid=None, levels=None):
     IncompatibleCurvesError
         If the curves are not in configuration 1 or 2.
     """
-    check_option("sampling", sampling, SAMPLINGS)
     grid = tol.HEAT_GRID if grid is None else grid
     levels = tol.HEAT_LEVELS if levels is None else levels
     for name, value, least in (("grid", grid, tol.HEAT_COARSEST_GRID), ("levels", levels, 1)):
@@ -441,7 +438,7 @@ def build(P, Q, closed, spacing, sampling, grid=None, levels=None):
     setup = orient_pair(P, Q, closed)
     flip = setup.reversed_p != setup.reversed_q
     proj = {"P": Projector(P, closed, spacing), "Q": Projector(reverse(Q, closed) if flip else Q, closed, spacing)}
-    src, dst = ("Q", "P") if sampling == "Q" else ("P", "Q")
+    src, dst = ("Q", "P") if sampling == "q" else ("P", "Q")
     curves = {"P": P, "Q": Q}
     start = resample(curves[src], closed, spacing)
     if flip and src == "Q":  # follow P's direction

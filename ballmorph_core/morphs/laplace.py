@@ -27,8 +27,8 @@ frame costs two FFTs.
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap.correspondence import SAMPLINGS
-from ..geometry.polyline import as_complex, scale_of
+from ..geometry.polyline import scale_of
+from ..geometry.similarity import as_complex
 from ..options import check_option
 from .base import KeyedMorph, register
 from .linear import sample_count, uniform_correspondence
@@ -133,7 +133,6 @@ def build(P, Q, closed, spacing, sampling, deltas="local"):
     """Laplace blending on the uniform arc-length correspondence (see :class:`LaplaceMorph`);
     the sample count follows ``sampling`` as for linear interpolation, and loops are paired so
     both turn the same way."""
-    check_option("sampling", sampling, SAMPLINGS)
     count = sample_count(P, Q, closed, spacing, sampling)
     p, q, u_p, u_q = uniform_correspondence(P, Q, closed, count, match_orientation=True)
     return LaplaceMorph(p, q, u_p, u_q, closed, deltas)

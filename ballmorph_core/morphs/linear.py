@@ -7,10 +7,8 @@ same number of uniformly distributed samples on each curve").
 
 import numpy as np
 
-from ..ballmap.correspondence import SAMPLINGS
 from ..ballmap.topology import shared_endpoints
 from ..geometry.polyline import curve_length, resample, resolve_spacing, signed_area
-from ..options import check_option
 from .base import PathMorph, register
 from .paths import LinearPaths
 
@@ -96,12 +94,11 @@ def uniform_correspondence(P, Q, closed, count, match_orientation=False):
 def sample_count(P, Q, closed, spacing, sampling):
     """Samples per curve of a uniform correspondence at ``spacing`` (int).
 
-    ``sampling`` picks whose length sets the count: ``'P'``, ``'Q'``, or the longer curve for
+    ``sampling`` picks whose length sets the count: ``'p'``, ``'q'``, or the longer curve for
     ``'symmetric'``. ``spacing=None`` uses :func:`~ballmorph_core.curves.default_spacing`.
     """
-    check_option("sampling", sampling, SAMPLINGS)
     spacing = resolve_spacing(P, Q, closed, spacing)
-    lengths = {"P": curve_length(P, closed), "Q": curve_length(Q, closed)}
+    lengths = {"p": curve_length(P, closed), "q": curve_length(Q, closed)}
     length = lengths[sampling] if sampling in lengths else max(lengths.values())
     return int(round(length / spacing)) + (0 if closed else 1)
 

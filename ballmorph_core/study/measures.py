@@ -2,8 +2,8 @@
 
 :func:`measure` is the entry point. Every measure is the average of two weighted averages: one
 over samples spaced uniformly (geodesic spacing ``u``) on P and mapped forward by the morph
-(``make_morph(..., sampling='P')``), one over samples spaced uniformly on Q and mapped
-backward (``sampling='Q'``). Sample ``i`` is weighted by the mean of its four adjacent edge
+(``make_morph(..., sampling='p')``), one over samples spaced uniformly on Q and mapped
+backward (``sampling='q'``). Sample ``i`` is weighted by the mean of its four adjacent edge
 lengths on P and on Q (paper section 6)::
 
     w_i = (|p_{i-1} p_i| + |q_{i-1} q_i| + |p_i p_{i+1}| + |q_i q_{i+1}|) / 4
@@ -480,7 +480,7 @@ def measure(
         raise InvalidCurveError(f"height must be a positive finite number, got {height!r}")
     ts = np.linspace(0.0, 1.0, steps + 1)
     results = []
-    for sampling in ("P", "Q"):
+    for sampling in ("p", "q"):
         morph = make_morph(P, Q, method, closed=closed, spacing=spacing, sampling=sampling, **options)
         paths = getattr(morph, "paths", None)
         lengths = paths.lengths() if paths is not None and hasattr(paths, "lengths") else None

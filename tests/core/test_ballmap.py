@@ -169,7 +169,7 @@ def test_malformed_input_raises_value_error_naming_argument(bad, match):
 
 
 def test_bad_option_lists_valid_values():
-    with pytest.raises(ValueError, match="'symmetric', 'P', 'Q'"):
+    with pytest.raises(ValueError, match="'symmetric', 'p', 'q'"):
         bm.ball_map(graph_stroke(0.3), graph_stroke(-0.3), sampling="both")
     with pytest.raises(ValueError, match="circular-ball"):
         bm.make_morph(graph_stroke(0.3), graph_stroke(-0.3), method="spline")

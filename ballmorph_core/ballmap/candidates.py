@@ -1,0 +1,127 @@
+"""Candidate maximal disks on a polyline (paper section 5.2, equations 3-5).
+
+For a sample ``x`` of one curve with unit normal ``n`` into the gap, the disk of centre
+``x + r n`` and radius ``r`` grows until it touches the other curve. On a polyline the candidates
+are its vertices and edges:
+
+* a vertex ``v``: ``r = |v - x|^2 / (2 (v - x) . n)``, valid when the denominator is positive;
+* an edge ``c -> d`` with unit normal ``N`` into the gap: ``r = ((x - c) . N) / (1 - n . N)``,
+  contact ``x + r n - r N``, discarded when the contact is off the edge or ``1 - n . N`` is below
+  ``PARALLEL`` (an edge facing the same way as ``n``: no finite disk touches it).
+"""
+
+import numpy as np
+
+from ..geometry.ragged import group_argmin, ragged_arange
+
+__all__ = ["tangent_disks", "disk_between"]
+
+#: ``1 - n_P . N_Q`` below this means the edge faces the same way as the normal at p: the
+#: tangent disk would be infinite (the paper's parallel singular case).
+PARALLEL = 1e-12
+
+#: Slack, as a fraction of the edge length, when deciding that a contact lies on an edge.
+ON_EDGE = 1e-9
+
+
+def tangent_disks(x, n, a, b, N, eps):
+    """Smallest disk tangent at ``x`` (normal ``n``) touching edge ``a -> b`` (normal ``N``) or its ends.
+
+    Parameters
+    ----------
+    x, n : ndarray, shape (K, 2)
+        Samples and their unit gap normals.
+    a, b, N : ndarray, shape (K, 2)
+        One edge per sample and its unit gap normal.
+    eps : float
+        Length tolerance (a vertex this close to ``x`` is touched by a zero disk).
+
+    Returns
+    -------
+    r : ndarray, shape (K,)
+        Radius (inf where no disk touches the edge).
+    u : ndarray, shape (K,)
+        The contact's position along the edge in [0, 1].
+    """
+    d = b - a
+    len2 = np.einsum("ij,ij->i", d, d)
+    # Edge (eq. 4, 5).
+    num = np.einsum("ij,ij->i", x - a, N)
+    den = 1.0 - np.einsum("ij,ij->i", n, N)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r_e = np.where(den > PARALLEL, num / den, np.inf)
+    r_e = np.where(r_e >= -eps, np.maximum(r_e, 0.0), np.inf)
+    q = x + np.where(np.isfinite(r_e), r_e, 0.0)[:, None] * (n - N)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.einsum("ij,ij->i", q - a, d) / len2
+    r_e = np.where((u >= -ON_EDGE) & (u <= 1 + ON_EDGE), r_e, np.inf)
+    u = np.clip(np.nan_to_num(u), 0.0, 1.0)
+    # Vertices (eq. 3): r = |v - x|^2 / (2 (v - x) . n).
+    best_r, best_u = r_e, u
+    for vert, uu in ((a, 0.0), (b, 1.0)):
+        dv = vert - x
+        dist2 = np.einsum("ij,ij->i", dv, dv)
+        den_v = 2.0 * np.einsum("ij,ij->i", dv, n)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r_v = np.where(den_v > 0, dist2 / den_v, np.inf)
+        r_v = np.where(dist2 <= eps * eps, 0.0, r_v)
+        better = r_v < best_r
+        best_r = np.where(better, r_v, best_r)
+        best_u = np.where(better, uu, best_u)
+    return best_r, best_u
+
+
+def _smallest_in_windows(x, n, a, b, N, windows, eps):
+    """Smallest tangent disk at each sample over its own window of edges: radii and contacts."""
+    counts = np.array([len(w) for w in windows])
+    owner, _ = ragged_arange(counts)
+    e = np.concatenate(windows)
+    rr, uu = tangent_disks(x[owner], n[owner], a[e], b[e], N[e], eps)
+    best = group_argmin(rr, owner, len(x))
+    return rr[best], a[e[best]] + uu[best][:, None] * (b[e[best]] - a[e[best]])
+
+
+def disk_between(x0, n0, x1, n1, a, b, N, window_a, window_b, eps, iterations=40):
+    """Disks tangent to a curve between two samples that touch two other edge windows equally.
+
+    For each row, the tangent point moves along the segment from ``x0`` to ``x1`` (normal
+    interpolated) until the smallest disk touching edges ``window_a`` equals the smallest one
+    touching ``window_b`` (bisection): the maximal disk that touches the other curve twice,
+    used to bridge an incompatible stretch (paper section 7, relative blending).
+
+    Parameters
+    ----------
+    x0, n0, x1, n1 : ndarray, shape (J, 2)
+        The two samples and their unit gap normals.
+    a, b, N : ndarray, shape (E, 2)
+        Edges ``a -> b`` of the other curve with their gap normals.
+    window_a, window_b : list of ndarray of int
+        Edge indices per row.
+    eps : float
+    iterations : int
+
+    Returns
+    -------
+    x, n, r : ndarray, shapes (J, 2), (J, 2), (J,)
+        Tangent point, normal and radius of each disk.
+    qa, qb : ndarray, shape (J, 2)
+        Its contacts in the two windows.
+    """
+    lo = np.zeros(len(x0))
+    hi = np.ones(len(x0))
+
+    def evaluate(lam):
+        x = x0 + lam[:, None] * (x1 - x0)
+        n = n0 + lam[:, None] * (n1 - n0)
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
+        return x, n, [_smallest_in_windows(x, n, a, b, N, w, eps) for w in (window_a, window_b)]
+
+    for _ in range(iterations):
+        mid = (lo + hi) / 2
+        _, _, ((ra, _), (rb, _)) = evaluate(mid)
+        # Window a is touched first at lo (ra < rb), window b first at hi.
+        first_a = ra < rb
+        lo = np.where(first_a, mid, lo)
+        hi = np.where(first_a, hi, mid)
+    x, n, ((ra, qa), (rb, qb)) = evaluate((lo + hi) / 2)
+    return x, n, np.minimum(ra, rb), qa, qb

@@ -1,0 +1,221 @@
+"""Lacing by bisection: every dense sample of a chain's source curve mapped onto its target.
+
+For b-compatible curves the images advance monotonically along the target as the samples
+advance along the source: the invariant the paper's lacing walk (section 5.2, step dStep)
+relies on. We fill it in by bisection so numpy handles a whole level at once: the ends of a
+stroke pair map to the shared endpoints (for a loop, one sample is mapped by a full search);
+then the middle sample of every bracket is searched only over the target edges between the
+images of the bracket's ends. Each level costs about ``N + M`` candidate tests and there are
+``log2 N`` levels: ``O((N + M) log N)`` with no Python loop over samples or edges. Non-monotone
+true images (incompatible input) show up in the disk check instead of corrupting the order.
+"""
+
+import numpy as np
+
+from .. import tolerances as tol
+from ..geometry.circles import circumcircles
+from ..geometry.ragged import budget_slices, group_argmin, ragged_arange
+from .candidates import tangent_disks
+from .onemap import OneWayMap
+
+__all__ = ["one_way", "full_search", "contacts", "refine", "same_lap", "disk_map"]
+
+#: Most (sample, edge) candidate pairs evaluated at once by the searches: bounds their
+#: temporary arrays (about 0.2 KB per pair) without slowing them down noticeably.
+CANDIDATE_BUDGET = 500_000
+
+
+def _search(x, n, dst, chain, e_lo, e_hi, eps):
+    """Smallest disk at each sample over target edges ``e_lo..e_hi`` of its chain (laps unrolled).
+
+    Returns radii (inf where none) and contact positions in units of target edges (``e + u``).
+    """
+    rg = dst.rg
+    counts = e_hi - e_lo + 1
+    r, pos = np.full(len(x), np.inf), np.zeros(len(x))
+    for sl in budget_slices(counts, CANDIDATE_BUDGET):
+        owner, local = ragged_arange(counts[sl])
+        if not len(owner):
+            continue
+        c = chain[sl][owner]
+        e_local = e_lo[sl][owner] + local
+        g = rg.offsets[c] + np.where(rg.closed[c], e_local % np.maximum(rg.n_edges[c], 1), e_local)
+        rr, uu = tangent_disks(x[sl][owner], n[sl][owner], rg.pts[g], rg.pts[g] + rg.edge[g], dst.enormals[g], eps)
+        best = group_argmin(rr, owner, sl.stop - sl.start)
+        r[sl], pos[sl] = rr[best], e_local[best] + uu[best]
+    return r, pos
+
+
+def full_search(x, n, dst, chain, eps):
+    """Smallest disk at each sample over all edges of its chain's target (no lacing window).
+
+    Returns radii (inf where none) and contact positions in target edge units.
+    """
+    n_e = dst.rg.n_edges[chain]
+    r, pos = _search(x, n, dst, chain, np.zeros(len(x), np.int64), n_e - 1, eps)
+    return np.where(n_e > 0, r, np.inf), np.where(n_e > 0, pos, 0.0)
+
+
+def _lace(src, dst, eps):
+    """Radii and contact positions (target edge units, unwrapped for loops) of every source sample."""
+    s_rg, d_rg = src.rg, dst.rg
+    X, NX = s_rg.pts, src.vnormals
+    n_e, closed = d_rg.n_edges, d_rg.closed
+    r, pos = np.full(len(X), np.inf), np.zeros(len(X))
+    chains = np.arange(len(s_rg))
+    lo, hi = s_rg.offsets[:-1].copy(), s_rg.offsets[1:] - 1
+    p_lo, p_hi = np.zeros(len(chains)), n_e.astype(np.float64)
+    opened, loops = ~closed, chains[closed]
+    r[lo[opened]] = r[hi[opened]] = 0.0
+    pos[hi[opened]] = n_e[opened]
+    if len(loops):
+        rr, pp = full_search(X[lo[loops]], NX[lo[loops]], dst, loops, eps)
+        r[lo[loops]], pos[lo[loops]] = rr, pp
+        # A loop's chain closes on its first sample, one lap later.
+        p_lo[loops], hi[loops], p_hi[loops] = pp, s_rg.offsets[1:][loops], pp + n_e[loops]
+    chain = chains
+    while True:
+        keep = hi - lo > 1
+        chain, lo, hi, p_lo, p_hi = chain[keep], lo[keep], hi[keep], p_lo[keep], p_hi[keep]
+        if not len(chain):
+            return r, pos
+        mid = (lo + hi) // 2
+        laps = np.where(closed[chain], 2 * n_e[chain], n_e[chain])
+        e_lo = np.clip(np.floor(p_lo).astype(np.int64), 0, laps - 1)
+        e_hi = np.clip(np.ceil(p_hi).astype(np.int64) - 1, e_lo, laps - 1)
+        rr, pp = _search(X[mid], NX[mid], dst, chain, e_lo, e_hi, eps)
+        # The window is whole edges, so the best contact may lie just outside the bracket: then
+        # the true image does not advance monotonically (or sits on the bracket's end). Clipping
+        # it would move the contact off its disk, so beyond round-off it counts as no disk found
+        # here; the check reports the sample and the repair searches it without a window.
+        outside = (pp < p_lo - tol.ROUNDOFF * laps) | (pp > p_hi + tol.ROUNDOFF * laps)
+        rr = np.where(outside, np.inf, rr)
+        pp = np.where(np.isfinite(rr), np.clip(pp, p_lo, p_hi), p_lo)
+        r[mid], pos[mid] = rr, pp
+        chain, lo, hi = np.r_[chain, chain], np.r_[lo, mid], np.r_[mid, hi]
+        p_lo, p_hi = np.r_[p_lo, pp], np.r_[pp, p_hi]
+
+
+def contacts(dst, chain, pos):
+    """Contact points, unwrapped arc lengths and edge normals at positions on target edges.
+
+    Returns
+    -------
+    q : ndarray, shape (K, 2)
+    s : ndarray, shape (K,)
+    normal : ndarray, shape (K, 2)
+    """
+    rg = dst.rg
+    n_e = np.maximum(rg.n_edges[chain], 1)
+    closed = rg.closed[chain]
+    e = np.clip(np.floor(pos).astype(np.int64), 0, np.where(closed, 2 * n_e, n_e) - 1)
+    u = np.clip(pos - e, 0.0, 1.0)
+    lap = np.where(closed, e // n_e, 0)
+    g = rg.offsets[chain] + np.where(closed, e % n_e, e)
+    q = rg.pts[g] + u[:, None] * rg.edge[g]
+    s = rg.s[g] + u * rg.length_of_edge[g] + lap * rg.length[chain]
+    return q, s, dst.enormals[g]
+
+
+def refine(x, n, dst, chain, pos, r, eps):
+    """Refine polyline contacts on the circle through the three nearest target vertices.
+
+    On a polygon the ball-map is a staircase (every disk touches a flat edge at the foot of its
+    centre). Treating the target locally as the circular arc through three consecutive
+    vertices (the paper's exact construction for piecewise-circular curves, section 5.1,
+    equations 1-2) makes the map exact on circles and second-order accurate on smooth curves.
+    A refined contact is kept only if it stays within the arc's span and near the polyline one.
+
+    Returns
+    -------
+    ok : ndarray of bool, shape (K,)
+    r_new : ndarray, shape (K,)
+    q_new : ndarray, shape (K, 2)
+    s_new : ndarray, shape (K,)
+        Arc length on the target, within one lap.
+    """
+    rg = dst.rg
+    n_v, closed = rg.n[chain], rg.closed[chain]
+    j = np.floor(pos + 0.5).astype(np.int64)
+    jl = np.where(closed, j % np.maximum(n_v, 1), np.minimum(np.maximum(j, 1), np.maximum(n_v - 2, 1)))
+    ok = np.isfinite(r) & (r > eps) & (closed | ((j >= 1) & (j <= n_v - 2)))
+    g0 = rg.offsets[chain] + jl
+    gm, gp = rg.prv[g0], rg.nxt[g0]
+    ok &= (gm >= 0) & (gp >= 0)
+    gm, gp = np.maximum(gm, 0), np.maximum(gp, 0)
+    a, b, c = rg.pts[gm], rg.pts[g0], rg.pts[gp]
+    centre, rad, round_enough = circumcircles(a, b, c)
+    chord = c - a
+    # Nearly straight: the polyline contact is already right, and the circle would cancel badly.
+    ok &= round_enough & (rad < 1e4 * np.linalg.norm(chord, axis=1))
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        w = x - centre
+        inside = np.einsum("ij,ij->i", dst.vnormals[g0], centre - b) > 0
+        den = 2.0 * np.einsum("ij,ij->i", w, n) + np.where(inside, 2.0, -2.0) * rad
+        r_new = (rad * rad - np.einsum("ij,ij->i", w, w)) / den
+        dm = x + r_new[:, None] * n - centre
+        q_new = centre + rad[:, None] * dm / np.linalg.norm(dm, axis=1, keepdims=True)
+        t = np.einsum("ij,ij->i", q_new - b, chord) / np.einsum("ij,ij->i", chord, chord)
+        r_safe = np.where(np.isfinite(r), r, 0.0)
+        ok &= np.isfinite(r_new) & (r_new >= 0) & (np.abs(t) <= 0.5)
+        ok &= np.abs(r_new - r_safe) <= 0.25 * r_safe + np.linalg.norm(chord, axis=1)
+    s_new = rg.s[g0] + t * (rg.length_of_edge[gm] + rg.length_of_edge[g0])
+    return ok, r_new, q_new, s_new
+
+
+def same_lap(s_new, s_ref, length, closed):
+    """Loop positions moved onto the lap of reference (unwrapped) positions, shape (K,)."""
+    return np.where(closed, s_new + length * np.round((s_ref - s_new) / np.maximum(length, 1e-300)), s_new)
+
+
+def _keep_order(better, s_new, s_dst, src, length, chain):
+    """Drop refinements that would make neighbouring contacts step back along the target.
+
+    Refining must not break the monotone order lacing produced: where refined neighbours would
+    step back, both fall back to their polyline contacts (which are in order).
+    """
+    nxt = src.rg.nxt
+    has_next, nxt_safe = nxt >= 0, np.maximum(nxt, 0)
+    wraps = has_next & (nxt_safe == src.rg.offsets[:-1][chain])
+    for _ in range(8):
+        s_try = np.where(better, s_new, s_dst)
+        step = s_try[nxt_safe] + np.where(wraps, length, 0.0) - s_try
+        back = np.flatnonzero(has_next & (step < 0))
+        if len(back) == 0:
+            break
+        better[back] = False
+        better[nxt_safe[back]] = False
+    return better
+
+
+def disk_map(x, n, s_src, chain, r, q, s_dst, n_edge, eps):
+    """A OneWayMap from samples, radii (inf: none) and contacts."""
+    ok = np.isfinite(r)
+    rr = np.where(ok, r, 0.0)
+    m = x + rr[:, None] * n
+    with np.errstate(invalid="ignore", divide="ignore"):
+        n_dst = np.where((rr > eps)[:, None], (m - q) / rr[:, None], n_edge)
+    return OneWayMap(src=x, dst=q, m=m, r=rr, ok=ok, s_src=s_src, s_dst=s_dst, n_src=n, n_dst=n_dst, chain=chain)
+
+
+def one_way(src, dst, eps):
+    """Map every dense sample of each chain's source onto its target (OneWayMap).
+
+    Parameters
+    ----------
+    src, dst : Sides
+        The chains' source and target curves.
+    eps : float
+        Length tolerance.
+    """
+    r, pos = _lace(src, dst, eps)
+    chain = src.rg.owner
+    q, s_dst, n_edge = contacts(dst, chain, pos)
+    better, r_new, q_new, s_new = refine(src.rg.pts, src.vnormals, dst, chain, pos, r, eps)
+    length = dst.rg.length[chain]
+    s_new = same_lap(s_new, s_dst, length, dst.rg.closed[chain])
+    better = _keep_order(better, s_new, s_dst, src, length, chain)
+    r = np.where(better, r_new, r)
+    q = np.where(better[:, None], q_new, q)
+    s_dst = np.where(better, s_new, s_dst)
+    return disk_map(src.rg.pts, src.vnormals, src.rg.s, chain, r, q, s_dst, n_edge, eps)

@@ -1,0 +1,84 @@
+"""One-way ball-maps: every dense sample of a source curve mapped onto its target, as arrays.
+
+The lacing, the disk check, the repair and the symmetric thinning all pass these between them;
+:class:`OneWayMap` names their fields and says how to take rows, read a map backwards and join
+two maps.
+"""
+
+from dataclasses import dataclass, fields, replace
+
+import numpy as np
+
+__all__ = ["OneWayMap"]
+
+
+@dataclass
+class OneWayMap:
+    """Samples of the source curves of a batch of chains, each with its maximal disk.
+
+    Attributes
+    ----------
+    src, dst : ndarray, shape (K, 2)
+        Sample on the source curve and its contact on the target curve.
+    m : ndarray, shape (K, 2)
+        Disk centres.
+    r : ndarray, shape (K,)
+        Disk radii (0 where no disk was found).
+    ok : ndarray of bool, shape (K,)
+        A disk was found.
+    s_src, s_dst : ndarray, shape (K,)
+        Arc lengths of the sample and of its contact (unwrapped on loops).
+    n_src, n_dst : ndarray, shape (K, 2)
+        Unit normals into the gap at both contacts.
+    chain : ndarray of int, shape (K,)
+        The chain (stroke pair or lens) of each sample, non-decreasing.
+    bad : ndarray of bool, shape (K,), optional
+        Set by the disk check: the disk is entered by a curve, or missing.
+    """
+
+    src: np.ndarray
+    dst: np.ndarray
+    m: np.ndarray
+    r: np.ndarray
+    ok: np.ndarray
+    s_src: np.ndarray
+    s_dst: np.ndarray
+    n_src: np.ndarray
+    n_dst: np.ndarray
+    chain: np.ndarray
+    bad: np.ndarray = None
+
+    def __len__(self):
+        return len(self.r)
+
+    def take(self, rows):
+        """The map restricted to ``rows`` (indices or a boolean mask), a new OneWayMap."""
+        return OneWayMap(**{f.name: _rows(getattr(self, f.name), rows) for f in fields(self)})
+
+    def put(self, rows, other, names=("dst", "m", "r", "ok", "s_dst", "n_dst")):
+        """Overwrite the given fields at ``rows`` with the rows of ``other`` (in place)."""
+        for name in names:
+            getattr(self, name)[rows] = getattr(other, name)
+
+    def flipped(self):
+        """The same disks read from the target to the source (the check's marks are dropped)."""
+        return replace(
+            self,
+            src=self.dst,
+            dst=self.src,
+            s_src=self.s_dst,
+            s_dst=self.s_src,
+            n_src=self.n_dst,
+            n_dst=self.n_src,
+            bad=None,
+        )
+
+    @classmethod
+    def concatenate(cls, maps):
+        """Rows of several maps, one after the other (the check's marks are dropped)."""
+        names = [f.name for f in fields(cls) if f.name != "bad"]
+        return cls(**{name: np.concatenate([getattr(m, name) for m in maps]) for name in names})
+
+
+def _rows(values, rows):
+    return None if values is None else values[rows]

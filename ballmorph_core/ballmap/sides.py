@@ -1,0 +1,75 @@
+"""The curves a ball-map runs on: every chain's curve densely resampled, with gap normals."""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry.ragged import Ragged
+from ..geometry.spline import densify
+
+__all__ = ["Sides", "Side"]
+
+
+class Sides:
+    """Dense samples of one curve per chain, with normals pointing into each chain's gap.
+
+    Parameters
+    ----------
+    curves : list of ndarray, each shape (n_c, 2)
+    closed : array_like of bool, shape (C,)
+    sides : array_like, shape (C,)
+        +1 where the gap lies left of the curve, -1 where it lies right.
+    spacing : array_like, shape (C,)
+        Sample spacing of each chain.
+
+    Attributes
+    ----------
+    rg : Ragged
+        The dense curves.
+    vnormals, enormals : ndarray, shape (N, 2)
+        Vertex normals and edge normals (by first vertex), into the gap.
+    """
+
+    def __init__(self, curves, closed, sides, spacing):
+        spacing = np.asarray(spacing, dtype=np.float64)
+        # Coarse, hand-placed polylines get a few interpolating subdivision steps first.
+        curves = [densify(c, cl, h) for c, cl, h in zip(curves, closed, spacing)]
+        raw = Ragged.from_list(curves, closed)
+        counts = np.round(raw.length / spacing).astype(np.int64) + np.where(raw.closed, 0, 1)
+        self.rg = raw.resample(counts)
+        side = np.asarray(sides, dtype=np.float64)[self.rg.owner][:, None]
+        self.vnormals = side * self.rg.vertex_normals()
+        self.enormals = side * self.rg.edge_normals()
+
+    def view(self, c):
+        """Curve ``c`` alone (Side)."""
+        rg = self.rg
+        sl = slice(rg.offsets[c], rg.offsets[c + 1])
+        n_e = rg.n_edges[c]
+        return Side(
+            rg.pts[sl],
+            self.vnormals[sl],
+            self.enormals[sl][:n_e],
+            np.concatenate([rg.s[sl], [rg.length[c]]]) if rg.closed[c] else rg.s[sl],
+            float(rg.length[c]),
+        )
+
+
+@dataclass
+class Side:
+    """One dense curve of a chain: points, normals into the gap, arc length.
+
+    Attributes
+    ----------
+    pts, vnormals : ndarray, shape (N, 2)
+    enormals : ndarray, shape (E, 2)
+    cum : ndarray, shape (N,) for a stroke, (N + 1,) for a loop
+        Arc length at each vertex (a loop's last entry is its length).
+    length : float
+    """
+
+    pts: np.ndarray
+    vnormals: np.ndarray
+    enormals: np.ndarray
+    cum: np.ndarray
+    length: float

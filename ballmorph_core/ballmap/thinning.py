@@ -1,0 +1,167 @@
+"""Symmetric sampling (the paper's approach 3): both one-way maps joined and thinned.
+
+Both curves are sampled densely, each sample is mapped to the other curve, the union of the
+pairs is ordered along the (monotone) correspondence graph and thinned so that between
+consecutive kept pairs one of the two contacts has moved by the spacing and the other by at
+most the spacing. Every kept pair is an exact ball-map contact; swapping P and Q gives the same
+pairs. The composite ball-morph thins its chained correspondence the same way.
+"""
+
+import numpy as np
+
+from .. import tolerances as tol
+from ..geometry.ragged import ragged_arange
+from .onemap import OneWayMap
+from .report import Violation
+
+__all__ = ["symmetric_samples", "running_backsteps", "uniform_picks"]
+
+#: The forward (P -> Q) and backward (Q -> P) maps may disagree by this many dense spacings
+#: before the pair counts as not b-compatible there (a disk touching a curve at two places makes
+#: them disagree by much more).
+MAP_DISAGREEMENT = 1.0
+
+
+def _segments(chain, n_chains):
+    """Start index of each chain's run in a chain-sorted array, shape (C + 1,)."""
+    return np.searchsorted(chain, np.arange(n_chains + 1))
+
+
+def _onto_forward_laps(fwd, bwd, sp, sq):
+    """The backward pairs of loops moved into the forward map's unwrapped frame (OneWayMap).
+
+    Interpolates the forward graph (with one extra node closing each loop's lap) to find, for
+    each backward pair, the lap of the forward pair it sits between.
+    """
+    n_chains = len(sp.rg)
+    len_p, len_q, closed = sp.rg.length, sq.rg.length, sp.rg.closed
+    cf, cb = fwd.chain, bwd.chain
+    first = sp.rg.offsets[:-1]
+    gx = np.concatenate([fwd.s_src, fwd.s_src[first] + len_p])
+    gy = np.concatenate([fwd.s_dst, fwd.s_dst[first] + len_q])
+    gc = np.concatenate([cf, np.arange(n_chains)])
+    base = np.concatenate([[0.0], np.cumsum(len_p + 1.0)])[:-1]
+    order = np.argsort(gx + base[gc], kind="stable")
+    wraps = closed[cb] & (len_p[cb] > 0)  # loops of zero length (degenerate chains) do not wrap
+    sp_b = np.where(wraps, np.mod(bwd.s_src, np.where(wraps, len_p[cb], 1.0)), bwd.s_src)
+    ref = np.interp(sp_b + base[cb], (gx + base[gc])[order], gy[order])
+    # Whole laps to add (loops only; a zero-length chain has none).
+    laps = np.divide(ref - bwd.s_dst, len_q[cb], out=np.zeros_like(ref), where=closed[cb] & (len_q[cb] > 0))
+    bwd.s_src, bwd.s_dst = sp_b, bwd.s_dst + len_q[cb] * np.round(laps)
+    return bwd
+
+
+def running_backsteps(s, chain, span):
+    """How far each position lies behind the running maximum of its chain's earlier positions.
+
+    Parameters
+    ----------
+    s : ndarray, shape (K,)
+        Positions, grouped by ``chain`` (non-decreasing).
+    chain : ndarray of int, shape (K,)
+    span : float
+        More than any position's range (chains are shifted apart by it).
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        0 where the sequence is monotone.
+    """
+    return np.maximum.accumulate(s + chain * span) - chain * span - s
+
+
+def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
+    """Rows of a monotone correspondence kept at a uniform spacing along it.
+
+    The correspondence graph of each chain is parametrised by ``tau``, the cumulative larger of
+    the two contacts' steps; the row nearest each multiple of a uniform step (the spacing,
+    rounded so it divides the chain's ``tau``, a loop's closing step included) is kept.
+
+    Parameters
+    ----------
+    sp_, sq_ : ndarray, shape (K,)
+        Contact positions on P and Q, monotone within each chain.
+    chain : ndarray of int, shape (K,)
+    n_chains : int
+    len_p, len_q : ndarray, shape (C,)
+    closed : ndarray of bool, shape (C,)
+    spacing : ndarray, shape (C,)
+
+    Returns
+    -------
+    ndarray of int
+        Sorted indices of the kept rows.
+    """
+    seg = _segments(chain, n_chains)
+    starts, ends = seg[:-1], seg[1:] - 1
+    step = np.maximum(np.abs(np.diff(sp_, prepend=sp_[:1])), np.abs(np.diff(sq_, prepend=sq_[:1])))
+    step[starts] = 0.0
+    tau = np.cumsum(step)
+    tau -= tau[starts][chain]
+    closing = np.maximum(len_p - (sp_[ends] - sp_[starts]), len_q - (sq_[ends] - sq_[starts]))
+    total = tau[ends] + np.where(closed, closing, 0.0)
+    count = np.maximum(np.round(total / spacing).astype(np.int64), np.where(closed, 3, 1))
+    owner, local = ragged_arange(count + np.where(closed, 0, 1))
+    targets = local * (total / count)[owner]
+    # The node nearest each multiple of the uniform step, within its chain.
+    tbase = np.concatenate([[0.0], np.cumsum(total + 1.0)])[:-1]
+    g = tau + tbase[chain]
+    want = targets + tbase[owner]
+    hi = np.clip(np.searchsorted(g, want), starts[owner] + 1, np.maximum(ends[owner], starts[owner] + 1))
+    hi = np.minimum(hi, len(g) - 1)
+    lo = np.maximum(hi - 1, starts[owner])
+    return np.unique(np.where(want - g[lo] <= g[hi] - want, lo, hi))
+
+
+def _report_disagreements(allp, back_p, back_q, sp, sq, dense_spacing, reports):
+    """A Violation for every pair stepping back by more than MAP_DISAGREEMENT dense spacings."""
+    len_p, len_q, closed = sp.rg.length, sq.rg.length, sp.rg.closed
+    h = dense_spacing[allp.chain]
+    for k in np.flatnonzero(np.maximum(back_p, back_q) > MAP_DISAGREEMENT * h):
+        c = allp.chain[k]
+        curve = "P" if back_p[k] >= back_q[k] else "Q"
+        reports[c].violations.append(
+            Violation(
+                driver="P+Q",
+                sample=int(k),
+                p=allp.src[k],
+                q=allp.dst[k],
+                s_p=float(np.mod(allp.s_src[k], len_p[c]) if closed[c] else allp.s_src[k]),
+                s_q=float(np.mod(allp.s_dst[k], len_q[c]) if closed[c] else allp.s_dst[k]),
+                witness_curve=curve,
+                witness=allp.src[k] if curve == "P" else allp.dst[k],
+                depth=float(max(back_p[k], back_q[k])),
+            )
+        )
+
+
+def symmetric_samples(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
+    """Thin the union of both one-way maps into symmetric samples (OneWayMap, P -> Q).
+
+    Per chain, the union ordered by ``s_p + s_q`` must be a monotone chain. Pairs that step back
+    by round-off are dropped; a pair that steps back by more than ``MAP_DISAGREEMENT`` dense
+    spacings means the forward and backward maps disagree: a maximal disk touches a curve at two
+    places (paper section 3.4), reported.
+
+    Parameters
+    ----------
+    fwd, bwd : OneWayMap
+        P -> Q and Q -> P maps of the same chains.
+    sp, sq : Sides
+    spacing, dense_spacing : ndarray, shape (C,)
+        Output and dense sample spacing per chain.
+    reports : list of CompatibilityReport
+    """
+    len_p, len_q = sp.rg.length, sq.rg.length
+    bwd = bwd.flipped()  # now read from P to Q like fwd
+    if sp.rg.closed.any():
+        bwd = _onto_forward_laps(fwd, bwd, sp, sq)
+    allp = OneWayMap.concatenate([fwd, bwd])
+    allp = allp.take(np.lexsort((allp.s_src + allp.s_dst, allp.chain)))
+    span = 4.0 * (max(len_p.max(), len_q.max()) + 1.0)
+    back_p = running_backsteps(allp.s_src, allp.chain, span)
+    back_q = running_backsteps(allp.s_dst, allp.chain, span)
+    _report_disagreements(allp, back_p, back_q, sp, sq, dense_spacing, reports)
+    allp = allp.take((back_p <= tol.ROUNDOFF * len_p[allp.chain]) & (back_q <= tol.ROUNDOFF * len_q[allp.chain]))
+    keep = uniform_picks(allp.s_src, allp.s_dst, allp.chain, len(sp.rg), len_p, len_q, sp.rg.closed, spacing)
+    return allp.take(keep)
