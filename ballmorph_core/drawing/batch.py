@@ -189,19 +189,6 @@ def _crossings(P, Q, scale, wanted):
     return pair[order], s_p[order], s_q[order]
 
 
-def _inside(points, curves, owner):
-    """Even-odd test of one point per pair against that pair's loop (vectorised), shape (C,)."""
-    e = np.flatnonzero(curves.nxt >= 0)
-    a, b = curves.pts[e], curves.pts[e] + curves.edge[e]
-    pt = points[curves.owner[e]]
-    straddle = (a[:, 1] > pt[:, 1]) != (b[:, 1] > pt[:, 1])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        x = a[:, 0] + (pt[:, 1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
-    hits = straddle & (pt[:, 0] < x)
-    count = np.bincount(curves.owner[e][hits], minlength=len(curves))
-    return count % 2 == 1
-
-
 def morph_pairs(pairs, times, kind="circular", carrier="SIMILARITY", spacing=None):
     """Morph many stroke pairs at once: ``plan_pairs(...).frames(times)``.
 
@@ -283,7 +270,7 @@ def plan_pairs(pairs, kind="circular", carrier="SIMILARITY", spacing=None):
     eligible &= np.bincount(pair[~agree], minlength=n) == 0
     eligible &= ~(closed & (count == 1))  # a loop touching its target once: general road
     # Nested loops without crossings (configuration 1) are one chain; others need the general road.
-    nested = _inside(R.pts[R.offsets[:-1]], Q, R.owner) | _inside(Q.pts[Q.offsets[:-1]], R, Q.owner)
+    nested = Q.contains(R.pts[R.offsets[:-1]], np.arange(n)) | R.contains(Q.pts[Q.offsets[:-1]], np.arange(n))
     eligible &= ~(closed & (count == 0) & ~nested) | coincident
     # Lenses: stretches between consecutive crossings (strokes also from and to their ends).
     lens_pair, l_p0, l_p1, l_q0, l_q1 = [], [], [], [], []
@@ -336,7 +323,7 @@ def plan_pairs(pairs, kind="circular", carrier="SIMILARITY", spacing=None):
         range_q += list(zip(l_q0, l_q1))
     if len(whole):
         areas = R.signed_areas()
-        p_inner = _inside(R.pts[R.offsets[:-1]], Q, R.owner)
+        p_inner = Q.contains(R.pts[R.offsets[:-1]], np.arange(n))
     for c in whole:
         if coincident[c]:
             setups.append(PairSetup(R.curve(c), Q.curve(c), bool(closed[c]), 1.0, 1.0, coincident=True))

@@ -59,7 +59,7 @@ import numpy as np
 from .. import tolerances as tol
 from ..errors import InvalidCurveError
 from ..geometry.polyline import as_curve, curve_length, resample
-from ..geometry.ragged import Ragged
+from ..geometry.ragged import Ragged, budget_slices
 from ..morphs.linear import best_cyclic_alignment
 from ..options import check_option
 
@@ -377,10 +377,8 @@ def _loop_shape(a, b):
     copies = np.stack([b[:, shifts], backwards[:, shifts]], axis=1).reshape(-1, 2 * m)
     fa = a.reshape(len(a), 2 * m)
     best = np.empty((len(a), len(b)))
-    step = max(1, _CHUNK // len(copies))
-    for start in range(0, len(a), step):
-        dots = fa[start : start + step] @ copies.T
-        best[start : start + step] = dots.reshape(len(dots), len(b), 2 * m).max(axis=2)
+    for sl in budget_slices(np.full(len(a), len(copies)), _CHUNK):
+        best[sl] = (fa[sl] @ copies.T).reshape(sl.stop - sl.start, len(b), 2 * m).max(axis=2)
     norms = (fa * fa).sum(axis=1)[:, None] + (b * b).sum(axis=(1, 2))[None, :]
     return np.maximum(norms - 2.0 * best, 0.0) / m
 

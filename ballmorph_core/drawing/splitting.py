@@ -14,10 +14,10 @@ import numpy as np
 from .. import tolerances as tol
 from ..errors import IncompatibleCurvesError
 from ..geometry.intersections import crossings
-from ..geometry.polyline import cumulative_length, edges, resample, scale_of, subcurve
-from ..geometry.spatial import box_pairs
+from ..geometry.polyline import cumulative_length, resample, scale_of, subcurve
+from ..geometry.projection import distances_to_polyline
 
-__all__ = ["Piece", "split_pair", "distances_to_polyline"]
+__all__ = ["Piece", "split_pair"]
 
 
 @dataclass
@@ -39,44 +39,6 @@ class Piece:
     kind: str
     range_p: tuple
     range_q: tuple
-
-
-def distances_to_polyline(points, curve, closed, reach):
-    """Distance from points to a polyline and the arc length of the nearest point on it.
-
-    Only segments within ``reach`` of a point are considered (grid search); points farther
-    than ``reach`` from the curve get ``inf``.
-
-    Parameters
-    ----------
-    points : ndarray, shape (K, 2)
-    curve : ndarray, shape (N, 2)
-    closed : bool
-    reach : float
-
-    Returns
-    -------
-    dist : ndarray, shape (K,)
-    s : ndarray, shape (K,)
-        Arc length of the nearest point (undefined where ``dist`` is inf).
-    """
-    e = edges(curve, closed)
-    a = curve[: len(e)]
-    seg_boxes = np.concatenate([np.minimum(a, a + e), np.maximum(a, a + e)], axis=1)
-    pt_boxes = np.concatenate([points - reach, points + reach], axis=1)
-    i, j = box_pairs(pt_boxes, seg_boxes)
-    len2 = np.einsum("ij,ij->i", e, e)
-    u = np.clip(np.einsum("ij,ij->i", points[i] - a[j], e[j]) / np.maximum(len2[j], 1e-300), 0.0, 1.0)
-    d = np.linalg.norm(points[i] - (a[j] + u[:, None] * e[j]), axis=1)
-    cum = cumulative_length(curve, closed)
-    dist = np.full(len(points), np.inf)
-    s = np.zeros(len(points))
-    if len(d):
-        order = np.lexsort((d, i))
-        first = order[np.r_[True, i[order][1:] != i[order][:-1]]]
-        dist[i[first]] = d[first]
-        s[i[first]] = cum[j[first]] + u[first] * np.sqrt(len2[j[first]])
-    return dist, s
 
 
 def _overlap_runs(P, Q, closed, spacing, eps):

@@ -302,21 +302,7 @@ def points_in_loop(points, loop):
     ndarray of bool, shape (K,)
     """
     points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-    a = loop
-    b = np.roll(loop, -1, axis=0)
-    inside = np.zeros(len(points), dtype=bool)
-    # Chunk over points to bound memory at K x N.
-    chunk = max(1, 2_000_000 // max(len(loop), 1))
-    for start in range(0, len(points), chunk):
-        px = points[start : start + chunk, 0:1]
-        py = points[start : start + chunk, 1:2]
-        straddle = (a[:, 1] > py) != (b[:, 1] > py)
-        dy = b[:, 1] - a[:, 1]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x_cross = a[:, 0] + (py - a[:, 1]) * (b[:, 0] - a[:, 0]) / dy
-        hits = straddle & (px < x_cross)
-        inside[start : start + chunk] = (hits.sum(axis=1) % 2) == 1
-    return inside
+    return Ragged.from_list([loop], [True]).contains(points, np.zeros(len(points), dtype=np.int64))
 
 
 def resample(curve, closed, spacing=None, count=None, smooth=True):

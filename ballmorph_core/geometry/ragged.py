@@ -14,6 +14,9 @@ from .spline import catmull_rom
 
 __all__ = ["Ragged", "ragged_arange", "budget_slices", "group_argmin", "unit_left"]
 
+#: (point, edge) pairs tested at once by :meth:`Ragged.contains` (memory bound).
+_EDGE_BUDGET = 2_000_000
+
 
 def ragged_arange(counts):
     """Concatenated ``arange(c)`` for every count, and the owner of each entry.
@@ -326,3 +329,31 @@ class Ragged:
     def edge_normals(self):
         """Unit left normals of the edges by first vertex (zero where no edge), shape (N, 2)."""
         return unit_left(self.edge)
+
+    def contains(self, points, curves):
+        """Even-odd test: whether each point lies inside its curve (closed by its last edge).
+
+        Parameters
+        ----------
+        points : ndarray, shape (K, 2)
+        curves : ndarray of int, shape (K,)
+            The curve each point is tested against.
+
+        Returns
+        -------
+        ndarray of bool, shape (K,)
+        """
+        e_start = self.offsets[:-1][curves]
+        counts = self.n[curves]  # every vertex starts an edge (the last one closes the curve)
+        hits = np.zeros(len(points), dtype=np.int64)
+        for sl in budget_slices(counts, _EDGE_BUDGET):
+            owner, local = ragged_arange(counts[sl])
+            e = e_start[sl][owner] + local
+            a = self.pts[e]
+            b = self.pts[np.where(self.nxt[e] >= 0, self.nxt[e], e_start[sl][owner])]
+            pt = points[sl][owner]
+            straddle = (a[:, 1] > pt[:, 1]) != (b[:, 1] > pt[:, 1])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                x = a[:, 0] + (pt[:, 1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+            hits[sl] = np.bincount(owner[straddle & (pt[:, 0] < x)], minlength=sl.stop - sl.start)
+        return hits % 2 == 1

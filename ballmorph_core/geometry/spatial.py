@@ -87,6 +87,28 @@ def box_pairs(boxes_a, boxes_b=None, cell=None):
     return code // len(b), code % len(b)
 
 
+def _box_reach(boxes, centres):
+    """Squared distances from each point to the nearest and to the farthest point of its box.
+
+    Parameters
+    ----------
+    boxes : ndarray, shape (K, 4)
+        ``(xmin, ymin, xmax, ymax)`` rows (NaN for an empty node).
+    centres : ndarray, shape (K, 2)
+
+    Returns
+    -------
+    near2, far2 : ndarray, shape (K,)
+        NaN where the box is empty.
+    """
+    cx, cy = centres[:, 0], centres[:, 1]
+    dx = np.maximum(np.maximum(boxes[:, 0] - cx, cx - boxes[:, 2]), 0.0)
+    dy = np.maximum(np.maximum(boxes[:, 1] - cy, cy - boxes[:, 3]), 0.0)
+    fx = np.maximum(np.abs(boxes[:, 0] - cx), np.abs(boxes[:, 2] - cx))
+    fy = np.maximum(np.abs(boxes[:, 1] - cy), np.abs(boxes[:, 3] - cy))
+    return dx * dx + dy * dy, fx * fx + fy * fy
+
+
 class PointTree:
     """A balanced k-d tree over points, queried for all disks at once.
 
@@ -151,14 +173,10 @@ class PointTree:
         q = np.arange(k)
         node = np.zeros(k, dtype=np.int64)
         for depth, (_, _, boxes) in enumerate(self.levels):
-            bx, c = boxes[node], x[q]
-            near_x = np.maximum(np.maximum(bx[:, 0] - c[:, 0], c[:, 0] - bx[:, 2]), 0.0)
-            near_y = np.maximum(np.maximum(bx[:, 1] - c[:, 1], c[:, 1] - bx[:, 3]), 0.0)
-            far_x = np.maximum(np.abs(bx[:, 0] - c[:, 0]), np.abs(bx[:, 2] - c[:, 0]))
-            far_y = np.maximum(np.abs(bx[:, 1] - c[:, 1]), np.abs(bx[:, 3] - c[:, 1]))
+            bx = boxes[node]
+            near, far = _box_reach(bx, x[q])
             empty = np.isnan(bx[:, 0])
-            near = np.where(empty, np.inf, near_x * near_x + near_y * near_y)
-            far = np.where(empty, np.inf, far_x * far_x + far_y * far_y)
+            near, far = np.where(empty, np.inf, near), np.where(empty, np.inf, far)
             bound = np.full(k, np.inf)
             np.minimum.at(bound, q, far)
             keep = near <= bound[q]
@@ -196,14 +214,9 @@ class PointTree:
         q = np.arange(len(centres))
         node = np.zeros(len(centres), dtype=np.int64)
         for depth, (starts, ends, boxes) in enumerate(self.levels):
-            bx = boxes[node]
-            c = centres[q]
-            dx = np.maximum(np.maximum(bx[:, 0] - c[:, 0], c[:, 0] - bx[:, 2]), 0.0)
-            dy = np.maximum(np.maximum(bx[:, 1] - c[:, 1], c[:, 1] - bx[:, 3]), 0.0)
-            near = dx * dx + dy * dy < r2[q]
-            fx = np.maximum(np.abs(bx[:, 0] - c[:, 0]), np.abs(bx[:, 2] - c[:, 0]))
-            fy = np.maximum(np.abs(bx[:, 1] - c[:, 1]), np.abs(bx[:, 3] - c[:, 1]))
-            inside = near & (fx * fx + fy * fy < r2[q])
+            near2, far2 = _box_reach(boxes[node], centres[q])
+            near = near2 < r2[q]
+            inside = near & (far2 < r2[q])
             if inside.any():
                 iq, inode = q[inside], node[inside]
                 counts = np.ones(len(iq), np.int64) if first_only else ends[inode] - starts[inode]
@@ -315,14 +328,9 @@ class CurveTree:
         found_q, found_p = [], []
         for depth in range(len(self.levels) - 1, -1, -1):
             c_start, c_end, boxes = self.levels[depth]
-            bx = boxes[node]
-            cen = centres[q]
-            dx = np.maximum(np.maximum(bx[:, 0] - cen[:, 0], cen[:, 0] - bx[:, 2]), 0.0)
-            dy = np.maximum(np.maximum(bx[:, 1] - cen[:, 1], cen[:, 1] - bx[:, 3]), 0.0)
-            near = dx * dx + dy * dy < r2[q]
-            fx = np.maximum(np.abs(bx[:, 0] - cen[:, 0]), np.abs(bx[:, 2] - cen[:, 0]))
-            fy = np.maximum(np.abs(bx[:, 1] - cen[:, 1]), np.abs(bx[:, 3] - cen[:, 1]))
-            inside = near & (fx * fx + fy * fy < r2[q])
+            near2, far2 = _box_reach(boxes[node], centres[q])
+            near = near2 < r2[q]
+            inside = near & (far2 < r2[q])
             if depth == 0:
                 q, node = q[near], node[near]
                 break

@@ -17,17 +17,13 @@ import numpy as np
 from .. import tolerances as tol
 from ..ballmap.topology import orient_pair
 from ..errors import IncompatibleCurvesError
-from ..geometry.polyline import as_curve, curve_length, edges, resample, resolve_spacing, reverse, scale_of
+from ..geometry.circles import circumcircles
+from ..geometry.polyline import as_curve, curve_length, resample, resolve_spacing, reverse
+from ..geometry.projection import PolylineProjector
 from ..geometry.ragged import ragged_arange
-from ..geometry.spatial import PointTree
 from ..geometry.spline import densify
 from .base import PathMorph, register
 from .paths import LinearPaths
-
-#: Candidate (query, vertex) pairs held at once by :meth:`Projector.project` (memory bound), and
-#: the fewest queries per chunk.
-_PAIR_BUDGET = 2_000_000
-_MIN_CHUNK = 64
 
 __all__ = ["Projector", "Projection", "ProjectionDefect", "c_compatibility"]
 
@@ -67,30 +63,15 @@ class Projector:
     ----------
     dense : ndarray, shape (M, 2)
         The resampled polyline the projections land on.
-
-    Notes
-    -----
-    A k-d tree over the dense vertices gives each query's distance ``d`` to its nearest vertex
-    (a pruned walk, all queries at once); then every vertex within ``sqrt(d^2 + (e/2)^2)``
-    (``e`` the longest dense edge) is fetched in one batched disk query. The closest point lies
-    on an edge with an endpoint among them, so only those edges are tested: the cost grows
-    with the number of vertices nearly as close as the nearest, not with ``K x M``.
     """
 
     def __init__(self, curve, closed, spacing):
         step = 0.5 * float(spacing)
         self.closed = bool(closed)
         self.dense = resample(densify(curve, closed, step), closed, step)
-        self.edges = edges(self.dense, closed)
-        self.n_edges = len(self.edges)
-        lengths = np.linalg.norm(self.edges, axis=1)
-        self.mean_edge = float(lengths.mean())
-        self._half_edge = 0.5 * float(lengths.max())
-        self._tree = PointTree(self.dense)
-
-    def _nearest_vertex_d2(self, x):
-        """Squared distance from each query to its nearest dense vertex, shape (K,)."""
-        return self._tree.nearest_d2(x)
+        self._polyline = PolylineProjector(self.dense, closed)
+        self.n_edges = self._polyline.n_edges
+        self.mean_edge = float(np.linalg.norm(self._polyline.edges, axis=1).mean())
 
     def project(self, points):
         """Closest points on the dense polyline.
@@ -104,39 +85,9 @@ class Projector:
         Projection
         """
         x = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-        # Queries nearly equidistant to much of the curve (a small loop at the centre of a
-        # round one) fetch many vertices each: chunking bounds the memory of the candidates.
-        chunk = max(_MIN_CHUNK, _PAIR_BUDGET // len(self.dense))
-        parts = [self._nearest(x[i : i + chunk]) for i in range(0, len(x), chunk)]
-        edge = np.concatenate([p[0] for p in parts]) if parts else np.zeros(0, dtype=np.int64)
-        frac = np.concatenate([p[1] for p in parts]) if parts else np.zeros(0)
-        foot = self.dense[edge] + frac[:, None] * self.edges[edge]
+        edge, frac = self._polyline.nearest(x)
+        foot = self._polyline.foot(edge, frac)
         return self._refine(x, Projection(foot, edge + frac, np.linalg.norm(foot - x, axis=1)))
-
-    def _nearest(self, x):
-        """Edge and fraction of the closest point on the dense polyline, for each query."""
-        radius = np.sqrt(self._nearest_vertex_d2(x) + self._half_edge**2)
-        radius = radius * (1.0 + 1e-9) + tol.COINCIDENT * scale_of(self.dense)
-        qi, vi = self._tree.within(x, radius)
-        # Both edges at each vertex found (a stroke's end vertices have one).
-        qi = np.repeat(qi, 2)
-        ei = np.stack([vi - 1, vi], axis=1).ravel()
-        if self.closed:
-            ei = np.mod(ei, self.n_edges)
-        else:
-            ok = (ei >= 0) & (ei < self.n_edges)
-            qi, ei = qi[ok], ei[ok]
-        a, e = self.dense[ei], self.edges[ei]
-        ee = np.einsum("ij,ij->i", e, e)
-        f = np.divide(np.einsum("ij,ij->i", x[qi] - a, e), ee, out=np.zeros_like(ee), where=ee > 0)
-        f = np.clip(f, 0.0, 1.0)
-        d2 = np.sum(np.square(a + f[:, None] * e - x[qi]), axis=1)
-        order = np.lexsort((ei, d2, qi))
-        qs = qi[order]
-        first = order[np.r_[True, qs[1:] != qs[:-1]]]
-        if len(first) != len(x):  # cannot happen: the bounding vertex is always found
-            raise RuntimeError("closest-point search missed a query")
-        return ei[first], f[first]
 
     def _refine(self, x, proj):
         """Move each foot onto the circle through the three dense vertices nearest to it.
@@ -155,14 +106,9 @@ class Projector:
             j = np.clip(j, 1, n_v - 2)
             jm, jp = j - 1, j + 1
         a, b, c = self.dense[jm], self.dense[j], self.dense[jp]
-        ab, ac = b - a, c - a
-        det = 2.0 * (ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0])
-        ab2, ac2 = np.einsum("ij,ij->i", ab, ab), np.einsum("ij,ij->i", ac, ac)
-        # Nearly straight: the chord foot is already right and the circle would cancel badly.
-        ok = np.abs(det) > tol.PROJECTION_STRAIGHT * ac2
-        det = np.where(ok, det, 1.0)
-        centre = a + np.stack([ac[:, 1] * ab2 - ab[:, 1] * ac2, ab[:, 0] * ac2 - ac[:, 0] * ab2], axis=1) / det[:, None]
-        radius = np.linalg.norm(b - centre, axis=1)
+        centre, radius, ok = circumcircles(a, b, c)
+        ac = c - a
+        ac2 = np.einsum("ij,ij->i", ac, ac)
         w = x - centre
         wn = np.linalg.norm(w, axis=1)
         ok &= wn > 0

@@ -28,9 +28,9 @@ from .. import tolerances as tol
 from ..ballmap.candidates import disk_between
 from ..ballmap.correspondence import dense_maps
 from ..ballmap.topology import orient_pair
-from ..drawing.splitting import distances_to_polyline
 from ..errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from ..geometry.polyline import curve_length, resolve_spacing, subcurve
+from ..geometry.projection import distances_to_polyline
 from .ball import input_fractions
 from .base import PathMorph, build, register, registered
 from .paths import SampledPaths
