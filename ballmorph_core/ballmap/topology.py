@@ -12,7 +12,7 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..errors import IncompatibleCurvesError
-from ..geometry.intersections import crossings, is_simple
+from ..geometry.intersections import Crossings, crossings, is_simple
 from ..geometry.polyline import as_curve, orient_clockwise, points_in_loop, scale_of, signed_area
 from ..geometry.spatial import PointTree
 
@@ -59,9 +59,7 @@ def _interior_crossings(P, Q, closed):
     eps = tol.SHARED_ENDPOINT * scale_of(P, Q)
     at_end = (np.linalg.norm(cx.points - P[0], axis=1) <= eps) | (np.linalg.norm(cx.points - P[-1], axis=1) <= eps)
     keep = ~at_end
-    cx.points, cx.s_a, cx.s_b = cx.points[keep], cx.s_a[keep], cx.s_b[keep]
-    cx.edge_a, cx.edge_b = cx.edge_a[keep], cx.edge_b[keep]
-    return cx
+    return Crossings(*(values[keep] for values in (cx.pair, cx.points, cx.s_a, cx.s_b, cx.edge_a, cx.edge_b)))
 
 
 def crossing_order_agrees(cx, closed):

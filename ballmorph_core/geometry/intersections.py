@@ -1,35 +1,44 @@
 """Segment intersections between polylines and within one polyline.
 
-Candidate segment pairs come from a uniform grid (:func:`spatial.box_pairs`), so the cost grows
-with the number of segments and crossings, not with their product.
+Candidate segment pairs come from a uniform grid (:func:`~.spatial.box_pairs`), so the cost grows
+with the number of segments and crossings, not with their product. :func:`batch_crossings` finds
+the crossings of many curve pairs at once (the drawing pipeline's batches); :func:`crossings` is
+a batch of one.
 """
+
+from dataclasses import dataclass
 
 import numpy as np
 
 from .. import tolerances as tol
-from .polyline import cumulative_length, edges, scale_of
+from .polyline import edges, scale_of
+from .ragged import Ragged
 from .spatial import box_pairs
 
-__all__ = ["Crossings", "crossings", "self_crossings", "is_simple", "segment_hits"]
+__all__ = ["Crossings", "batch_crossings", "crossings", "self_crossings", "is_simple", "segment_hits"]
 
 
+@dataclass
 class Crossings:
-    """Intersection points between two polylines, sorted along the first.
+    """Intersection points between curves, sorted by pair, then along the first curve.
 
     Attributes
     ----------
+    pair : ndarray of int, shape (K,)
+        The curve pair of each crossing (0 for a single pair).
     points : ndarray, shape (K, 2)
     s_a, s_b : ndarray, shape (K,)
         Arc-length position of each point on the first and on the second curve.
     edge_a, edge_b : ndarray of int, shape (K,)
-        The segments that meet there.
+        The segments that meet there (first-vertex index within each curve).
     """
 
-    def __init__(self, points, s_a, s_b, edge_a, edge_b):
-        order = np.argsort(s_a, kind="stable")
-        self.points = points[order]
-        self.s_a, self.s_b = s_a[order], s_b[order]
-        self.edge_a, self.edge_b = edge_a[order], edge_b[order]
+    pair: np.ndarray
+    points: np.ndarray
+    s_a: np.ndarray
+    s_b: np.ndarray
+    edge_a: np.ndarray
+    edge_b: np.ndarray
 
     def __len__(self):
         return len(self.s_a)
@@ -70,18 +79,57 @@ def segment_hits(a0, da, b0, db, scale):
     return ok, np.clip(sa, 0, 1), np.clip(sb, 0, 1)
 
 
-def _dedupe(s_a, s_b, scale):
-    """Drop repeats of one crossing reported by two segments sharing a vertex."""
-    if len(s_a) == 0:
-        return np.zeros(0, dtype=np.int64)
-    q = tol.SHARED_ENDPOINT * scale
-    key = np.round(s_a / q).astype(np.int64) * 4_000_003 + np.round(s_b / q).astype(np.int64)
-    _, first = np.unique(key, return_index=True)
+def _first_of_each(pair, s_a, s_b, scale):
+    """Indices keeping one crossing seen from two segments sharing a vertex (sorted)."""
+    quantum = tol.SHARED_ENDPOINT * scale[pair]
+    key = np.stack([pair, np.round(s_a / quantum), np.round(s_b / quantum)], axis=1)
+    _, first = np.unique(key, axis=0, return_index=True)
     return np.sort(first)
 
 
+def batch_crossings(A, B, scale, wanted=None):
+    """Points where curve ``c`` of ``A`` meets curve ``c`` of ``B`` (crossing or touching), for every c.
+
+    Parameters
+    ----------
+    A, B : Ragged
+        As many curves each.
+    scale : ndarray, shape (C,)
+        Length scale of each pair's tolerances.
+    wanted : ndarray of bool, shape (C,), optional
+        Pairs to search (default all).
+
+    Returns
+    -------
+    Crossings
+        Collinear overlapping segments are not reported: an overlap is a stretch, not a point.
+        On a loop, a crossing within round-off of its end is put at its start.
+    """
+    wanted = np.ones(len(A), dtype=bool) if wanted is None else wanted
+    ea = np.flatnonzero((A.nxt >= 0) & wanted[A.owner])
+    eb = np.flatnonzero((B.nxt >= 0) & wanted[B.owner])
+    a0, da, b0, db = A.pts[ea], A.edge[ea], B.pts[eb], B.edge[eb]
+    i, j = box_pairs(_boxes(a0, a0 + da), _boxes(b0, b0 + db))
+    keep = A.owner[ea[i]] == B.owner[eb[j]]
+    i, j = i[keep], j[keep]
+    pair = A.owner[ea[i]]
+    ok, sa, sb = segment_hits(a0[i], da[i], b0[j], db[j], scale[pair])
+    i, j, sa, sb, pair = i[ok], j[ok], sa[ok], sb[ok], pair[ok]
+    s_a = A.s[ea[i]] + sa * A.length_of_edge[ea[i]]
+    s_b = B.s[eb[j]] + sb * B.length_of_edge[eb[j]]
+    slack = tol.COINCIDENT * scale[pair]
+    s_a = np.where(A.closed[pair] & (s_a >= A.length[pair] - slack), 0.0, s_a)
+    s_b = np.where(B.closed[pair] & (s_b >= B.length[pair] - slack), 0.0, s_b)
+    first = _first_of_each(pair, s_a, s_b, scale)
+    i, j, sa, pair, s_a, s_b = i[first], j[first], sa[first], pair[first], s_a[first], s_b[first]
+    order = np.lexsort((s_a, pair))
+    i, j, sa, pair, s_a, s_b = i[order], j[order], sa[order], pair[order], s_a[order], s_b[order]
+    points = a0[i] + sa[:, None] * da[i]
+    return Crossings(pair, points, s_a, s_b, ea[i] - A.offsets[pair], eb[j] - B.offsets[pair])
+
+
 def crossings(a, closed_a, b, closed_b):
-    """Points where two polylines meet (crossing or touching).
+    """Points where two polylines meet (crossing or touching), sorted along ``a`` (Crossings).
 
     Parameters
     ----------
@@ -89,29 +137,9 @@ def crossings(a, closed_a, b, closed_b):
     closed_a : bool
     b : ndarray, shape (M, 2)
     closed_b : bool
-
-    Returns
-    -------
-    Crossings
-        Collinear overlapping segments are not reported here: an overlap is a stretch, not a
-        point (see :mod:`~ballmorph_core.compat`).
     """
-    scale = scale_of(a, b)
-    ea, eb = edges(a, closed_a), edges(b, closed_b)
-    a0, b0 = a[: len(ea)], b[: len(eb)]
-    i, j = box_pairs(_boxes(a0, a0 + ea), _boxes(b0, b0 + eb))
-    ok, sa, sb = segment_hits(a0[i], ea[i], b0[j], eb[j], scale)
-    i, j, sa, sb = i[ok], j[ok], sa[ok], sb[ok]
-    cum_a, cum_b = cumulative_length(a, closed_a), cumulative_length(b, closed_b)
-    s_a = cum_a[i] + sa * (cum_a[i + 1] - cum_a[i])
-    s_b = cum_b[j] + sb * (cum_b[j + 1] - cum_b[j])
-    if closed_a:
-        s_a = np.where(s_a >= cum_a[-1] - tol.COINCIDENT * scale, 0.0, s_a)
-    if closed_b:
-        s_b = np.where(s_b >= cum_b[-1] - tol.COINCIDENT * scale, 0.0, s_b)
-    keep = _dedupe(s_a, s_b, scale)
-    pts = a0[i] + sa[:, None] * ea[i]
-    return Crossings(pts[keep], s_a[keep], s_b[keep], i[keep], j[keep])
+    A, B = Ragged.from_list([a], [closed_a]), Ragged.from_list([b], [closed_b])
+    return batch_crossings(A, B, np.array([scale_of(a, b)]))
 
 
 def self_crossings(curve, closed):
@@ -134,21 +162,24 @@ def self_crossings(curve, closed):
     curve = curve[np.r_[True, step > tol.COINCIDENT * scale]]
     if closed and len(curve) > 1 and np.linalg.norm(curve[-1] - curve[0]) <= tol.COINCIDENT * scale:
         curve = curve[:-1]
-    e = edges(curve, closed)
+    rg = Ragged.from_list([curve], [closed])
+    e = np.flatnonzero(rg.nxt >= 0)
     n = len(e)
-    c0 = curve[:n]
-    i, j = box_pairs(_boxes(c0, c0 + e))
+    c0, ev = rg.pts[e], rg.edge[e]
+    i, j = box_pairs(_boxes(c0, c0 + ev))
     adjacent = (j - i == 1) | (closed & (i == 0) & (j == n - 1))
     i, j = i[~adjacent], j[~adjacent]
-    ok, sa, sb = segment_hits(c0[i], e[i], c0[j], e[j], scale)
-    # Also catch a collinear fold-back between adjacent edges (a spike): that is a self-overlap.
+    ok, sa, sb = segment_hits(c0[i], ev[i], c0[j], ev[j], scale)
     i, j, sa, sb = i[ok], j[ok], sa[ok], sb[ok]
-    cum = cumulative_length(curve, closed)
-    s_a = cum[i] + sa * (cum[i + 1] - cum[i])
-    s_b = cum[j] + sb * (cum[j + 1] - cum[j])
-    keep = _dedupe(s_a, s_b, scale)
-    pts = c0[i] + sa[:, None] * e[i]
-    return Crossings(pts[keep], s_a[keep], s_b[keep], i[keep], j[keep])
+    s_a = rg.s[e[i]] + sa * rg.length_of_edge[e[i]]
+    s_b = rg.s[e[j]] + sb * rg.length_of_edge[e[j]]
+    pair = np.zeros(len(i), dtype=np.int64)
+    first = _first_of_each(pair, s_a, s_b, np.array([scale]))
+    i, j, sa, s_a, s_b = i[first], j[first], sa[first], s_a[first], s_b[first]
+    order = np.argsort(s_a, kind="stable")
+    return Crossings(
+        pair[first][order], (c0[i] + sa[:, None] * ev[i])[order], s_a[order], s_b[order], i[order], j[order]
+    )
 
 
 def is_simple(curve, closed):

@@ -1,43 +1,86 @@
-"""Closest points on a polyline, for many query points at once."""
+"""Closest points on polylines, for many query points at once.
+
+:func:`nearest_within` is the one search: every query against the edges of its own curve of a
+batch, within a reach, through the uniform grid of :func:`~.spatial.box_pairs`. With no bound
+known in advance, :class:`PolylineProjector` first takes each query's distance to the nearest
+vertex (a k-d tree) plus half the longest edge as its reach: the closest point lies within it.
+"""
 
 import numpy as np
 
 from .. import tolerances as tol
-from .polyline import cumulative_length, edges, scale_of
-from .ragged import budget_slices
-from .spatial import PointTree
+from .polyline import scale_of
+from .ragged import Ragged, budget_slices
+from .spatial import PointTree, box_pairs
 
-__all__ = ["PolylineProjector", "distances_to_polyline"]
+__all__ = ["nearest_within", "PolylineProjector", "distances_to_polyline"]
 
-#: Candidate (query, vertex) pairs held at once (memory bound).
+#: Candidate (query, edge) pairs held at once (memory bound).
 _PAIR_BUDGET = 2_000_000
 
 
+def nearest_within(points, owner, curves, reach):
+    """The closest point of each query's curve, among edges within ``reach`` of the query.
+
+    Parameters
+    ----------
+    points : ndarray, shape (K, 2)
+    owner : ndarray of int, shape (K,)
+        The curve of ``curves`` each query is projected on.
+    curves : Ragged
+    reach : float or ndarray, shape (K,)
+
+    Returns
+    -------
+    dist : ndarray, shape (K,)
+        ``inf`` where no edge lies within reach.
+    edge : ndarray of int, shape (K,)
+        Global first-vertex index of the closest edge (ties: the lower one); 0 where none.
+    frac : ndarray, shape (K,)
+        The closest point is ``curves.pts[edge] + frac * curves.edge[edge]``.
+    """
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    reach = np.broadcast_to(np.asarray(reach, dtype=np.float64), (len(points),))
+    e = np.flatnonzero(curves.nxt >= 0)
+    a, d = curves.pts[e], curves.edge[e]
+    seg_boxes = np.concatenate([np.minimum(a, a + d), np.maximum(a, a + d)], axis=1)
+    dist, edge, frac = np.full(len(points), np.inf), np.zeros(len(points), np.int64), np.zeros(len(points))
+    for sl in budget_slices(np.full(len(points), max(len(e), 1)), _PAIR_BUDGET):
+        x, r = points[sl], reach[sl][:, None]
+        i, j = box_pairs(np.concatenate([x - r, x + r], axis=1), seg_boxes)
+        keep = curves.owner[e[j]] == owner[sl][i]
+        i, j = i[keep], j[keep]
+        ee = np.einsum("ij,ij->i", d[j], d[j])
+        f = np.clip(np.divide(np.einsum("ij,ij->i", x[i] - a[j], d[j]), ee, out=np.zeros_like(ee), where=ee > 0), 0, 1)
+        d2 = np.sum(np.square(a[j] + f[:, None] * d[j] - x[i]), axis=1)
+        order = np.lexsort((j, d2, i))
+        first = order[np.r_[True, i[order][1:] != i[order][:-1]]] if len(order) else order
+        hit = np.arange(sl.start, sl.stop)[i[first]]
+        dist[hit], edge[hit], frac[hit] = np.sqrt(d2[first]), e[j[first]], f[first]
+    return dist, edge, frac
+
+
 class PolylineProjector:
-    """Closest points on one polyline.
+    """Closest points on one polyline, whatever their distance.
 
     Parameters
     ----------
     curve : ndarray, shape (N, 2)
     closed : bool
 
-    Notes
-    -----
-    A k-d tree over the vertices gives each query's distance ``d`` to its nearest vertex (a
-    pruned walk, all queries at once); then every vertex within ``sqrt(d^2 + (e/2)^2)`` (``e``
-    the longest edge) is fetched in one batched disk query. The closest point lies on an edge
-    with an endpoint among them, so only those edges are tested: the cost grows with the number
-    of vertices nearly as close as the nearest, not with ``K x N``.
+    Attributes
+    ----------
+    curves : Ragged
+        The polyline as a batch of one (its ``edge`` vectors, ``s`` arc lengths).
+    n_edges : int
     """
 
     def __init__(self, curve, closed):
-        self.curve = np.asarray(curve, dtype=np.float64)
-        self.closed = bool(closed)
-        self.edges = edges(self.curve, closed)
-        self.n_edges = len(self.edges)
-        self._half_edge = 0.5 * float(np.linalg.norm(self.edges, axis=1).max(initial=0.0))
-        self._slack = tol.COINCIDENT * scale_of(self.curve)
-        self._tree = PointTree(self.curve)
+        self.curves = Ragged.from_list([np.asarray(curve, dtype=np.float64)], [bool(closed)])
+        self.n_edges = int(self.curves.n_edges[0])
+        self._half_edge = 0.5 * float(self.curves.length_of_edge.max(initial=0.0))
+        self._slack = tol.COINCIDENT * scale_of(self.curves.pts)
+        self._tree = PointTree(self.curves.pts)
 
     def nearest(self, points):
         """Edge and fraction along it of the closest point, for each query.
@@ -50,45 +93,19 @@ class PolylineProjector:
         -------
         edge : ndarray of int, shape (K,)
         frac : ndarray, shape (K,)
-            The closest point is ``curve[edge] + frac * edges[edge]``; ties go to the lower edge.
+            The closest point is ``curve[edge] + frac * (curve[edge + 1] - curve[edge])``.
         """
         x = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-        edge, frac = np.zeros(len(x), dtype=np.int64), np.zeros(len(x))
-        # Queries nearly equidistant to much of the curve (a small loop at the centre of a round
-        # one) fetch many vertices each: chunking bounds the memory of the candidates.
-        for sl in budget_slices(np.full(len(x), len(self.curve)), _PAIR_BUDGET):
-            edge[sl], frac[sl] = self._nearest(x[sl])
+        reach = np.sqrt(self._tree.nearest_d2(x) + self._half_edge**2) * (1.0 + 1e-9) + self._slack
+        _, edge, frac = nearest_within(x, np.zeros(len(x), dtype=np.int64), self.curves, reach)
         return edge, frac
-
-    def _nearest(self, x):
-        radius = np.sqrt(self._tree.nearest_d2(x) + self._half_edge**2)
-        qi, vi = self._tree.within(x, radius * (1.0 + 1e-9) + self._slack)
-        # Both edges at each vertex found (a stroke's end vertices have one).
-        qi = np.repeat(qi, 2)
-        ei = np.stack([vi - 1, vi], axis=1).ravel()
-        if self.closed:
-            ei = np.mod(ei, self.n_edges)
-        else:
-            ok = (ei >= 0) & (ei < self.n_edges)
-            qi, ei = qi[ok], ei[ok]
-        a, e = self.curve[ei], self.edges[ei]
-        ee = np.einsum("ij,ij->i", e, e)
-        f = np.divide(np.einsum("ij,ij->i", x[qi] - a, e), ee, out=np.zeros_like(ee), where=ee > 0)
-        f = np.clip(f, 0.0, 1.0)
-        d2 = np.sum(np.square(a + f[:, None] * e - x[qi]), axis=1)
-        order = np.lexsort((ei, d2, qi))
-        qs = qi[order]
-        first = order[np.r_[True, qs[1:] != qs[:-1]]]
-        if len(first) != len(x):  # cannot happen: the bounding vertex is always found
-            raise RuntimeError("closest-point search missed a query")
-        return ei[first], f[first]
 
     def foot(self, edge, frac):
         """Points at (edge, fraction), shape (K, 2)."""
-        return self.curve[edge] + frac[:, None] * self.edges[edge]
+        return self.curves.pts[edge] + frac[:, None] * self.curves.edge[edge]
 
 
-def distances_to_polyline(points, curve, closed, reach=np.inf):
+def distances_to_polyline(points, curve, closed, reach):
     """Distance from points to a polyline and the arc length of the closest point on it.
 
     Parameters
@@ -97,7 +114,7 @@ def distances_to_polyline(points, curve, closed, reach=np.inf):
     curve : ndarray, shape (N, 2)
     closed : bool
     reach : float
-        Points farther than this from the curve get ``inf``.
+        Points farther than this from every edge's bounding box get ``inf``.
 
     Returns
     -------
@@ -106,12 +123,6 @@ def distances_to_polyline(points, curve, closed, reach=np.inf):
         Arc length of the closest point (0 where ``dist`` is inf).
     """
     points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-    if not len(points):
-        return np.zeros(0), np.zeros(0)
-    projector = PolylineProjector(curve, closed)
-    edge, frac = projector.nearest(points)
-    dist = np.linalg.norm(points - projector.foot(edge, frac), axis=1)
-    cum = cumulative_length(projector.curve, closed)
-    s = cum[edge] + frac * (cum[edge + 1] - cum[edge])
-    far = dist > reach
-    return np.where(far, np.inf, dist), np.where(far, 0.0, s)
+    curves = Ragged.from_list([np.asarray(curve, dtype=np.float64)], [bool(closed)])
+    dist, edge, frac = nearest_within(points, np.zeros(len(points), dtype=np.int64), curves, reach)
+    return dist, np.where(np.isfinite(dist), curves.s[edge] + frac * curves.length_of_edge[edge], 0.0)

@@ -71,7 +71,7 @@ class Projector:
         self.dense = resample(densify(curve, closed, step), closed, step)
         self._polyline = PolylineProjector(self.dense, closed)
         self.n_edges = self._polyline.n_edges
-        self.mean_edge = float(np.linalg.norm(self._polyline.edges, axis=1).mean())
+        self.mean_edge = float(self._polyline.curves.length_of_edge[: self.n_edges].mean())
 
     def project(self, points):
         """Closest points on the dense polyline.
