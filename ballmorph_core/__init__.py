@@ -2,25 +2,31 @@
 
 Whited & Rossignac, "Ball-morph: Definition, Implementation and Comparative Evaluation".
 This package never imports bpy: it runs in plain CPython and vendored inside the add-on.
+
+The subpackages go from the bottom up: ``geometry`` (polylines, nothing from the paper),
+``ballmap`` (the correspondence), ``morphs`` (every morph behind one interface), ``drawing``
+(what the Blender operator calls: whole drawings through the one stroke-pair pipeline) and
+``study`` (the paper's quality measures). See docs/architecture.md.
 """
 
 from .ballmap import CompatibilityReport, Correspondence, ball_map, classify
-from .drawing.plan import (
-    CARRIERS,
+from .drawing import (
     FALLBACK_METHOD,
-    MATCHINGS,
-    UNMATCHED,
     InbetweenPlan,
     InbetweenResult,
+    Message,
+    PairReport,
     StrokeSet,
+    ease,
+    frame_times,
     inbetween,
     plan_inbetween,
 )
-from .drawing.timing import EASING_MODES, EASING_TYPES, ease, frame_times
 from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from .morphs import METHODS, Morph, make_morph
 from .morphs.paths import BallPaths, midpoint_locus
-from .study.measures import measure
+from .options import CARRIERS, EASING_MODES, EASING_TYPES, MATCHINGS, UNMATCHED
+from .study import measure
 
 __all__ = [
     "METHODS",
@@ -34,6 +40,8 @@ __all__ = [
     "frame_times",
     "InbetweenPlan",
     "InbetweenResult",
+    "Message",
+    "PairReport",
     "StrokeSet",
     "inbetween",
     "plan_inbetween",

@@ -61,12 +61,9 @@ from ..errors import InvalidCurveError
 from ..geometry.polyline import as_curve, curve_length, resample
 from ..geometry.ragged import Ragged, budget_slices
 from ..morphs.linear import best_cyclic_alignment
-from ..options import check_option
+from ..options import MATCHINGS, check_option
 
-__all__ = ["MODES", "Matching", "match_strokes", "solve_assignment"]
-
-#: Valid values of ``match_strokes(mode=...)``.
-MODES = ("AUTO", "INDEX")
+__all__ = ["Matching", "match_strokes", "solve_assignment"]
 
 # Elements per block when a product would otherwise allocate S_a x S_b x m at once (memory only).
 _CHUNK = 2_000_000
@@ -497,7 +494,7 @@ def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
     )
 
 
-def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="AUTO"):
+def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
     """Pair the strokes of two keys.
 
     Parameters
@@ -505,12 +502,12 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="AUTO"):
     strokes_a, strokes_b : sequence of array_like, each shape (n_i, 2)
         The strokes of each key in the drawing plane, in drawing order. A stroke may have one
         point, repeated points or no point at all; a stroke with no point is never paired by
-        'AUTO'.
+        'auto'.
     closed_a, closed_b : array_like of bool, shape (S_a,), (S_b,)
         Cyclic flags.
-    mode : {'AUTO', 'INDEX'}
-        'INDEX' pairs stroke ``i`` with stroke ``i`` for ``i < min(S_a, S_b)`` (what Blender's
-        interpolation does) and leaves the extra strokes unmatched. 'AUTO' does the same when
+    mode : {'auto', 'index'}
+        'index' pairs stroke ``i`` with stroke ``i`` for ``i < min(S_a, S_b)`` (what Blender's
+        interpolation does) and leaves the extra strokes unmatched. 'auto' does the same when
         the counts agree and the drawing order fits (every index pair costs less than
         ``MATCH_INDEX_MAX_COST`` and their total is within ``MATCH_INDEX_FACTOR`` of the
         optimal assignment's), which keeps the animator's order when it is right; otherwise it
@@ -541,7 +538,7 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="AUTO"):
     >>> m.pairs, m.method
     ([(0, 1, False), (1, 0, True)], 'assignment')
     """
-    check_option("mode", mode, MODES)
+    mode = check_option("mode", mode, MATCHINGS)
     m = tol.MATCH_SAMPLES
     key_a = _Key(strokes_a, closed_a, "strokes_a", "closed_a", m)
     key_b = _Key(strokes_b, closed_b, "strokes_b", "closed_b", m)
@@ -550,10 +547,10 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="AUTO"):
     n_a, n_b = key_a.count, key_b.count
     index = np.arange(min(n_a, n_b))
 
-    if mode == "INDEX":
+    if mode == "index":
         extra = f"; {abs(n_a - n_b)} extra stroke(s) of key {'A' if n_a > n_b else 'B'} unmatched" if n_a != n_b else ""
         motion = table.fit_motion(index, index)
-        reason = f"paired by drawing order (mode 'INDEX'){extra}"
+        reason = f"paired by drawing order (mode 'index'){extra}"
         return _matching(key_a, key_b, table, index, index, motion, "index", reason)
     if n_a == n_b == 0:
         return _matching(key_a, key_b, table, index, index, np.zeros(2), "index", "neither key has strokes")

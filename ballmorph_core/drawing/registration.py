@@ -8,13 +8,13 @@ registration progressively:
 
     in-between(t) = C_t(F(t)),  F = ball-morph from S(P) to Q,  C_0 = S^-1,  C_1 = identity.
 
-* ``'SIMILARITY'``: ``C_t = S^-(1-t)``. A similarity has a fixed point ``c = b / (1 - a)``
+* ``'similarity'``: ``C_t = S^-(1-t)``. A similarity has a fixed point ``c = b / (1 - a)``
   and its steady interpolation ``z -> c + a^s (z - c)`` moves every point on a logarithmic
   spiral about ``c`` (a circular arc when the scale is 1, a straight line when ``a = 1``).
-* ``'RIGID'``: ``S`` is split into a uniform scaling about the registered curve's centre and a
+* ``'rigid'``: ``S`` is split into a uniform scaling about the registered curve's centre and a
   rigid motion ``R``; the carrier moves along ``R^-(1-t)`` (circular arcs) and the scale is
   interpolated geometrically about that centre, so the path of the centre is a circle arc
-  rather than a spiral. The result equals 'SIMILARITY' when no scaling is involved.
+  rather than a spiral. The result equals 'similarity' when no scaling is involved.
 
 Strokes are registered by their endpoints (the similarity that maps P's endpoints onto Q's, so
 ``S(P)`` and ``Q`` share them); loops by the least-squares similarity between uniform
@@ -23,11 +23,13 @@ arc-length samples, over the cyclic shift and direction that fit best. Then a st
 circle that moves stays a circle.
 """
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from .. import tolerances as tol
 from ..geometry.ragged import Ragged
-from ..geometry.similarity import Similarity, as_complex, power
+from ..geometry.similarity import Similarity, as_complex, from_complex, power
 from ..options import check_option
 
 __all__ = [
@@ -36,10 +38,9 @@ __all__ = [
     "similarities",
     "carrier_at",
     "Carrier",
-    "CARRIERS",
+    "Motions",
+    "register",
 ]
-
-CARRIERS = ("SIMILARITY", "RIGID", "NONE")
 
 #: Uniform samples per curve for the least-squares fit of loops.
 FIT_SAMPLES = 128
@@ -55,9 +56,9 @@ def carrier_at(a, b, kind, centre, t):
     ----------
     a, b : ndarray of complex
         The registrations.
-    kind : {'SIMILARITY', 'RIGID'}
+    kind : {'similarity', 'rigid'}
     centre : ndarray of complex
-        Centre of each registered curve (the scaling centre of 'RIGID').
+        Centre of each registered curve (the scaling centre of 'rigid').
     t : float
 
     Returns
@@ -66,7 +67,7 @@ def carrier_at(a, b, kind, centre, t):
         ``C_t(z) = ca z + cb``.
     """
     s = -(1.0 - float(t))
-    if kind == "SIMILARITY":
+    if kind == "similarity":
         return power(a, b, s)
     # S = Zc o R: Zc the scaling by |a| about the registered centre, R = Zc^-1 o S rigid;
     # C_t = R^s o Zc^s (scale about the centre, then move rigidly on circular arcs).
@@ -188,13 +189,13 @@ class Carrier:
     ----------
     similarity : Similarity
         The registration ``S`` (P -> registered P).
-    kind : {'SIMILARITY', 'RIGID'}
+    kind : {'similarity', 'rigid'}
     centre : ndarray, shape (2,)
-        Centre of the registered curve (the scaling centre for 'RIGID').
+        Centre of the registered curve (the scaling centre for 'rigid').
     """
 
     def __init__(self, similarity, kind, centre):
-        self.kind = check_option("carrier", kind, ("SIMILARITY", "RIGID"))
+        self.kind = check_option("carrier", kind, ("similarity", "rigid"))
         self.similarity = similarity
         self.centre = complex(as_complex(np.asarray(centre, dtype=np.float64)))
 
@@ -208,16 +209,61 @@ class Carrier:
         return self.at(t)(points)
 
 
-def registration(P, Q, closed):
-    """The registration similarity for a pair (strokes: endpoints; loops: best fit).
+@dataclass
+class Motions:
+    """The carrier motions of a batch of pairs: ``C_t`` per pair, identity where not moving.
+
+    Attributes
+    ----------
+    a, b : ndarray of complex, shape (C,)
+        Each pair's registration ``z -> a z + b`` of P onto Q.
+    moving : ndarray of bool, shape (C,)
+        Pairs whose carrier is not the identity.
+    centre : ndarray of complex, shape (C,)
+        Centre of each Q (the scaling centre of a 'rigid' carrier).
+    kind : {'similarity', 'rigid'}
+    """
+
+    a: np.ndarray
+    b: np.ndarray
+    moving: np.ndarray
+    centre: np.ndarray
+    kind: str
+
+    def apply(self, t, points, pair_of):
+        """``C_t`` of each point's pair applied to it, shape (K, 2) (points unchanged if no pair moves)."""
+        if not self.moving.any():
+            return points
+        ca, cb = carrier_at(self.a, self.b, self.kind, self.centre, t)
+        ca, cb = np.where(self.moving, ca, 1.0), np.where(self.moving, cb, 0.0)
+        return from_complex(ca[pair_of] * as_complex(points) + cb[pair_of])
+
+
+def register(P, Q, carrier, scale):
+    """Register every P of a batch onto its Q (see the module docstring).
+
+    Parameters
+    ----------
+    P, Q : Ragged
+    carrier : {'similarity', 'rigid', 'none'}
+        'none' registers nothing (the identity, with an infinite residual).
+    scale : ndarray, shape (C,)
+        Size of each pair (a registration moving nothing by more than ``IDENTITY`` of it is none).
 
     Returns
     -------
-    Similarity
+    motions : Motions
+    R : Ragged
+        The registered P.
+    residual : ndarray, shape (C,)
+        See :func:`similarities`.
     """
-    return _one(P, Q, closed)
-
-
-def centre_of(curve, closed):
-    """Arc-length centroid of a curve, shape (2,)."""
-    return Ragged.from_list([curve], [closed]).centroids()[0]
+    n = len(P)
+    if carrier == "none":
+        a, b, residual = np.ones(n, dtype=complex), np.zeros(n, dtype=complex), np.full(n, np.inf)
+    else:
+        a, b, residual = similarities(P, Q)
+    R = Ragged(from_complex(a[P.owner] * as_complex(P.pts) + b[P.owner]), P.offsets, P.closed)
+    moving = (carrier != "none") & ~((np.abs(a - 1) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale))
+    kind = carrier if carrier != "none" else "similarity"
+    return Motions(a, b, moving, as_complex(Q.centroids()), kind), R, residual

@@ -1,21 +1,19 @@
 """Easing: where in the morph each in-between frame sits (t in [0, 1]).
 
-The types and modes match Blender's Grease Pencil interpolation (``type`` LINEAR, SINE, QUAD,
-CUBIC, QUART, QUINT, EXPO, CIRC, BACK, BOUNCE, ELASTIC; ``easing`` EASE_IN, EASE_OUT,
-EASE_IN_OUT, AUTO), using Robert Penner's equations as Blender does.
+The types and modes match Blender's Grease Pencil interpolation (types 'linear', 'sine', 'quad',
+'cubic', 'quart', 'quint', 'expo', 'circ', 'back', 'bounce', 'elastic'; modes 'ease-in',
+'ease-out', 'ease-in-out', 'auto'; Blender's ids such as 'EASE_IN' are accepted too), using
+Robert Penner's equations as Blender does.
 """
 
 import numpy as np
 
-from ..options import check_option
+from ..options import EASING_MODES, EASING_TYPES, check_option
 
-__all__ = ["EASING_TYPES", "EASING_MODES", "ease", "frame_times"]
+__all__ = ["ease", "frame_times"]
 
-EASING_TYPES = ("LINEAR", "SINE", "QUAD", "CUBIC", "QUART", "QUINT", "EXPO", "CIRC", "BACK", "BOUNCE", "ELASTIC")
-EASING_MODES = ("AUTO", "EASE_IN", "EASE_OUT", "EASE_IN_OUT")
-
-# AUTO follows Blender: ease in for the "dynamic" types, ease out for back/bounce/elastic.
-_AUTO_OUT = ("BACK", "BOUNCE", "ELASTIC")
+# 'auto' follows Blender: ease in for the "dynamic" types, ease out for back/bounce/elastic.
+_AUTO_OUT = ("back", "bounce", "elastic")
 
 
 def _bounce_out(x):
@@ -28,26 +26,26 @@ def _bounce_out(x):
 
 
 def _ease_in(kind, x):
-    if kind == "SINE":
+    if kind == "sine":
         return 1 - np.cos(x * np.pi / 2)
-    if kind in ("QUAD", "CUBIC", "QUART", "QUINT"):
-        return x ** (2 + ("QUAD", "CUBIC", "QUART", "QUINT").index(kind))
-    if kind == "EXPO":
+    if kind in ("quad", "cubic", "quart", "quint"):
+        return x ** (2 + ("quad", "cubic", "quart", "quint").index(kind))
+    if kind == "expo":
         return np.where(x <= 0, 0.0, 2.0 ** (10 * x - 10))
-    if kind == "CIRC":
+    if kind == "circ":
         return 1 - np.sqrt(np.clip(1 - x * x, 0, 1))
-    if kind == "BACK":
+    if kind == "back":
         c1 = 1.70158
         return (c1 + 1) * x**3 - c1 * x**2
-    if kind == "BOUNCE":
+    if kind == "bounce":
         return 1 - _bounce_out(1 - x)
-    if kind == "ELASTIC":
+    if kind == "elastic":
         c4 = 2 * np.pi / 3
         return np.where((x <= 0) | (x >= 1), x, -(2.0 ** (10 * x - 10)) * np.sin((x * 10 - 10.75) * c4))
     return x
 
 
-def ease(x, kind="LINEAR", mode="AUTO"):
+def ease(x, kind="linear", mode="auto"):
     """Map frame fractions to morph times.
 
     Parameters
@@ -66,21 +64,21 @@ def ease(x, kind="LINEAR", mode="AUTO"):
 
     Examples
     --------
-    >>> ease([0.0, 0.5, 1.0], "QUAD", "EASE_IN").tolist()
+    >>> ease([0.0, 0.5, 1.0], "quad", "ease-in").tolist()
     [0.0, 0.25, 1.0]
-    >>> ease([0.25], "QUAD", "EASE_IN_OUT").tolist()
+    >>> ease([0.25], "quad", "ease-in-out").tolist()
     [0.125]
     """
     kind = check_option("kind", kind, EASING_TYPES)
     mode = check_option("mode", mode, EASING_MODES)
     x = np.clip(np.asarray(x, dtype=np.float64), 0.0, 1.0)
-    if kind == "LINEAR":
+    if kind == "linear":
         return x
-    if mode == "AUTO":
-        mode = "EASE_OUT" if kind in _AUTO_OUT else "EASE_IN"
-    if mode == "EASE_IN":
+    if mode == "auto":
+        mode = "ease-out" if kind in _AUTO_OUT else "ease-in"
+    if mode == "ease-in":
         return _ease_in(kind, x)
-    if mode == "EASE_OUT":
+    if mode == "ease-out":
         return 1 - _ease_in(kind, 1 - x)
     return np.where(x < 0.5, _ease_in(kind, 2 * x) / 2, 1 - _ease_in(kind, 2 - 2 * x) / 2)
 

@@ -24,6 +24,8 @@ __all__ = [
     "point_at",
     "resample",
     "default_spacing",
+    "default_spacings",
+    "pair_scales",
     "signed_area",
     "orient_clockwise",
     "vertex_normals",
@@ -110,6 +112,14 @@ def scale_of(*curves):
     pts = np.concatenate([np.asarray(c, dtype=np.float64).reshape(-1, 2) for c in curves])
     diag = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
     return diag if diag > 0 else 1.0
+
+
+def pair_scales(*batches):
+    """:func:`scale_of` of every group of curves at once: curve ``c`` of each batch, shape (C,)."""
+    boxes = np.stack([b.boxes() for b in batches])
+    lo, hi = boxes[:, :, :2].min(axis=0), boxes[:, :, 2:].max(axis=0)
+    diag = np.linalg.norm(hi - lo, axis=1)
+    return np.where(diag > 0, diag, 1.0)
 
 
 def edges(curve, closed):
@@ -218,19 +228,39 @@ def coarsen(curve, closed, spacing):
 
 
 def default_spacing(*curves, closed=False):
-    """A geodesic sample spacing suited to the curves.
+    """A geodesic sample spacing suited to the curves (float).
 
     The median input edge length, clamped so that the longest curve gets between
-    ``tolerances.DEFAULT_SAMPLES_MIN`` and ``DEFAULT_SAMPLES_MAX`` samples.
+    ``tolerances.DEFAULT_SAMPLES_MIN`` and ``DEFAULT_SAMPLES_MAX`` samples (see
+    :func:`default_spacings`, of which this is a batch of one).
+    """
+    return float(default_spacings(*(Ragged.from_list([c], [closed]) for c in curves))[0])
+
+
+def default_spacings(*batches):
+    """:func:`default_spacing` of every group of curves at once: curve ``c`` of each batch.
+
+    Parameters
+    ----------
+    *batches : Ragged
+        As many curves each.
 
     Returns
     -------
-    float
+    ndarray, shape (C,)
     """
-    lengths = [curve_length(c, closed) for c in curves]
-    longest = max(lengths)
-    med = float(np.median(np.concatenate([edge_lengths(c, closed) for c in curves])))
-    return float(np.clip(med, longest / tol.DEFAULT_SAMPLES_MAX, longest / tol.DEFAULT_SAMPLES_MIN))
+    owner = np.concatenate([b.owner[b.nxt >= 0] for b in batches])
+    length = np.concatenate([b.length_of_edge[b.nxt >= 0] for b in batches])
+    order = np.lexsort((length, owner))
+    owner, length = owner[order], length[order]
+    n = len(batches[0])
+    start = np.searchsorted(owner, np.arange(n + 1))
+    count = np.diff(start)
+    lo = np.minimum(start[:-1] + (count - 1) // 2, len(length) - 1)
+    hi = np.minimum(start[:-1] + count // 2, len(length) - 1)
+    median = 0.5 * (length[lo] + length[hi])
+    longest = np.max([b.length for b in batches], axis=0)
+    return np.clip(median, longest / tol.DEFAULT_SAMPLES_MAX, longest / tol.DEFAULT_SAMPLES_MIN)
 
 
 def signed_area(loop):

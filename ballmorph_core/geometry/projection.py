@@ -29,6 +29,7 @@ def nearest_within(points, owner, curves, reach):
         The curve of ``curves`` each query is projected on.
     curves : Ragged
     reach : float or ndarray, shape (K,)
+        May be infinite.
 
     Returns
     -------
@@ -40,7 +41,10 @@ def nearest_within(points, owner, curves, reach):
         The closest point is ``curves.pts[edge] + frac * curves.edge[edge]``.
     """
     points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-    reach = np.broadcast_to(np.asarray(reach, dtype=np.float64), (len(points),))
+    # No edge of a curve lies farther than the far corner of its bounding box: a bound for any reach.
+    box = curves.boxes()[owner] if len(points) else np.zeros((0, 4))
+    corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
+    reach = np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
     e = np.flatnonzero(curves.nxt >= 0)
     a, d = curves.pts[e], curves.edge[e]
     seg_boxes = np.concatenate([np.minimum(a, a + d), np.maximum(a, a + d)], axis=1)

@@ -251,6 +251,11 @@ class Ragged:
         pts[offsets[1:][is_open] - 1] = self.pts[self.offsets[1:][is_open] - 1]
         return Ragged(pts, offsets, self.closed)
 
+    def boxes(self):
+        """Bounding box ``(xmin, ymin, xmax, ymax)`` of every curve, shape (C, 4) (curves have points)."""
+        starts = self.offsets[:-1]
+        return np.concatenate([np.minimum.reduceat(self.pts, starts), np.maximum.reduceat(self.pts, starts)], axis=1)
+
     def centroids(self):
         """Arc-length centroid of every curve (the vertex mean for a dot), shape (C, 2)."""
         mid = self.pts + 0.5 * self.edge

@@ -401,6 +401,11 @@ def _core_inbetween(addon):
     return importlib.import_module(f"{addon.__name__}.ballmorph_core.drawing.plan")
 
 
+def _core_fallbacks(addon):
+    """The add-on's own copy of the pipeline's fallback step (which builds the comparison morphs)."""
+    return importlib.import_module(f"{addon.__name__}.ballmorph_core.drawing.fallbacks")
+
+
 def _keys_as_the_addon_reads_them(addon, layer, first=1, last=9):
     """The two keys read by the add-on's own reader: the core checks keys are its own
     StrokeSet class, and the add-on's vendored core is a different module from the tests'."""
@@ -411,16 +416,17 @@ def _keys_as_the_addon_reads_them(addon, layer, first=1, last=9):
 def test_a_pair_failing_mid_run_falls_back_for_that_pair_only(shot, addon, capfd, monkeypatch):
     """One stroke pair raises (a simulated core bug): that pair is made with the fallback morph
     and reported; the other pairs keep the requested morph; keys untouched."""
-    core = _core_inbetween(addon)
-    real, calls = core.morph_pair, []
+    core, fallbacks = _core_inbetween(addon), _core_fallbacks(addon)
+    real, calls = fallbacks.make_morph, []
 
-    def flaky(P, Q, closed, method, *args, **kwargs):
-        calls.append(len(P))
-        if len(calls) == 2:
-            raise ZeroDivisionError("simulated core bug")
-        return real(P, Q, closed, method, *args, **kwargs)
+    def flaky(P, Q, method, *args, **kwargs):
+        if method == "laplace-blending":
+            calls.append(len(P))
+            if len(calls) == 2:
+                raise ZeroDivisionError("simulated core bug")
+        return real(P, Q, method, *args, **kwargs)
 
-    monkeypatch.setattr(core, "morph_pair", flaky)
+    monkeypatch.setattr(fallbacks, "make_morph", flaky)
     layer = shot.data.layers["Ink"]
     before = gp_data.snapshot(shot)
     result, said = run(capfd, method="LAPLACE_BLENDING", frame_count=3)

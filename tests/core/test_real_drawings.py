@@ -7,11 +7,12 @@ import pytest
 from shapes import circle, distance_to_polyline
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.pair import morph_pair
-from ballmorph_core.drawing.registration import Carrier, Similarity, endpoint_similarity, fit_similarity
+from ballmorph_core.drawing.pipeline import PairMorph
+from ballmorph_core.drawing.registration import Carrier, endpoint_similarity, fit_similarity
 from ballmorph_core.drawing.splitting import split_pair
 from ballmorph_core.geometry.intersections import crossings, is_simple
 from ballmorph_core.geometry.polyline import curve_length, orient_clockwise
+from ballmorph_core.geometry.similarity import Similarity
 
 # ------------------------------------------------------------------ registration
 
@@ -48,7 +49,7 @@ def test_fit_similarity_recovers_a_loop_transform_whatever_start_and_direction(r
     assert abs(fit.a - true.a) < 3e-2 * abs(true.a) and abs(fit.b - true.b) < 5e-2
 
 
-@pytest.mark.parametrize("kind", ["SIMILARITY", "RIGID"])
+@pytest.mark.parametrize("kind", ["similarity", "rigid"])
 def test_carrier_undoes_registration_at_start_and_is_identity_at_end(kind):
     s = Similarity(1.5 * np.exp(-0.4j), 1.0 + 2.0j)
     carrier = Carrier(s, kind, np.array([0.5, 0.5]))
@@ -65,7 +66,7 @@ def test_rotated_stroke_keeps_its_length_but_linear_interpolation_shrinks():
     P = np.c_[x, 0.0 * x]
     Q = np.c_[3.0 + 0.0 * x, 1.0 + x]  # turned 90 degrees about its centre and moved
     key = curve_length(P, False)
-    ours = morph_pair(P, Q, False, "circular-ball", "SIMILARITY").morph
+    ours = PairMorph(P, Q, False, "circular-ball", "similarity")
     lengths = np.array([curve_length(ours(t), False) for t in np.linspace(0, 1, 11)])
     assert np.all(np.abs(lengths / key - 1) < 0.05)
     lerp = bm.make_morph(P, Q, "linear-interpolation")
@@ -76,7 +77,7 @@ def test_rotated_stroke_keeps_its_length_but_linear_interpolation_shrinks():
 def test_translated_circle_stays_a_circle_on_the_default_carrier():
     c = circle(1.0, 120)
     shift = np.array([1.2, 0.4])
-    morph = morph_pair(c, c + shift, True, "circular-ball", "SIMILARITY").morph
+    morph = PairMorph(c, c + shift, True, "circular-ball", "similarity")
     for t in np.linspace(0.1, 0.9, 9):
         frame = morph(t)
         np.testing.assert_allclose(np.linalg.norm(frame - t * shift, axis=1), 1.0, atol=1e-6)
@@ -87,10 +88,10 @@ def test_translated_circle_without_carrier_passes_through_the_crossings():
     Q = c + [1.2, 0.4]
     cx = crossings(c, True, Q, True)
     assert len(cx) == 2
-    outcome = morph_pair(c, Q, True, "circular-ball", "NONE")
+    outcome = PairMorph(c, Q, True, "circular-ball", "none")
     assert any("split" in note for note in outcome.notes)
     for t in np.linspace(0.1, 0.9, 9):
-        frame = outcome.morph(t)
+        frame = outcome(t)
         assert is_simple(frame, True)
         assert distance_to_polyline(cx.points, frame, True).max() < 1e-6
 
@@ -163,10 +164,10 @@ def test_overlapping_portion_stays_static():
     x = np.linspace(0, 1, 201)
     bump = np.where(x < 0.5, 0.0, np.sin(2 * np.pi * (x - 0.5)))
     P, Q = np.c_[x, 0.3 * bump], np.c_[x, -0.2 * bump]
-    outcome = morph_pair(P, Q, False, "circular-ball", "NONE")
+    outcome = PairMorph(P, Q, False, "circular-ball", "none")
     flat = x < 0.45
     for t in (0.3, 0.7):
-        frame = outcome.morph(t)
+        frame = outcome(t)
         on_flat = frame[frame[:, 0] < 0.45]
         assert len(on_flat) > 10
         np.testing.assert_allclose(on_flat[:, 1], 0.0, atol=1e-9)
@@ -259,7 +260,7 @@ def _same_drawing(got, want):
 @pytest.mark.parametrize("method", ["circular-ball", "parabolic-ball", "laplace-blending"])
 def test_a_plan_evaluates_to_what_inbetween_gives_at_any_times(method, monkeypatch):
     """The operator's redo reuses a plan with other times: each evaluation must be exactly the
-    in-betweens computed from scratch, including pairs on the general road and fallbacks."""
+    in-betweens computed from scratch, including fallbacks, and must plan nothing again."""
     key_a, key_b = _drawing_4_and_5()
     t = np.linspace(0, 4 * np.pi, 90)
     curl = 0.2 * np.c_[t - 2 * np.sin(t), 1 - 2 * np.cos(t)]  # a prolate cycloid: crosses itself
@@ -268,54 +269,38 @@ def test_a_plan_evaluates_to_what_inbetween_gives_at_any_times(method, monkeypat
     key_a = bm.StrokeSet.concatenate([key_a, extra_a])
     key_b = bm.StrokeSet.concatenate([key_b, extra_b])
     plan = bm.plan_inbetween(key_a, key_b, method)
-    pipeline = importlib.import_module("ballmorph_core.drawing.plan")  # the package exports a function of that name
-    real, planned = pipeline.morph_pair, []
-
-    def counted(*args, **kwargs):
-        planned.append(args)
-        return real(*args, **kwargs)
-
+    pipeline = importlib.import_module("ballmorph_core.drawing.pipeline")
+    fallbacks = importlib.import_module("ballmorph_core.drawing.fallbacks")
+    planned = []
     for times in ([0.5], np.linspace(0, 1, 9), [0.1, 0.9, 0.3], [-1.0, 2.0]):
         with monkeypatch.context() as patch:
-            patch.setattr(pipeline, "morph_pair", counted)
+            for module, name in ((pipeline, "map_chains"), (pipeline, "plan_pairs"), (fallbacks, "make_morph")):
+                patch.setattr(module, name, lambda *args, _name=name, **kwargs: planned.append(_name))
             got = plan.evaluate(times)
-        assert not planned, "evaluating a plan planned a stroke pair again"
+        assert not planned, f"evaluating a plan planned again: {planned}"
         want = bm.inbetween(key_a, key_b, times, method)
         _same_drawing(got, want)
     used = [p.method for p in got.pairs]
     if method.endswith("-ball"):
         assert any(u.startswith("linear-interpolation") for u in used)  # the curl: a fallback
-    else:
-        assert len(plan.fast_pairs) == 0  # every pair on the general road
     assert "straight point motion" in used  # the dot
 
 
-def _cyclic_match(fast, general, closed):
-    """Largest difference between two sample sequences, up to the loop's start for loops."""
-    shifts = range(fast.shape[1]) if closed else [0]
-    return min(np.abs(fast - np.roll(general, s, axis=1)).max() for s in shifts)
-
-
-@pytest.mark.parametrize("carrier", ["SIMILARITY", "RIGID", "NONE"])
+@pytest.mark.parametrize("carrier", ["similarity", "rigid", "none"])
 @pytest.mark.parametrize("method", ["circular-ball", "linear-ball", "parabolic-ball"])
-def test_fast_path_and_general_road_agree(method, carrier):
-    """The batched fast path (all pairs in one numpy pass) gives each pair the in-betweens
-    :func:`morph_pair` gives it alone (loops possibly starting at another sample)."""
-    from ballmorph_core.drawing.plan import _PairPlan, _spread
-
+def test_a_pair_alone_is_morphed_as_in_its_drawing(method, carrier):
+    """A single pair is a batch of one: morphed alone, each pair of a drawing gets exactly the
+    in-betweens it gets among the others."""
     key_a, key_b = _drawing_4_and_5()
     times = np.linspace(0, 1, 5)
     plan = bm.plan_inbetween(key_a, key_b, method, carrier)
-    fast = _spread(plan.fast, plan.fast_pairs, len(plan.pairs), times)
-    assert fast.done.sum() >= 2  # nested, crossing and shifted pairs on the fast path
-    for k in np.flatnonzero(fast.done):
-        frames, u_a, _ = fast.pair(k)
-        a, b, _ = plan.pairs[k]
-        general, g_a, _, closed, used, _ = _PairPlan(a, b, method, carrier, None).frames(times)
-        assert used == fast.used[k]
-        assert frames.shape == general.shape
-        assert _cyclic_match(frames, general, closed) < 1e-9
-        assert _cyclic_match(u_a[None, :, None], g_a[None, :, None], closed) < 1e-9
+    together = plan.pairs.frames(times)
+    for k, (a, b, _) in enumerate(plan.strokes):
+        frames, u_a, _ = together.pair(k)
+        alone = PairMorph(a.xy, b.xy, a.closed and b.closed, method, carrier)
+        assert alone.used == together.used[k]
+        np.testing.assert_allclose(alone.frames(times), frames, atol=1e-9)
+        np.testing.assert_allclose(alone.u_p, u_a, atol=1e-9)
 
 
 def test_ball_mapping_in_batches_changes_nothing(monkeypatch):
@@ -332,3 +317,26 @@ def test_ball_mapping_in_batches_changes_nothing(monkeypatch):
     for a, b in zip(one.frames, many.frames):
         np.testing.assert_array_equal(a.offsets, b.offsets)
         np.testing.assert_allclose(a.positions, b.positions, atol=1e-9)
+
+
+def test_a_bug_in_the_batched_road_stops_only_its_pair(monkeypatch):
+    """The ball road runs every pair at once; if it raises (a bug), the pairs are planned one by
+    one, so only the failing pair falls back, and its report names the error."""
+    pipeline = importlib.import_module("ballmorph_core.drawing.pipeline")
+    key_a, key_b = _drawing_4_and_5()
+    real = pipeline.find_events
+
+    def flaky(R, Q, *args, **kwargs):
+        if len(R) == 1 and R.closed[0]:  # the loop, planned alone
+            raise ZeroDivisionError("simulated core bug")
+        if len(R) > 1:
+            raise ZeroDivisionError("simulated core bug")
+        return real(R, Q, *args, **kwargs)
+
+    monkeypatch.setattr(pipeline, "find_events", flaky)
+    result = bm.inbetween(key_a, key_b, [0.5])
+    used = {(p.stroke_a, p.stroke_b): p.method for p in result.pairs}
+    assert used[(2, 2)].startswith("linear-interpolation")
+    assert all(m.startswith("circular-ball") for k, m in used.items() if k not in ((2, 2), (None, 4)))
+    texts = [m.text for m in result.messages if m.level == "WARNING"]
+    assert any("circular-ball morph failed (ZeroDivisionError: simulated core bug" in t for t in texts), texts

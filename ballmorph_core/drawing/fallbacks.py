@@ -1,0 +1,118 @@
+"""The fallback step: what a stroke pair gets when the morph it asked for cannot follow it.
+
+A chain (lens or whole pair) that is not b-compatible gets the composite ball-morph (paper
+section 7); whatever still fails, and every pair the ball-morph cannot follow at all, gets
+linear interpolation (uniform arc-length correspondence, straight paths: it never fails on two
+curves); a stroke with fewer than two distinct points moves straight, point by point. Every
+fallback says why, for the animator's report.
+"""
+
+import numpy as np
+
+from ..errors import BallMorphError, IncompatibleCurvesError
+from ..geometry.intersections import is_simple
+from ..morphs import make_morph
+from ..morphs.base import PathMorph
+from ..morphs.paths import LinearPaths
+
+__all__ = [
+    "FALLBACK_METHOD",
+    "BALL_METHODS",
+    "short",
+    "chain_fallback",
+    "linear_fallback",
+    "unsplittable",
+    "comparison_morph",
+    "point_motion",
+]
+
+#: The last resort: uniform arc-length correspondence and straight paths never fail.
+FALLBACK_METHOD = "linear-interpolation"
+
+#: Methods that need the paper's configurations and so take the ball road (carrier, splitting).
+BALL_METHODS = ("circular-ball", "linear-ball", "parabolic-ball", "hat-ball", "tangent-ball")
+
+
+def short(text, limit=160):
+    """``text`` cut to ``limit`` characters for a report."""
+    text = str(text)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def chain_fallback(P, Q, closed, kind, spacing, where, reason):
+    """The composite ball-morph of a chain that is not b-compatible, else linear interpolation.
+
+    Parameters
+    ----------
+    P, Q : ndarray, shape (N, 2), (M, 2)
+    closed : bool
+    kind : str
+        The ball-morph path ('circular', ...).
+    spacing : float
+    where : str
+        Which chain, for the note ('lens 2/4', 'loops', 'stroke').
+    reason : str
+        Why the ball-morph did not apply.
+
+    Returns
+    -------
+    morph : Morph
+    note : str
+    """
+    try:
+        morph = make_morph(P, Q, "composite-ball", closed=closed, spacing=spacing, kind=kind)
+        return morph, f"{where}: not b-compatible, composite ball-morph used ({short(reason)})"
+    except BallMorphError as exc:
+        reason = str(exc)
+    return make_morph(
+        P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing
+    ), f"{where}: {FALLBACK_METHOD} used ({short(reason)})"
+
+
+def linear_fallback(P, Q, closed, spacing, reason):
+    """Linear interpolation for a pair no ball-morph can follow: ``(morph, note)``."""
+    return make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing), f"{reason}: {FALLBACK_METHOD} used"
+
+
+def unsplittable(P, Q, closed, why):
+    """Why a pair cannot be cut into lenses, for the note: a stroke crossing itself, else ``why``."""
+    for which, curve in (("first", P), ("second", Q)):
+        if not is_simple(curve, closed):
+            return f"the {which} key's stroke crosses itself, which no ball-morph can follow"
+    return why
+
+
+def comparison_morph(P, Q, closed, method, spacing):
+    """One of the paper's comparison morphs, else linear interpolation: ``(morph, notes)``.
+
+    A morph that does not apply to the pair (:class:`IncompatibleCurvesError`) or fails is
+    replaced by linear interpolation, and the note says why.
+    """
+    try:
+        return make_morph(P, Q, method, closed=closed, spacing=spacing), []
+    except IncompatibleCurvesError as exc:
+        note = f"{method} does not apply ({short(exc)}): {FALLBACK_METHOD} used"
+    except Exception as exc:  # a bug in one morph must not stop the other pairs
+        note = f"{method} failed ({type(exc).__name__}: {exc})"
+    return make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing), [note]
+
+
+def point_motion(xy_a, u_a, xy_b, u_b):
+    """Straight point motion between strokes with fewer than two distinct points (PathMorph).
+
+    Parameters
+    ----------
+    xy_a, xy_b : ndarray, shape (N, 2), (M, 2)
+        The two strokes (one point or more).
+    u_a, u_b : ndarray, shape (N,), (M,)
+        Their points' arc-length fractions.
+    """
+    k = max(len(xy_a), len(xy_b))
+    u = np.linspace(0.0, 1.0, k)
+
+    def along(xy, frac):
+        if len(xy) == 1:
+            return np.repeat(xy, k, axis=0)
+        return np.column_stack([np.interp(u, frac, xy[:, c]) for c in range(2)])
+
+    return PathMorph("straight point motion", False, LinearPaths(along(xy_a, u_a), along(xy_b, u_b)), u, u.copy())

@@ -1,0 +1,92 @@
+"""A key as the pipeline sees it: its strokes projected into the drawing plane, and every
+point attribute ready to be read at any fraction along any stroke."""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry.polyline import reversal_order, reversed_fractions
+from ..geometry.ragged import Ragged
+
+__all__ = ["KeyStroke", "ProjectedKey"]
+
+
+@dataclass
+class KeyStroke:
+    """One stroke as the morphs see it.
+
+    Attributes
+    ----------
+    index : int
+        Its index in the key.
+    xy : ndarray, shape (N, 2)
+        Its points in the drawing plane (reversed when the pairing flipped it).
+    u : ndarray, shape (N,)
+        Their arc-length fractions along the stroke as morphed.
+    closed : bool
+    material : int
+    """
+
+    index: int
+    xy: np.ndarray
+    u: np.ndarray
+    closed: bool
+    material: int
+
+
+class ProjectedKey:
+    """A key projected into the drawing plane, with everything a stroke carries.
+
+    Parameters
+    ----------
+    strokes : StrokeSet
+    plane : Plane
+
+    Attributes
+    ----------
+    rg : Ragged
+        The strokes' 2D points (arc lengths and fractions come from it).
+    values : ndarray, shape (N, 7)
+        Per point: offset from the plane, radius, opacity, vertex colour (RGBA).
+    """
+
+    def __init__(self, strokes, plane):
+        xy, depth = plane.to_2d(strokes.positions)
+        self.rg = Ragged(xy, strokes.offsets, strokes.cyclic)
+        self.strokes = strokes
+        self.values = np.column_stack([depth, strokes.radius, strokes.opacity, strokes.vertex_color])
+        length = self.rg.length[self.rg.owner]
+        local = np.arange(len(xy)) - strokes.offsets[:-1][self.rg.owner]
+        n = self.rg.n[self.rg.owner]
+        even = np.divide(local, np.maximum(n - 1, 1))
+        self.u = np.where(length > 0, np.divide(self.rg.s, np.where(length > 0, length, 1.0)), even)
+        # Interpolation table: every stroke's fractions shifted by 2 per stroke, loops closed by
+        # their first point at fraction 1, so one np.interp serves all strokes at once.
+        first = strokes.offsets[:-1][self.rg.n > 0]
+        closing = first[self.rg.closed[self.rg.n > 0] | (self.rg.n[self.rg.n > 0] == 1)]
+        owner = np.concatenate([self.rg.owner, self.rg.owner[closing]])
+        x = np.concatenate([self.u, np.ones(len(closing))]) + 2.0 * owner
+        order = np.argsort(x, kind="stable")
+        self._x = x[order]
+        self._v = np.concatenate([self.values, self.values[closing]])[order]
+        self._last = None  # (stroke, u, values): a plan evaluated again asks for the same
+
+    def stroke(self, i, flip=False):
+        """Stroke ``i`` for morphing (KeyStroke), reversed if ``flip``."""
+        sl = self.strokes.points(i)
+        xy, u = self.rg.pts[sl], self.u[sl]
+        closed = bool(self.rg.closed[i])
+        if flip:
+            order = reversal_order(len(xy), closed)
+            xy, u = xy[order], reversed_fractions(u[order], closed)
+        return KeyStroke(i, xy, u, closed, int(self.strokes.material_index[i]))
+
+    def sample(self, stroke, u):
+        """Per-point values at fractions ``u`` of given strokes (vectorised), shape (K, 7)."""
+        last = self._last
+        if last is not None and np.array_equal(stroke, last[0]) and np.array_equal(u, last[1]):
+            return last[2]
+        x = np.clip(u, 0.0, 1.0) + 2.0 * stroke
+        values = np.column_stack([np.interp(x, self._x, self._v[:, c]) for c in range(self._v.shape[1])])
+        self._last = (stroke, u, values)
+        return values

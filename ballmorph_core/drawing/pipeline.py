@@ -1,0 +1,398 @@
+"""The one stroke-pair pipeline: every pair of strokes of two keys takes the same named steps.
+
+Ball-morph methods::
+
+    prepare -> register -> find events -> choose roads -> cut chains -> map chains
+            -> fall back -> lay out
+
+1. *prepare*: validate each pair's curves; strokes with fewer than two distinct points move
+   straight, point by point; a loop paired with an open stroke is morphed as two open strokes.
+2. *register* (:mod:`.registration`, paper section 1.4): a similarity takes P onto Q; the
+   ball-morph runs between the registered P and Q and the carrier undoes the registration
+   progressively.
+3. *find events* (:mod:`.splitting`): where the registered curves cross or overlap.
+4. *choose roads*: registered curves that coincide are the carrier alone; nested loops and
+   strokes sharing their endpoints are ball-mapped whole; crossing pairs are cut into lenses;
+   pairs no ball-morph can follow (tangled crossings, loops side by side, strokes that do not
+   share their endpoints without a carrier) take linear interpolation, and the report says why.
+5. *cut chains* (:mod:`.splitting`): the lenses, overlaps and whole pairs the ball-maps run on.
+6. *map chains*: the ball-maps of every chain of every pair, in batches of about
+   ``BALLMAP_BATCH_POINTS`` input points.
+7. *fall back* (:mod:`.fallbacks`): a chain that is not b-compatible gets the composite
+   ball-morph, then linear interpolation.
+8. *lay out* (:mod:`.layout`): every chain's samples in order, evaluated at any times.
+
+The paper's comparison morphs take *prepare*, then their own morph with its fallback. Every
+step works on all pairs at once (a single pair is a batch of one), and nothing here depends on
+the in-between times: :class:`PairPlans` is the plan, :meth:`PairPlans.frames` its evaluation.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .. import tolerances as tol
+from ..ballmap import ball_maps
+from ..errors import InvalidCurveError
+from ..geometry.polyline import as_curve, coarsen, default_spacing, default_spacings, pair_scales, resolve_spacing
+from ..geometry.ragged import Ragged
+from .fallbacks import BALL_METHODS, chain_fallback, comparison_morph, linear_fallback, point_motion, unsplittable
+from .layout import Layout, PairFrames, Segment
+from .registration import Motions, register
+from .splitting import cut_chains, find_events
+
+__all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
+
+#: The ball-maps of a drawing run in batches of about this many input points (whole pairs: each
+#: pair's chains share one tolerance): one batch for a typical drawing, several for a huge one,
+#: which bounds the ball-map's temporaries.
+BALLMAP_BATCH_POINTS = 60_000
+
+
+@dataclass
+class PairCurves:
+    """One stroke pair as the pipeline receives it, and what *prepare* made of it.
+
+    Attributes
+    ----------
+    xy_a, xy_b : ndarray, shape (N, 2), (M, 2)
+        The strokes' points (the second running the same way as the first).
+    u_a, u_b : ndarray, shape (N,), (M,)
+        Their points' arc-length fractions.
+    closed_a, closed_b : bool
+    P, Q : ndarray or None
+        Validated curves (None: too few distinct points).
+    closed : bool
+        Whether the pair is morphed as loops.
+    notes : list of str
+    """
+
+    xy_a: np.ndarray
+    u_a: np.ndarray
+    closed_a: bool
+    xy_b: np.ndarray
+    u_b: np.ndarray
+    closed_b: bool
+    P: np.ndarray = None
+    Q: np.ndarray = None
+    closed: bool = False
+    notes: list = field(default_factory=list)
+
+    @property
+    def lengths(self):
+        """Lengths of P and Q, shape (2,)."""
+        return np.array([_length(self.P, self.closed), _length(self.Q, self.closed)])
+
+
+def _length(curve, closed):
+    return float(Ragged.from_list([curve], [closed]).length[0])
+
+
+def prepare(pair, method, spacing):
+    """Step 1: validate a pair's curves (in place); False when it can only move point by point."""
+    pair.closed = pair.closed_a and pair.closed_b
+    if pair.closed_a != pair.closed_b:
+        pair.notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
+    try:
+        pair.P, pair.Q = as_curve(pair.xy_a, "P", pair.closed), as_curve(pair.xy_b, "Q", pair.closed)
+    except InvalidCurveError as exc:
+        pair.notes.append(f"too few distinct points ({exc})")
+        pair.P = pair.Q = None
+        return False
+    if spacing is not None:
+        try:
+            resolve_spacing(pair.P, pair.Q, pair.closed, spacing)
+        except InvalidCurveError as exc:
+            pair.notes.append(f"{method} failed ({exc})")
+            pair.P = pair.Q = None
+            return False
+    return True
+
+
+class PairPlans:
+    """The plan of every pair of a drawing: laid-out samples, carriers, reports.
+
+    Built by :func:`plan_pairs`; :meth:`frames` evaluates it at any times.
+
+    Attributes
+    ----------
+    used : list of str
+        The morphs each pair's chains used, and its carrier.
+    notes : list of list of str
+        What each pair's report says (fallbacks, splits).
+    closed : ndarray of bool, shape (C,)
+    """
+
+    def __init__(self, pairs):
+        n = len(pairs)
+        self.segments, self.used, self.notes = [], [""] * n, [list(p.notes) for p in pairs]
+        self.closed, self.joined = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
+        self.lengths = np.ones((n, 2))
+        self.motions, self.layout = None, None
+
+    def add_morph(self, c, morph, closed, lengths=(1.0, 1.0), order=0, ranges=None):
+        """A morph for (a chain of) pair ``c``; ``ranges`` are its pieces' arc lengths on the pair
+        (default: the whole pair, of ``lengths``)."""
+        if ranges is None:
+            self.closed[c], self.lengths[c] = closed, lengths
+            ranges = ((0.0, self.lengths[c, 0]), (0.0, self.lengths[c, 1]))
+        self.segments.append(Segment(c, order, morph.u_p, morph.u_q, *ranges, morph=morph))
+
+    def drop(self, pairs, notes_kept):
+        """Forget what was planned for ``pairs`` (keeping their first ``notes_kept[c]`` notes)."""
+        self.segments = [s for s in self.segments if s.pair not in pairs]
+        for c in pairs:
+            del self.notes[c][notes_kept[c] :]
+
+    def finish(self, kind="circular"):
+        """Name each pair's morphs and lay the segments out (step 8)."""
+        methods = [set() for _ in self.used]
+        for seg in self.segments:
+            methods[seg.pair].add(seg.morph.method if seg.morph is not None else seg.method or f"{kind}-ball")
+        for c, names in enumerate(methods):
+            self.used[c] = "+".join(sorted(names))
+            if self.motions is not None and self.motions.moving[c]:
+                self.used[c] += f" on a {self.motions.kind} carrier"
+        self.layout = Layout(self.segments, self.closed, self.joined, self.lengths, kind)
+        self.segments = None
+        return self
+
+    def frames(self, times):
+        """Every pair's in-betweens at ``times`` (PairFrames)."""
+        times = np.asarray(times, dtype=np.float64).reshape(-1)
+        frames = self.layout.evaluate(times, self.motions)
+        return PairFrames(
+            frames, self.layout.offsets, self.layout.u_a, self.layout.u_b, self.closed, self.used, self.notes
+        )
+
+
+@dataclass
+class _Roads:
+    """What happens to each pair of a ball-road batch (``'carrier'``, ``'whole'``, ``'lenses'``,
+    ``'linear'``) and, for ``'linear'``, why."""
+
+    kind: np.ndarray
+    reason: list
+
+
+def choose_roads(R, Q, events, coincident, carrier, scale):
+    """Step 4: the road of every pair (see the module docstring)."""
+    n, closed = len(R), R.closed
+    kind = np.where(closed & (events.count == 0), "whole", "lenses").astype(object)
+    reason = [""] * n
+    end_eps = tol.SHARED_ENDPOINT * scale
+    first = np.linalg.norm(R.pts[R.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
+    last = np.linalg.norm(R.pts[R.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
+    nested = Q.contains(R.pts[R.offsets[:-1]], np.arange(n)) | R.contains(Q.pts[Q.offsets[:-1]], np.arange(n))
+    for c in range(n):
+        if coincident[c]:
+            kind[c] = "carrier"
+        elif carrier == "none" and not closed[c] and not (first[c] and last[c]):
+            kind[c], reason[c] = "linear", "the strokes do not share endpoints and no carrier is used"
+        elif not events.agree[c]:
+            kind[c] = "linear"
+            why = "the curves cross in a different order along each one (tangled) and do not cut into lenses"
+            reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), why)
+        elif kind[c] == "whole" and not nested[c]:
+            why = "the loops neither cross nor lie one inside the other"
+            kind[c], reason[c] = "linear", unsplittable(R.curve(c), Q.curve(c), True, why)
+    return _Roads(kind, reason)
+
+
+def map_chains(chains, spacing, eps):
+    """Step 6: the ball-maps of every chain, in batches of whole pairs (list of Correspondence)."""
+    sizes = [len(s.P) + len(s.Q) for s in chains.setups]
+    starts = np.cumsum([0] + sizes)[:-1] // BALLMAP_BATCH_POINTS
+    first_of_pair = np.r_[True, chains.pair[1:] != chains.pair[:-1]]
+    batch_of = np.maximum.accumulate(np.where(first_of_pair, starts, 0))
+    corrs = [None] * len(chains)
+    for number in np.unique(batch_of):
+        members = np.flatnonzero(batch_of == number)
+        owners = chains.pair[members]
+        found = ball_maps(
+            [chains.setups[i] for i in members], spacing[owners], "symmetric", check=False, eps=eps[owners]
+        )
+        for i, corr in zip(members, found):
+            corrs[i] = corr
+    return corrs
+
+
+def _chain_segment(chains, k, pair, corr):
+    """The segment of chain ``k`` whose ball-map holds (or of a static overlap)."""
+    setup = chains.setups[k]
+    order = k - np.searchsorted(chains.pair, chains.pair[k])
+    rng = (tuple(chains.range_p[k]), tuple(chains.range_q[k]))
+    if chains.static[k]:
+        u = Ragged.from_list([setup.P], [False]).s / max(_length(setup.P, False), 1e-300)
+        return Segment(pair, int(order), u, u, *rng, contacts=(setup.P, setup.P, setup.P), method="static")
+    u_p = corr.s_p / max(_length(corr.dense_p, corr.closed), 1e-300)
+    u_q = corr.s_q / max(_length(corr.dense_q, corr.closed), 1e-300)
+    return Segment(pair, int(order), u_p, u_q, *rng, contacts=(corr.p, corr.centers, corr.q))
+
+
+def _fall_back(plans, chains, corrs, events, index, kind, spacing):
+    """Step 7 for chains that are not b-compatible: composite, then linear (the notes say which)."""
+    counts = np.bincount(chains.pair, minlength=len(index))
+    for k, corr in enumerate(corrs):
+        c, setup = chains.pair[k], chains.setups[k]
+        if chains.static[k] or not corr.report.violations:
+            plans.segments.append(_chain_segment(chains, k, int(index[c]), corr))
+            continue
+        order = k - np.searchsorted(chains.pair, c)
+        where = f"lens {order + 1}/{counts[c]}" if events.count[c] else ("loops" if setup.closed else "stroke")
+        morph, note = chain_fallback(setup.P, setup.Q, setup.closed, kind, spacing[c], where, corr.report.describe())
+        plans.notes[index[c]].append(note)
+        plans.add_morph(
+            int(index[c]), morph, setup.closed, order=int(order), ranges=(chains.range_p[k], chains.range_q[k])
+        )
+
+
+def _ball_road(plans, pairs, index, kind, carrier, spacing):
+    """Steps 2-7 for the pairs ``index`` of ``pairs`` (validated); returns their Motions."""
+    closed = np.array([pairs[c].closed for c in index], dtype=bool)
+    # Curves drawn far more densely than they will be sampled are resampled first, each at its
+    # own default spacing (the keys may differ in size a lot).
+    P = Ragged.from_list([_coarse(pairs[c].P, pairs[c].closed, spacing) for c in index], closed)
+    Q = Ragged.from_list([_coarse(pairs[c].Q, pairs[c].closed, spacing) for c in index], closed)
+    motions, R, residual = register(P, Q, carrier, pair_scales(P, Q))
+    scale = pair_scales(R, Q)
+    # Sample where the morph happens: between the registered P (Q's size) and Q.
+    h = default_spacings(R, Q) if spacing is None else np.full(len(index), float(spacing))
+    coincident = residual <= tol.OVERLAP * scale
+    events = find_events(R, Q, scale, h / 2, ~coincident)
+    roads = choose_roads(R, Q, events, coincident, carrier, scale)
+    lengths = np.c_[R.length, Q.length]
+    for c in np.flatnonzero(roads.kind == "linear"):
+        morph, note = linear_fallback(R.curve(c), Q.curve(c), bool(closed[c]), h[c], roads.reason[c])
+        plans.notes[index[c]].append(note)
+        plans.add_morph(int(index[c]), morph, bool(closed[c]), lengths[c])
+    lensed = roads.kind == "lenses"
+    whole = np.flatnonzero((roads.kind == "whole") | (roads.kind == "carrier"))
+    chains = cut_chains(R, Q, events, lensed, whole, coincident, scale)
+    mapped = np.flatnonzero(roads.kind != "linear")
+    plans.closed[index[mapped]], plans.lengths[index[mapped]] = closed[mapped], lengths[mapped]
+    plans.joined[index[mapped]] = closed[mapped] & lensed[mapped]
+    _fall_back(plans, chains, map_chains(chains, h, tol.COINCIDENT * scale), events, index, kind, h)
+    pieces = np.bincount(chains.pair, minlength=len(index))
+    for c in np.flatnonzero(lensed & (pieces > 1)):
+        plans.notes[index[c]].append(f"split at {pieces[c]} crossing/overlap pieces")
+    return motions
+
+
+def _coarse(curve, closed, spacing):
+    return coarsen(curve, closed, spacing or default_spacing(curve, closed=closed))
+
+
+def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing):
+    """The ball road for every ready pair at once; should it fail (a bug), pair by pair, so one
+    pair never stops the others: a failing pair takes linear interpolation and says why."""
+    index = np.asarray(ready)
+    kept = {c: len(plans.notes[c]) for c in ready}
+    try:
+        return _ball_road(plans, pairs, index, kind, carrier, spacing)
+    except Exception as exc:  # reported below, pair by pair
+        batch_error = f"{type(exc).__name__}: {exc}"
+    plans.drop(set(ready), kept)
+    parts = []
+    for c in ready:
+        try:
+            parts.append(_ball_road(plans, pairs, np.array([c]), kind, carrier, spacing))
+        except Exception as exc:
+            plans.drop({c}, kept)
+            pair = pairs[c]
+            reason = f"the {kind}-ball morph failed ({type(exc).__name__}: {exc}; with the others: {batch_error})"
+            morph, note = linear_fallback(
+                pair.P, pair.Q, pair.closed, resolve_spacing(pair.P, pair.Q, pair.closed, None), reason
+            )
+            plans.notes[c].append(note)
+            plans.add_morph(c, morph, pair.closed, pair.lengths)
+            parts.append(
+                Motions(
+                    np.ones(1, complex), np.zeros(1, complex), np.zeros(1, bool), np.zeros(1, complex), "similarity"
+                )
+            )
+    return Motions(
+        *(np.concatenate([getattr(m, f) for m in parts]) for f in ("a", "b", "moving", "centre")), parts[0].kind
+    )
+
+
+def _spread_motions(motions, index, n):
+    """A batch's motions indexed by every pair of the drawing (the identity elsewhere)."""
+    a, b = np.ones(n, dtype=complex), np.zeros(n, dtype=complex)
+    moving, centre = np.zeros(n, dtype=bool), np.zeros(n, dtype=complex)
+    a[index], b[index], moving[index], centre[index] = motions.a, motions.b, motions.moving, motions.centre
+    return Motions(a, b, moving, centre, motions.kind)
+
+
+def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None):
+    """Plan every stroke pair of a drawing (see the module docstring).
+
+    Parameters
+    ----------
+    pairs : list of PairCurves
+    method : str
+        One of :data:`~ballmorph_core.METHODS` (validated).
+    carrier : {'similarity', 'rigid', 'none'}
+    spacing : float, optional
+        Geodesic sample spacing for every pair (default: each pair's own).
+
+    Returns
+    -------
+    PairPlans
+    """
+    ready = [c for c, pair in enumerate(pairs) if prepare(pair, method, spacing)]
+    plans = PairPlans(pairs)
+    for c, pair in enumerate(pairs):
+        if pair.P is None:
+            plans.add_morph(c, point_motion(pair.xy_a, pair.u_a, pair.xy_b, pair.u_b), False)
+    if method not in BALL_METHODS:
+        for c in ready:
+            pair = pairs[c]
+            P, Q = _coarse(pair.P, pair.closed, spacing), _coarse(pair.Q, pair.closed, spacing)
+            morph, notes = comparison_morph(P, Q, pair.closed, method, resolve_spacing(P, Q, pair.closed, spacing))
+            plans.notes[c] += notes
+            plans.add_morph(c, morph, pair.closed, (_length(P, pair.closed), _length(Q, pair.closed)))
+        return plans.finish()
+    kind = method[: -len("-ball")]
+    if ready:
+        motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing)
+        plans.motions = _spread_motions(motions, np.asarray(ready), len(pairs))
+    return plans.finish(kind)
+
+
+class PairMorph:
+    """One stroke pair through the pipeline (a batch of one), evaluated like a Morph.
+
+    Parameters
+    ----------
+    P, Q : array_like, shape (N, 2), (M, 2)
+        The two strokes, running the same way.
+    closed : bool
+    method, carrier, spacing
+        See :func:`plan_pairs`.
+
+    Attributes
+    ----------
+    used : str
+        The morphs the pair's chains used, and its carrier.
+    notes : list of str
+        Fallbacks and splits.
+    u_p, u_q : ndarray, shape (K,)
+        Arc-length fractions of the samples along P and Q.
+    """
+
+    def __init__(self, P, Q, closed, method="circular-ball", carrier="similarity", spacing=None):
+        P, Q = np.asarray(P, dtype=np.float64), np.asarray(Q, dtype=np.float64)
+        u_p, u_q = (Ragged.from_list([c], [False]).s / max(_length(c, False), 1e-300) for c in (P, Q))
+        self.plans = plan_pairs([PairCurves(P, u_p, closed, Q, u_q, closed)], method, carrier, spacing)
+        self.used, self.notes = self.plans.used[0], self.plans.notes[0]
+        parts = self.plans.frames([0.0])
+        self.u_p, self.u_q, self.closed = parts.u_a, parts.u_b, bool(parts.closed[0])
+
+    def __call__(self, t):
+        """The in-between at ``t``, shape (K, 2)."""
+        return self.plans.frames([t]).frames[0]
+
+    def frames(self, times):
+        """The in-betweens at several times, shape (T, K, 2)."""
+        return self.plans.frames(times).frames

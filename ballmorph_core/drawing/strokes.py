@@ -1,0 +1,211 @@
+"""The data a drawing is made of, in Blender's own layout, and what an in-between run returns.
+
+A drawing is a :class:`StrokeSet`: flat point arrays plus stroke offsets, like a Grease Pencil
+drawing's curves geometry, so the operator moves data with ``foreach_get``/``foreach_set`` and
+never loops over points in Python.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InvalidCurveError
+
+__all__ = ["StrokeSet", "Message", "PairReport", "InbetweenResult"]
+
+
+@dataclass
+class StrokeSet:
+    """The strokes of one drawing, in Blender's curves-geometry layout.
+
+    Attributes
+    ----------
+    positions : ndarray, shape (N, 3)
+    offsets : ndarray of int, shape (S + 1,)
+        Stroke ``i`` owns points ``offsets[i]:offsets[i + 1]``.
+    cyclic : ndarray of bool, shape (S,)
+    material_index : ndarray of int, shape (S,)
+    radius : ndarray, shape (N,)
+    opacity : ndarray, shape (N,)
+    vertex_color : ndarray, shape (N, 4)
+    selected : ndarray of bool, shape (S,)
+    origin : ndarray of int, shape (S, 2)
+        For an in-between: the strokes of the first and second key it comes from (-1 for
+        none), so the caller can carry attributes the core does not interpolate.
+    """
+
+    positions: np.ndarray
+    offsets: np.ndarray
+    cyclic: np.ndarray
+    material_index: np.ndarray
+    radius: np.ndarray
+    opacity: np.ndarray
+    vertex_color: np.ndarray
+    selected: np.ndarray = None
+    origin: np.ndarray = None
+
+    def __post_init__(self):
+        self.positions = np.asarray(self.positions, dtype=np.float64).reshape(-1, 3)
+        self.offsets = np.asarray(self.offsets, dtype=np.int64).reshape(-1)
+        n, s = len(self.positions), len(self.offsets) - 1
+        if s < 0 or self.offsets[0] != 0 or self.offsets[-1] != n or np.any(np.diff(self.offsets) < 0):
+            raise InvalidCurveError(
+                f"offsets: must rise from 0 to the point count {n}, got {self.offsets.tolist()[:8]}"
+            )
+        self.cyclic = np.asarray(self.cyclic, dtype=bool).reshape(-1)
+        self.material_index = np.asarray(self.material_index, dtype=np.int64).reshape(-1)
+        self.radius = np.asarray(self.radius, dtype=np.float64).reshape(-1)
+        self.opacity = np.asarray(self.opacity, dtype=np.float64).reshape(-1)
+        self.vertex_color = np.asarray(self.vertex_color, dtype=np.float64).reshape(-1, 4)
+        self.selected = np.ones(s, dtype=bool) if self.selected is None else np.asarray(self.selected, dtype=bool)
+        self.origin = (
+            np.full((s, 2), -1, dtype=np.int64)
+            if self.origin is None
+            else np.asarray(self.origin, dtype=np.int64).reshape(-1, 2)
+        )
+        for name, arr, size in (
+            ("cyclic", self.cyclic, s),
+            ("material_index", self.material_index, s),
+            ("selected", self.selected, s),
+            ("origin", self.origin, s),
+            ("radius", self.radius, n),
+            ("opacity", self.opacity, n),
+            ("vertex_color", self.vertex_color, n),
+        ):
+            if len(arr) != size:
+                raise InvalidCurveError(f"{name}: expected {size} values, got {len(arr)}")
+
+    def __len__(self):
+        return len(self.offsets) - 1
+
+    @property
+    def sizes(self):
+        """Points per stroke, shape (S,)."""
+        return np.diff(self.offsets)
+
+    def points(self, i):
+        """Slice of the point arrays for stroke ``i``."""
+        return slice(int(self.offsets[i]), int(self.offsets[i + 1]))
+
+    @classmethod
+    def empty(cls):
+        """A drawing with no strokes."""
+        return cls(
+            positions=np.zeros((0, 3)),
+            offsets=[0],
+            cyclic=[],
+            material_index=[],
+            radius=[],
+            opacity=[],
+            vertex_color=np.zeros((0, 4)),
+        )
+
+    @classmethod
+    def from_strokes(cls, strokes, cyclic=None, material_index=None, radius=None, opacity=None, vertex_color=None):
+        """Build from a list of (n_i, 3) or (n_i, 2) arrays (2D points get y = 0: the XZ canvas).
+
+        Per-stroke attributes default to open strokes, material 0, radius 0.01, opacity 1 and
+        transparent black; per-point attributes may be given as lists of per-stroke arrays.
+        """
+        pts = []
+        for s in strokes:
+            s = np.asarray(s, dtype=np.float64)
+            if s.ndim == 2 and s.shape[1] == 2:
+                s = np.c_[s[:, 0], np.zeros(len(s)), s[:, 1]]
+            pts.append(s.reshape(-1, 3))
+        sizes = [len(p) for p in pts]
+        n = int(sum(sizes))
+
+        def per_point(values, default, width=None):
+            if values is None:
+                shape = (n,) if width is None else (n, width)
+                return np.full(shape, default, dtype=np.float64)
+            return np.concatenate([np.asarray(v, dtype=np.float64) for v in values]) if len(values) else np.zeros(0)
+
+        return cls(
+            positions=np.concatenate(pts) if pts else np.zeros((0, 3)),
+            offsets=np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64),
+            cyclic=np.zeros(len(pts), bool) if cyclic is None else cyclic,
+            material_index=np.zeros(len(pts), np.int64) if material_index is None else material_index,
+            radius=per_point(radius, 0.01),
+            opacity=per_point(opacity, 1.0),
+            vertex_color=per_point(vertex_color, 0.0, 4).reshape(-1, 4),
+        )
+
+    @classmethod
+    def concatenate(cls, parts):
+        """Join StrokeSets into one (strokes in order)."""
+        parts = list(parts)
+        if not parts:
+            return cls.empty()
+        sizes = np.concatenate([p.sizes for p in parts])
+        return cls(
+            offsets=np.concatenate([[0], np.cumsum(sizes)]),
+            **{name: np.concatenate([getattr(p, name) for p in parts]) for name in _FIELDS if name != "offsets"},
+        )
+
+    def subset(self, indices):
+        """The strokes at ``indices``, in that order (StrokeSet)."""
+        idx = np.asarray(indices, dtype=np.int64)
+        sizes = self.sizes[idx]
+        pts = (
+            np.concatenate([np.arange(self.offsets[i], self.offsets[i + 1]) for i in idx])
+            if len(idx)
+            else np.zeros(0, np.int64)
+        )
+        return StrokeSet(
+            offsets=np.concatenate([[0], np.cumsum(sizes)]),
+            **{name: getattr(self, name)[pts] for name in _POINT_FIELDS},
+            **{name: getattr(self, name)[idx] for name in _CURVE_FIELDS},
+        )
+
+
+@dataclass
+class Message:
+    """Something the animator should know. ``level`` is INFO, WARNING or ERROR."""
+
+    level: str
+    text: str
+
+
+@dataclass
+class PairReport:
+    """What happened to one stroke pair.
+
+    Attributes
+    ----------
+    stroke_a, stroke_b : int or None
+        Stroke indices in the two keys (None for a stroke with no partner).
+    method : str
+        The morph actually used (or 'appear' / 'disappear' / 'hold').
+    reason : str
+        Why a fallback was used ('' when the requested morph worked).
+    """
+
+    stroke_a: int
+    stroke_b: int
+    method: str
+    reason: str = ""
+
+
+@dataclass
+class InbetweenResult:
+    """Frames and what happened.
+
+    Attributes
+    ----------
+    frames : list of StrokeSet
+        One per requested time.
+    messages : list of Message
+    pairs : list of PairReport
+    """
+
+    frames: list
+    messages: list = field(default_factory=list)
+    pairs: list = field(default_factory=list)
+
+
+#: StrokeSet fields per point and per stroke (besides positions' offsets).
+_POINT_FIELDS = ("positions", "radius", "opacity", "vertex_color")
+_CURVE_FIELDS = ("cyclic", "material_index", "selected", "origin")
+_FIELDS = ("offsets", *_POINT_FIELDS, *_CURVE_FIELDS)
