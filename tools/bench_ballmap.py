@@ -6,7 +6,7 @@ outline morphing into the next key's outline) and prints the median time and its
 the previous size. Two spacings are timed:
 
 - ``default``: the call as the operator makes it. The default sample spacing is the median edge
-  length, but at most ``tolerances.DEFAULT_SAMPLES_MAX`` samples per curve, so beyond that the
+  length, but at most ``geometry.polyline.DEFAULT_SAMPLES_MAX`` samples per curve, so beyond that the
   sample count stops growing and only the vertex count does.
 - ``per-vertex``: spacing = the median edge length, unclamped, so the samples grow with the
   vertices too (the harder test of the algorithm's scaling).

@@ -57,7 +57,7 @@ class CompatibilityReport:
     configuration : str
         See :func:`classify`.
     violations : list of Violation
-        Empty when every maximal disk is empty (within ``tolerances.DISK_PENETRATION``).
+        Empty when every maximal disk is empty (within ``check.DISK_PENETRATION``).
     samples : int
         Number of correspondence samples checked.
     """

@@ -7,7 +7,7 @@ the drawings and otherwise solves an optimal assignment on a shape distance.
 
 Shape distance
 --------------
-Every stroke is resampled to ``tolerances.MATCH_SAMPLES`` points at uniform arc length (on its
+Every stroke is resampled to ``MATCH_SAMPLES`` points at uniform arc length (on its
 chords: the samples only describe the shape). The cost of pairing stroke ``i`` of key A with
 stroke ``j`` of key B is the root-mean-square distance between corresponding samples,
 
@@ -64,6 +64,27 @@ from ..morphs.linear import best_cyclic_alignment
 from ..options import MATCHINGS, check_option
 
 __all__ = ["Matching", "match_strokes", "solve_assignment"]
+
+#: Stroke matching (ballmorph_core.matching). Costs are root-mean-square distances between
+#: corresponding arc-length samples of two strokes, once the keys' overall motion is removed,
+#: relative to the drawing size (the smaller of the two keys' bounding-box diagonals).
+#: Samples per stroke in the matching descriptor.
+MATCH_SAMPLES = 32
+#: A pair costing this much or more is never formed: both strokes stay unmatched (they appear
+#: or disappear) rather than morphing across the drawing. Equivalent to padding the
+#: assignment with dummy partners costing half of this each.
+MATCH_MAX_COST = 0.5
+#: Added to the cost of a pair where one stroke is cyclic and the other is not.
+MATCH_CYCLIC_PENALTY = 0.1
+#: 'AUTO' keeps the drawing order (pairing by index) when the counts agree, every index pair
+#: costs less than MATCH_INDEX_MAX_COST, and the index pairing's total is within
+#: MATCH_INDEX_FACTOR of the optimal assignment's.
+MATCH_INDEX_MAX_COST = 0.25
+MATCH_INDEX_FACTOR = 1.25
+#: Per pair, totals closer than this are equal (round-off of the Gram-matrix cost evaluation).
+MATCH_ROUNDOFF = 1e-6
+#: Alternations of (assign strokes, re-fit the keys' overall translation) per starting guess.
+MATCH_MOTION_ITERATIONS = 3
 
 # Elements per block when a product would otherwise allocate S_a x S_b x m at once (memory only).
 _CHUNK = 2_000_000
@@ -412,7 +433,7 @@ class _CostTable:
     def costs(self, motion):
         """Pair costs with key B moved back by ``motion`` (shape (2,)), shape (S_a, S_b)."""
         d = self.offset + motion
-        c = np.sqrt(self.shape + (d * d).sum(axis=2)) / self.scale + tol.MATCH_CYCLIC_PENALTY * self.mixed
+        c = np.sqrt(self.shape + (d * d).sum(axis=2)) / self.scale + MATCH_CYCLIC_PENALTY * self.mixed
         return np.where(self.valid, c, np.inf)
 
     def fit_motion(self, rows, cols):
@@ -425,17 +446,17 @@ class _CostTable:
 
 def _assign_within(costs):
     """Optimal pairs among those cheaper than MATCH_MAX_COST (rows, cols, each shape (K,))."""
-    if not np.any(costs < tol.MATCH_MAX_COST):
+    if not np.any(costs < MATCH_MAX_COST):
         return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    rows, cols = solve_assignment(np.minimum(costs, tol.MATCH_MAX_COST))
-    keep = costs[rows, cols] < tol.MATCH_MAX_COST
+    rows, cols = solve_assignment(np.minimum(costs, MATCH_MAX_COST))
+    keep = costs[rows, cols] < MATCH_MAX_COST
     return rows[keep], cols[keep]
 
 
 def _padded_total(pair_costs, n_a, n_b):
     """Total of a matching with every unmatched stroke paying MATCH_MAX_COST / 2 (float)."""
     unmatched = n_a + n_b - 2 * len(pair_costs)
-    return float(np.sum(pair_costs)) + 0.5 * tol.MATCH_MAX_COST * unmatched
+    return float(np.sum(pair_costs)) + 0.5 * MATCH_MAX_COST * unmatched
 
 
 def _best_assignment(table, key_a, key_b):
@@ -455,10 +476,10 @@ def _best_assignment(table, key_a, key_b):
         ]
     best, tried = None, []
     for motion in guesses:
-        for _ in range(tol.MATCH_MOTION_ITERATIONS):
+        for _ in range(MATCH_MOTION_ITERATIONS):
             # A motion already evaluated (the previous pairs refit to the same motion, or another
             # guess led here) would give the same assignment: this guess has converged.
-            if any(np.linalg.norm(motion - t) <= tol.MATCH_ROUNDOFF * table.scale for t in tried):
+            if any(np.linalg.norm(motion - t) <= MATCH_ROUNDOFF * table.scale for t in tried):
                 break
             tried.append(motion)
             costs = table.costs(motion)
@@ -539,7 +560,7 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
     ([(0, 1, False), (1, 0, True)], 'assignment')
     """
     mode = check_option("mode", mode, MATCHINGS)
-    m = tol.MATCH_SAMPLES
+    m = MATCH_SAMPLES
     key_a = _Key(strokes_a, closed_a, "strokes_a", "closed_a", m)
     key_b = _Key(strokes_b, closed_b, "strokes_b", "closed_b", m)
     diagonals = [d for d in (key_a.diagonal, key_b.diagonal) if d > 0]
@@ -568,15 +589,15 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
     index_costs = table.costs(index_motion)[index, index]
     worst = int(np.argmax(index_costs))
     index_total = _padded_total(index_costs, n_a, n_b)
-    if index_costs[worst] >= tol.MATCH_INDEX_MAX_COST:
+    if index_costs[worst] >= MATCH_INDEX_MAX_COST:
         reason = (
             f"drawing order does not fit: stroke {worst} -> {worst} costs {index_costs[worst]:.3g} of the "
-            f"drawing size (limit {tol.MATCH_INDEX_MAX_COST:g}): optimal assignment"
+            f"drawing size (limit {MATCH_INDEX_MAX_COST:g}): optimal assignment"
         )
-    elif index_total > tol.MATCH_INDEX_FACTOR * total + tol.MATCH_ROUNDOFF * n_a:
+    elif index_total > MATCH_INDEX_FACTOR * total + MATCH_ROUNDOFF * n_a:
         reason = (
             f"drawing order costs {index_total:.3g} against {total:.3g} for the optimal assignment "
-            f"(limit {tol.MATCH_INDEX_FACTOR:g} times): optimal assignment"
+            f"(limit {MATCH_INDEX_FACTOR:g} times): optimal assignment"
         )
     else:
         reason = "same stroke count and the drawing order fits"

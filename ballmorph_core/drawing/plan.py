@@ -10,7 +10,6 @@ documented morph and is reported; nothing is dropped silently. :func:`inbetween`
 
 import numpy as np
 
-from .. import tolerances as tol
 from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
 from ..geometry.polyline import reversed_fractions
@@ -24,6 +23,10 @@ from .pipeline import PairCurves, plan_pairs
 from .strokes import InbetweenResult, Message, PairReport, StrokeSet
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
+
+#: Strokes whose points lie farther than this (times scale) from the fitted drawing plane are
+#: reported as non-planar.
+PLANARITY = 1e-3
 
 
 def inbetween(
@@ -282,7 +285,7 @@ def _planarity_messages(key_a, key_b, plane):
     scale = float(np.linalg.norm(np.ptp(pts, axis=0)))
     _, depth = plane.to_2d(pts)
     worst = float(np.abs(depth).max())
-    if scale > 0 and worst > tol.PLANARITY * scale:
+    if scale > 0 and worst > PLANARITY * scale:
         return [
             Message(
                 "WARNING",

@@ -42,6 +42,12 @@ __all__ = [
     "register",
 ]
 
+#: Loop registration: a fitted rotation costs this times (angle / pi)^2 of the normalised
+#: residual, so shapes that merely change proportions (squash and stretch, apple to pear) are
+#: not turned to fit better; a shape that really turned still is (its unrotated residual is
+#: larger than the penalty).
+ROTATION_PENALTY = 1.0
+
 #: Uniform samples per curve for the least-squares fit of loops.
 FIT_SAMPLES = 128
 
@@ -85,7 +91,7 @@ def similarities(P, Q):
     Strokes map their endpoints onto their partner's endpoints. Loops get the least-squares
     similarity between ``FIT_SAMPLES`` uniform samples over every cyclic shift and both
     directions (FFT cross-correlation). Among the distinct fits (local minima of the residual
-    over the shifts) a rotation costs ``tolerances.ROTATION_PENALTY`` times (angle / pi)^2 of
+    over the shifts) a rotation costs ``ROTATION_PENALTY`` times (angle / pi)^2 of
     the normalised residual, and the best unrotated fit (scale and translation only) competes at
     no cost: a squashed ball or a pear that is merely taller than the apple is not turned by 90
     degrees to fit better, while a shape that really turned keeps its exact fit.
@@ -141,7 +147,7 @@ def similarities(P, Q):
             # Rotation is penalised only between distinct fits (local minima over the shifts),
             # never within one, so a fit that is right is not biased towards less rotation.
             minimum = (fit <= np.roll(fit, 1, axis=1)) & (fit <= np.roll(fit, -1, axis=1))
-            cost = np.where(minimum, fit + tol.ROTATION_PENALTY * (np.angle(corr) / np.pi) ** 2, np.inf)
+            cost = np.where(minimum, fit + ROTATION_PENALTY * (np.angle(corr) / np.pi) ** 2, np.inf)
             # The unrotated fit (a real scale) is always a candidate, at no penalty.
             real = np.maximum(corr.real, 0.0)
             fit0 = (norm_q[:, None] - real**2 / np.where(safe, norm_p, 1.0)[:, None]) / np.maximum(norm_q, 1e-300)[

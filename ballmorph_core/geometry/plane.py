@@ -10,9 +10,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import tolerances as tol
-
 __all__ = ["Plane", "fit_plane"]
+
+#: A fitted drawing plane within this (1 - |cos|) of a world axis plane is taken as that plane,
+#: so a drawing on Blender's front canvas maps to plain (x, z) coordinates.
+PLANE_AXIS = 1e-6
 
 
 @dataclass
@@ -64,7 +66,7 @@ _AXIS_FRAMES = (
 )
 
 
-def fit_plane(points, axis_tolerance=tol.PLANE_AXIS):
+def fit_plane(points, axis_tolerance=PLANE_AXIS):
     """Least-squares plane through points.
 
     Parameters

@@ -39,6 +39,23 @@ __all__ = [
     "reversal_order",
 ]
 
+#: Default geodesic sample spacing: the median input edge length, clamped to
+#: [scale / DEFAULT_SAMPLES_MAX, scale / DEFAULT_SAMPLES_MIN] where scale is the longer curve.
+DEFAULT_SAMPLES_MIN = 48
+DEFAULT_SAMPLES_MAX = 2000
+
+#: Coordinates beyond this magnitude are rejected: their squares (lengths, disk radii)
+#: would overflow float64.
+MAX_COORDINATE = 1e150
+
+#: Most samples a spacing may put along one curve; a smaller spacing is rejected rather than
+#: exhausting memory.
+MAX_SAMPLES = 1_000_000
+
+#: Input curves with more than twice this many points per sample spacing are resampled to it
+#: before morphing (see curves.coarsen).
+COARSEN_RATIO = 4.0
+
 
 def as_curve(points, name="P", closed=False, min_points=2):
     """Validate a polyline and return a clean float64 copy.
@@ -79,9 +96,9 @@ def as_curve(points, name="P", closed=False, min_points=2):
         raise InvalidCurveError(f"{name}: point {bad} is not finite ({arr[bad].tolist()})")
     if len(arr) == 0:
         raise InvalidCurveError(f"{name}: the curve has no points")
-    if np.abs(arr).max() > tol.MAX_COORDINATE:
+    if np.abs(arr).max() > MAX_COORDINATE:
         raise InvalidCurveError(
-            f"{name}: coordinates up to {np.abs(arr).max():.3g} are too large (at most {tol.MAX_COORDINATE:g}): "
+            f"{name}: coordinates up to {np.abs(arr).max():.3g} are too large (at most {MAX_COORDINATE:g}): "
             "scale the drawing down"
         )
     scale = max(float(np.ptp(arr, axis=0).max()), 1e-300)
@@ -199,16 +216,16 @@ def resolve_spacing(P, Q, closed, spacing):
     ------
     InvalidCurveError
         If ``spacing`` is not a positive finite number, or would put more than
-        ``tolerances.MAX_SAMPLES`` samples along either curve.
+        ``MAX_SAMPLES`` samples along either curve.
     """
     if spacing is None:
         return default_spacing(P, Q, closed=closed)
     value = check_positive("spacing", spacing)
     longest = max(curve_length(P, closed), curve_length(Q, closed))
-    if longest / value > tol.MAX_SAMPLES:
+    if longest / value > MAX_SAMPLES:
         raise InvalidCurveError(
             f"spacing={value:.3g} would put {longest / value:.3g} samples along a curve of length {longest:.3g} "
-            f"(at most {tol.MAX_SAMPLES}): use a larger spacing"
+            f"(at most {MAX_SAMPLES}): use a larger spacing"
         )
     return value
 
@@ -221,7 +238,7 @@ def coarsen(curve, closed, spacing):
     extra points but the cost of every intersection test on them.
     """
     length = curve_length(curve, closed)
-    wanted = int(np.ceil(tol.COARSEN_RATIO * length / spacing)) + 1
+    wanted = int(np.ceil(COARSEN_RATIO * length / spacing)) + 1
     if len(curve) <= 2 * wanted:
         return curve
     return resample(curve, closed, count=wanted)
@@ -231,7 +248,7 @@ def default_spacing(*curves, closed=False):
     """A geodesic sample spacing suited to the curves (float).
 
     The median input edge length, clamped so that the longest curve gets between
-    ``tolerances.DEFAULT_SAMPLES_MIN`` and ``DEFAULT_SAMPLES_MAX`` samples (see
+    ``DEFAULT_SAMPLES_MIN`` and ``DEFAULT_SAMPLES_MAX`` samples (see
     :func:`default_spacings`, of which this is a batch of one).
     """
     return float(default_spacings(*(Ragged.from_list([c], [closed]) for c in curves))[0])
@@ -260,7 +277,7 @@ def default_spacings(*batches):
     hi = np.minimum(start[:-1] + count // 2, len(length) - 1)
     median = 0.5 * (length[lo] + length[hi])
     longest = np.max([b.length for b in batches], axis=0)
-    return np.clip(median, longest / tol.DEFAULT_SAMPLES_MAX, longest / tol.DEFAULT_SAMPLES_MIN)
+    return np.clip(median, longest / DEFAULT_SAMPLES_MAX, longest / DEFAULT_SAMPLES_MIN)
 
 
 def signed_area(loop):

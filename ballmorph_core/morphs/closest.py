@@ -14,7 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import tolerances as tol
 from ..ballmap.topology import orient_pair
 from ..errors import IncompatibleCurvesError
 from ..geometry.circles import circumcircles
@@ -26,6 +25,21 @@ from .base import PathMorph, register
 from .paths import LinearPaths
 
 __all__ = ["Projector", "Projection", "ProjectionDefect", "c_compatibility"]
+
+#: Comparison morphs (ballmorph_core.morphs.closest, curvature, laplace, heat).
+#: Closest projection: consecutive samples whose closest points step backwards along the other
+#: curve by more than this many sample spacings make the projection non-monotone.
+PROJECTION_REVERSAL = 0.01
+#: Closest projection: a vertex of the other curve passed over between two consecutive samples'
+#: closest points lying farther than both samples' distances by this many sample spacings means
+#: the closest point jumped (a point in between has two closest projections). A continuous
+#: projection passes over vertices only O(h^2 curvature) farther.
+PROJECTION_BULGE = 0.25
+#: At most this many places are listed in an incompatibility message.
+DEFECTS_LISTED = 3
+#: Closest projection: three dense vertices with |2 cross| below this times their squared span
+#: are straight: the foot on the chord is kept instead of the foot on their circle.
+PROJECTION_STRAIGHT = 1e-9
 
 
 @dataclass
@@ -223,7 +237,7 @@ def _defects(name, src, s_src, length_src, proj, projector, s_feet, closed, spac
         feet = np.stack([proj.foot[i], proj.foot[j]])
         found.append(ProjectionDefect(name, kind, mid, float(s_mid), feet, s_feet[[i, j]]))
 
-    for i in np.flatnonzero(step * projector.mean_edge < -tol.PROJECTION_REVERSAL * spacing):
+    for i in np.flatnonzero(step * projector.mean_edge < -PROJECTION_REVERSAL * spacing):
         add("reversal", i)
     forward = np.flatnonzero(step > 0)
     start = np.floor(proj.pos[cur[forward]]).astype(np.int64)
@@ -237,7 +251,7 @@ def _defects(name, src, s_src, length_src, proj, projector, s_feet, closed, spac
     w = np.divide(np.einsum("ij,ij->i", projector.dense[v] - a, ab), ab2, out=np.zeros_like(ab2), where=ab2 > 0)
     dist = np.linalg.norm(projector.dense[v] - (a + np.clip(w, 0.0, 1.0)[:, None] * ab), axis=1)
     excess = dist - np.maximum(proj.dist[cur[which]], proj.dist[nxt[which]])
-    for i in np.unique(which[excess > tol.PROJECTION_BULGE * spacing]):
+    for i in np.unique(which[excess > PROJECTION_BULGE * spacing]):
         add("jump", i)
     if closed and abs(step.sum() - n) > 0.5 * n:
         add("winding", 0)
@@ -330,8 +344,8 @@ def build(P, Q, closed, spacing, sampling):
     """
     pair = _ClosestPair(P, Q, closed, resolve_spacing(P, Q, closed, spacing))
     if pair.defects:
-        listed = "; ".join(d.describe() for d in pair.defects[: tol.DEFECTS_LISTED])
-        more = len(pair.defects) - tol.DEFECTS_LISTED
+        listed = "; ".join(d.describe() for d in pair.defects[:DEFECTS_LISTED])
+        more = len(pair.defects) - DEFECTS_LISTED
         tail = f"; and {more} more places" if more > 0 else ""
         raise IncompatibleCurvesError(
             "not c-compatible: a closest projection is not a homeomorphism (paper section 3.5): "

@@ -20,6 +20,10 @@ from .linear import sample_count, uniform_correspondence
 
 __all__ = ["CurvatureMorph", "close_polygon", "STROKE_FITS"]
 
+#: Curvature interpolation: an edge's closure weight L_AB is at least this fraction of the mean
+#: edge length (Sederberg's L_tol), so edges whose length does not change still take a share.
+CURVATURE_LENGTH_FLOOR = 1e-3
+
 #: How a stroke's frames meet its endpoints (see :class:`CurvatureMorph`).
 STROKE_FITS = ("similarity", "closure")
 
@@ -103,7 +107,7 @@ class CurvatureMorph(KeyedMorph):
         self._turn_a, self._turn_b = turning_angles(p, closed), turning_angles(q, closed)
         self._dir_a = float(np.angle(ea[0]))
         self._dir_b = self._dir_a + float(np.angle(eb[0] / ea[0])) if ea[0] != 0 else float(np.angle(eb[0]))
-        floor = tol.CURVATURE_LENGTH_FLOOR * 0.5 * (self._len_a.mean() + self._len_b.mean())
+        floor = CURVATURE_LENGTH_FLOOR * 0.5 * (self._len_a.mean() + self._len_b.mean())
         self._weights = np.maximum(np.abs(self._len_a - self._len_b), floor)
 
     def _directions(self, t):

@@ -33,7 +33,6 @@ which. Shared stroke endpoints stay put. Nothing non-finite reaches the frames.
 
 import numpy as np
 
-from .. import tolerances as tol
 from ..ballmap.topology import orient_pair
 from ..errors import InvalidCurveError
 from ..geometry.polyline import resample, resolve_spacing, reverse
@@ -43,6 +42,34 @@ from .closest import Projector
 from .paths import LevelPaths
 
 __all__ = ["HeatField", "HeatMorph", "conjugate_gradient"]
+
+#: Heat propagation: default grid cells along the longer side of the pair's bounding box, and
+#: stored levels per trajectory (frames interpolate linearly between levels).
+HEAT_GRID = 256
+HEAT_LEVELS = 64
+#: Heat propagation: empty cells around the curves' bounding box (room for the extension past
+#: the curves), and how many node layers the field is extended by past the first ghost layer.
+HEAT_GRID_PAD = 6
+HEAT_EXTENSION_LAYERS = 3
+#: Heat propagation: the solve starts from the solution on a grid half as fine, recursively
+#: down to this many cells (the smallest grid accepted).
+HEAT_COARSEST_GRID = 16
+#: Heat propagation: conjugate gradients stop at this relative residual, or after this many
+#: iterations per grid cell along the longer side.
+HEAT_CG_RTOL = 1e-9
+HEAT_CG_MAX_ITER_PER_CELL = 8
+#: Heat propagation: a curve cutting a grid edge closer than this fraction of the edge to a node
+#: is put at this fraction (keeps the Dirichlet weight 1/theta finite).
+HEAT_MIN_THETA = 1e-3
+#: Heat propagation: a gradient smaller than this (times 1 / extent of the pair) is a stall.
+HEAT_MIN_GRADIENT = 1e-6
+#: Heat propagation: a tracing step longer than this fraction of the pair's extent is a failure.
+HEAT_MAX_STEP = 0.25
+#: Heat propagation: a traced path ending farther than this many cells from the other curve
+#: failed; samples closer than HEAT_THIN_GAP cells to the other curve are not traced. Both move
+#: straight to their closest point instead.
+HEAT_END_MISS_CELLS = 2.0
+HEAT_THIN_GAP = 1.5
 
 
 def conjugate_gradient(apply, b, diag, x0, rtol, max_iter):
@@ -183,7 +210,7 @@ class HeatField:
     def __init__(self, a, b, values, lo, hi, cells, nearest_value):
         self.extent = extent = float(max(hi - lo))
         self.h = h = extent / cells
-        pad = tol.HEAT_GRID_PAD
+        pad = HEAT_GRID_PAD
         self.origin = lo - pad * h
         nx = int(np.ceil((hi[0] - lo[0]) / h)) + 2 * pad + 1
         ny = int(np.ceil((hi[1] - lo[1]) / h)) + 2 * pad + 1
@@ -195,14 +222,14 @@ class HeatField:
         self.inside = inside = (before % 2) == 1
         self._assemble(rows, cols, nearest_value)
         coarse = cells // 2
-        if coarse >= tol.HEAT_COARSEST_GRID:
+        if coarse >= HEAT_COARSEST_GRID:
             guess = HeatField(a, b, values, lo, hi, coarse, nearest_value).value(self.nodes()[inside])
             x0 = np.zeros(shape)
             x0[inside] = np.where(np.isfinite(guess), guess, 0.5)
         else:
             x0 = np.where(inside, 0.5, 0.0)
         x, self.iterations, self.residual = conjugate_gradient(
-            self._apply, self._rhs, self._diag, x0, tol.HEAT_CG_RTOL, tol.HEAT_CG_MAX_ITER_PER_CELL * cells
+            self._apply, self._rhs, self._diag, x0, HEAT_CG_RTOL, HEAT_CG_MAX_ITER_PER_CELL * cells
         )
         u = np.full(shape, np.nan)
         u[inside] = x[inside]
@@ -252,8 +279,8 @@ class HeatField:
                 val_lo[lonely], val_hi[lonely] = guess, guess
             bound_lo = in_lo & ~coupled
             bound_hi = in_hi & ~coupled
-            t_lo = np.maximum(np.where(bound_lo, theta_lo, 1.0), tol.HEAT_MIN_THETA)
-            t_hi = np.maximum(np.where(bound_hi, theta_hi, 1.0), tol.HEAT_MIN_THETA)
+            t_lo = np.maximum(np.where(bound_lo, theta_lo, 1.0), HEAT_MIN_THETA)
+            t_hi = np.maximum(np.where(bound_hi, theta_hi, 1.0), HEAT_MIN_THETA)
             diag[lo] += np.where(coupled, 1.0, 0.0) + np.where(bound_lo, 1.0 / t_lo, 0.0)
             diag[hi] += np.where(coupled, 1.0, 0.0) + np.where(bound_hi, 1.0 / t_hi, 0.0)
             rhs[lo] += np.where(bound_lo, val_lo / t_lo, 0.0)
@@ -290,7 +317,7 @@ class HeatField:
         fill = ~known & (weight > 0)
         u = u.copy()
         u[fill] = total[fill] / weight[fill]
-        for _ in range(tol.HEAT_EXTENSION_LAYERS):
+        for _ in range(HEAT_EXTENSION_LAYERS):
             known = np.isfinite(u)
             total = np.zeros_like(u)
             weight = np.zeros_like(u)
@@ -346,7 +373,7 @@ def _velocity(field, x, sign):
     """``sign * grad u / |grad u|^2`` and whether it is usable, for all points."""
     g = field.gradient(x)
     g2 = np.sum(g * g, axis=1)
-    ok = np.isfinite(g2) & (g2 > (tol.HEAT_MIN_GRADIENT / field.extent) ** 2)
+    ok = np.isfinite(g2) & (g2 > (HEAT_MIN_GRADIENT / field.extent) ** 2)
     v = np.where(ok[:, None], sign * g / np.where(ok, g2, 1.0)[:, None], 0.0)
     return v, ok
 
@@ -362,7 +389,7 @@ def _trace(field, start, u0, u1, levels):
     path[:, 0] = start
     x = start.copy()
     ok = np.ones(len(start), dtype=bool)
-    max_step = tol.HEAT_MAX_STEP * field.extent
+    max_step = HEAT_MAX_STEP * field.extent
     for j in range(levels):
         k1, ok1 = _velocity(field, x, sign)
         k2, ok2 = _velocity(field, x + 0.5 * dt * k1, sign)
@@ -429,9 +456,9 @@ def build(P, Q, closed, spacing, sampling, grid=None, levels=None):
     IncompatibleCurvesError
         If the curves are not in configuration 1 or 2.
     """
-    grid = tol.HEAT_GRID if grid is None else grid
-    levels = tol.HEAT_LEVELS if levels is None else levels
-    for name, value, least in (("grid", grid, tol.HEAT_COARSEST_GRID), ("levels", levels, 1)):
+    grid = HEAT_GRID if grid is None else grid
+    levels = HEAT_LEVELS if levels is None else levels
+    for name, value, least in (("grid", grid, HEAT_COARSEST_GRID), ("levels", levels, 1)):
         if not (isinstance(value, (int, np.integer)) and value >= least):
             raise InvalidCurveError(f"{name} must be an integer >= {least}, got {value!r}")
     spacing = resolve_spacing(P, Q, closed, spacing)
@@ -455,10 +482,10 @@ def build(P, Q, closed, spacing, sampling, grid=None, levels=None):
         # Land exactly on the other curve; spread the miss along the path by level.
         end = proj[dst].project(paths[:, -1])
         miss = np.linalg.norm(end.foot - paths[:, -1], axis=1)
-        ok &= miss <= tol.HEAT_END_MISS_CELLS * field.h
+        ok &= miss <= HEAT_END_MISS_CELLS * field.h
         w = np.linspace(0.0, 1.0, levels + 1)[None, :, None]
         paths = paths + w * (end.foot - paths[:, -1])[:, None, :]
-        thin = near.dist <= tol.HEAT_THIN_GAP * field.h
+        thin = near.dist <= HEAT_THIN_GAP * field.h
         fallback = thin | ~ok | ~np.all(np.isfinite(paths), axis=(1, 2))
         paths[fallback] = _straight(start[fallback], near.foot[fallback], levels)
         near.pos = np.where(fallback, near.pos, end.pos)

@@ -17,10 +17,12 @@ as polylines (heat-propagation gradients, composite ball-morph arcs) with the sa
 
 import numpy as np
 
-from .. import tolerances as tol
 from ..options import check_option
 
 __all__ = ["KINDS", "BallPaths", "SampledPaths", "LevelPaths", "LinearPaths", "midpoint_locus"]
+
+#: Points along each trajectory used to tabulate arc length for uniform-speed traversal.
+ARC_TABLE_SAMPLES = 16
 
 KINDS = ("hat", "linear", "tangent", "circular", "parabolic")
 
@@ -218,7 +220,7 @@ class BallPaths:
         # Arc length L(s): a table at ARC_TABLE_SAMPLES nodes, each interval integrated by
         # 3-point Gauss-Legendre, and between nodes the same rule from the node below (so the
         # table and the evaluation agree exactly); inverted by Newton steps from a linear guess.
-        n = tol.ARC_TABLE_SAMPLES
+        n = ARC_TABLE_SAMPLES
         k = len(self.p)
         s = np.linspace(0.0, 1.0, n + 1)
         pieces = np.zeros((k, n))
@@ -233,7 +235,7 @@ class BallPaths:
     def _arc_length(self, s):
         """L(s) per path for s of shape (K,): the tabulated length at the node below s plus the
         same Gauss-Legendre rule from there."""
-        n = tol.ARC_TABLE_SAMPLES
+        n = ARC_TABLE_SAMPLES
         j = np.clip(np.floor(s * n).astype(np.int64), 0, n - 1)
         half = 0.5 * (s - j / n)
         mid = j / n + half
@@ -243,8 +245,8 @@ class BallPaths:
         return np.take_along_axis(self._L, j[:, None], 1)[:, 0] + half * total
 
     def _parabola_parameter(self, t):
-        f = t * tol.ARC_TABLE_SAMPLES
-        j = min(int(f), tol.ARC_TABLE_SAMPLES - 1)
+        f = t * ARC_TABLE_SAMPLES
+        j = min(int(f), ARC_TABLE_SAMPLES - 1)
         u = f - j
         s = (1 - u) * self._s_of_tau[:, j] + u * self._s_of_tau[:, j + 1]
         target = t * self._par_len

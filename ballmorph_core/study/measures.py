@@ -38,6 +38,19 @@ __all__ = [
     "strip_mesh",
 ]
 
+#: Default number of time steps ``T`` (``eps = 1 / T``) at which the quality measures sample a
+#: morph (paper section 6).
+MEASURE_STEPS = 40
+
+#: Default sample count of the quality measures along the longer curve (their geodesic spacing
+#: is its length over this), independent of how densely the input was drawn.
+MEASURE_SAMPLES = 200
+
+#: Acceleration measure: a local frame triangle (sample, neighbour now, neighbour next) whose
+#: sine of its angle at the sample is below this is degenerate (the neighbour does not move, or
+#: moves along the edge) and gives no barycentric coordinates.
+DEGENERATE_FRAME = 1e-6
+
 #: The keys of :func:`measure`'s result, in the paper's order (smaller is better for each).
 MEASURES = (
     "travel_distance",
@@ -203,7 +216,7 @@ def _frame_coordinates(edge, neighbour_step, velocity):
     a = edge
     b = edge + neighbour_step
     det = _cross(a, b)
-    ok = np.abs(det) > tol.DEGENERATE_FRAME * np.linalg.norm(a, axis=2) * np.linalg.norm(b, axis=2)
+    ok = np.abs(det) > DEGENERATE_FRAME * np.linalg.norm(a, axis=2) * np.linalg.norm(b, axis=2)
     safe = np.where(ok, det, 1.0)
     x = np.where(ok, _cross(velocity, b) / safe, 0.0)
     y = np.where(ok, _cross(a, velocity) / safe, 0.0)
@@ -247,7 +260,7 @@ def accelerations(frames, closed):
     stays bounded as ``T`` grows, and like the paper's it is a discrete quantity, to be
     compared between morphs at the same ``u`` and ``T``.
 
-    A triangle whose sine of its angle at ``p_t`` is below ``tolerances.DEGENERATE_FRAME`` (the
+    A triangle whose sine of its angle at ``p_t`` is below ``DEGENERATE_FRAME`` (the
     neighbour does not move, or moves along the edge) has no frame: the other side's term
     counts in full, and if neither side has a frame at both steps the term is 0. A stroke's end
     has only one side. Just above that threshold the frame is ill-conditioned: where a morph
@@ -418,7 +431,7 @@ def measure(
     method="circular-ball",
     closed=False,
     spacing=None,
-    steps=tol.MEASURE_STEPS,
+    steps=MEASURE_STEPS,
     height=None,
     **options,
 ):
@@ -433,7 +446,7 @@ def measure(
     closed : bool
     spacing : float, optional
         Geodesic spacing ``u`` of the samples on P (forward) and on Q (backward), the same for
-        both. Default: the longer curve's length over ``tolerances.MEASURE_SAMPLES``, so the
+        both. Default: the longer curve's length over ``MEASURE_SAMPLES``, so the
         result does not depend on how densely the input curves were drawn. The acceleration
         and the maximum squared mean curvature depend on ``u`` and ``steps`` (discrete
         quantities, as in the paper): compare methods at the same values.
@@ -473,7 +486,7 @@ def measure(
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
         raise InvalidCurveError(f"steps must be an integer >= 2, got {steps!r}")
     if spacing is None:
-        spacing = max(curve_length(P, closed), curve_length(Q, closed)) / tol.MEASURE_SAMPLES
+        spacing = max(curve_length(P, closed), curve_length(Q, closed)) / MEASURE_SAMPLES
     if height is None:
         height = scale_of(P, Q)
     if not (isinstance(height, (int, float, np.number)) and np.isfinite(height) and height > 0):

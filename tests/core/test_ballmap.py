@@ -15,7 +15,7 @@ from shapes import (
 )
 
 import ballmorph_core as bm
-from ballmorph_core import tolerances as tol
+from ballmorph_core.ballmap import check
 from ballmorph_core.geometry.intersections import is_simple
 from ballmorph_core.geometry.polyline import vertex_normals
 
@@ -222,7 +222,7 @@ def _check_contact_invariants(P, Q, closed, corr, slope_p=None, slope_q=None):
     fine_q = bm.geometry.polyline.resample(Q, closed, count=4 * len(Q))
     pts = np.concatenate([fine_p, fine_q])
     d = np.linalg.norm(pts[None, :, :] - corr.centers[:, None, :], axis=2).min(axis=1)
-    slack = tol.NONLOCAL_RELATIVE * r + tol.NONLOCAL_PENETRATION * corr.spacing
+    slack = check.NONLOCAL_RELATIVE * r + check.NONLOCAL_PENETRATION * corr.spacing
     assert np.all(d >= r - slack - 1e-9)
     # m - p is normal to P at p and m - q normal to Q at q.
     big = r > 0.2 * r.max()

@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from shapes import circle
 
-from ballmorph_core import tolerances as tol
+from ballmorph_core.drawing import matching
 from ballmorph_core.drawing.matching import (
     _assign_within,
     _loop_shape,
@@ -85,7 +85,7 @@ def test_loop_in_opposite_orientation_from_another_vertex():
     assert m.pairs[0] == (0, 0, True)
     assert all(not r for _, _, r in m.pairs[1:])
     # Started between two of B's samples: the cost is at most about half a sample spacing.
-    half_spacing = 0.5 * 7.0 / tol.MATCH_SAMPLES / np.hypot(2.0, 2.4)  # perimeter ~6.9
+    half_spacing = 0.5 * 7.0 / matching.MATCH_SAMPLES / np.hypot(2.0, 2.4)  # perimeter ~6.9
     assert 0 < m.costs[0] < half_spacing
     # The flag means opposite orientation: reversing B's loop restores A's.
     assert np.sign(signed_area(backwards)) != np.sign(signed_area(head))
@@ -131,7 +131,7 @@ def test_translated_and_deformed_drawing_keeps_index_pairing():
     m = match_strokes(strokes, b, closed, closed)
     assert m.method == "index", m.reason
     assert m.pairs == identity_pairs(len(strokes))
-    assert 0 < max(m.costs) < tol.MATCH_INDEX_MAX_COST
+    assert 0 < max(m.costs) < matching.MATCH_INDEX_MAX_COST
     np.testing.assert_allclose(m.motion, move, atol=0.05)
 
 
@@ -192,7 +192,7 @@ def test_mixed_cyclic_pair_pays_the_penalty():
     loop = circle(1.0, 40)
     m = match_strokes([loop], [loop], [True], [False])
     assert m.pairs == [(0, 0, False)]
-    assert m.costs[0] == pytest.approx(tol.MATCH_CYCLIC_PENALTY, abs=1e-6)
+    assert m.costs[0] == pytest.approx(matching.MATCH_CYCLIC_PENALTY, abs=1e-6)
 
 
 def test_degenerate_strokes_and_empty_keys():
@@ -261,7 +261,7 @@ def test_solver_agrees_with_brute_force(data):
 
 @given(st.data())
 def test_thresholded_assignment_agrees_with_brute_force(data):
-    limit = tol.MATCH_MAX_COST
+    limit = matching.MATCH_MAX_COST
     cost = _matrix(data, 0, 1) * 2 * limit
     rows, cols = _assign_within(cost)
     assert np.all(cost[rows, cols] < limit)
