@@ -1311,12 +1311,13 @@ def _growth_scenes():
         yield _scene(
             f"ball-{factor:g}x-alone",
             11,
-            f"a ball growing {factor:g}× while it moves 3",
+            f"a ball {'growing' if factor > 1 else 'shrinking to'} {factor:g}× while it moves 3",
             (key([circle(r)], True), key([circle(r * factor, (3.0, 0.0))], True)),
             [figure_unpaired],
         )
         a, b = (_rolling_ball(radius, x) for radius, x in ((r, 0.0), (r * factor, 5.0)))
-        about = f"a ball growing {factor:g}× as it rolls 5, with its shadow, the ground, a post and a bird"
+        how = "growing" if factor > 1 else "shrinking to"
+        about = f"a ball {how} {factor:g}× as it rolls 5, with its shadow, the ground, a post and a bird"
         cyclic = [False, True, True, False, False]
         yield _scene(f"ball-{factor:g}x-in-drawing", 11, about, (key(a, cyclic), key(b, cyclic)), [figure_unpaired])
 

@@ -31,7 +31,8 @@ def _rows(scene):
     return ours, theirs, result, seconds
 
 
-def _table(lines):
+def print_table(lines):
+    """Print rows of strings as a table (the first row is the header)."""
     widths = [max(len(row[i]) for row in lines) for i in range(len(lines[0]))]
     for n, row in enumerate(lines):
         print(" | ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip())
@@ -75,7 +76,7 @@ def main(argv):
             pairs = ", ".join(f"{p.stroke_a}->{p.stroke_b} {p.method}" for p in result.pairs)
             lines.append(("", "pairs", pairs[:100], "", "", ""))
             lines += [("", m.level.lower(), m.text[:100], "", "", "") for m in result.messages]
-    _table(lines)
+    print_table(lines)
     print(
         f"\n{len(chosen) - len(failed)} of {len(chosen)} scenes meet every goal; core time {total:.1f}s, "
         f"whole run {time.perf_counter() - started:.1f}s. Failing: {', '.join(failed) or 'none'}"
