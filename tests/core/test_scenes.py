@@ -20,7 +20,7 @@ from scenes import Stroke
 def _params():
     for name, scene in scenes.SCENES.items():
         reason = scenes.XFAIL_TODAY.get(name)
-        marks = [pytest.mark.xfail(strict=True, reason=reason)] if reason else []
+        marks = [pytest.mark.xfail(strict=True, raises=AssertionError, reason=reason)] if reason else []
         yield pytest.param(scene, id=name, marks=marks)
 
 
