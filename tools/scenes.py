@@ -604,13 +604,28 @@ def figure_middle_chord(keys, frames, times, angle):
     return _within("middle chord turned", value, t * angle, 5.0, "°")
 
 
-def figure_length_kept(keys, frames, times, tolerance=0.05, cyclic=None):
-    """Length of the longest stroke on every in-between within ``tolerance`` of the keys' blend."""
-    la, lb = (_main(k, cyclic).length for k in keys)
+def _off_blend(keys, frames, times, measure):
+    """Worst ``|measure(frame) / ((1 - t) measure(A) + t measure(B)) - 1|`` over the in-betweens.
+
+    ``measure(drawing)`` returns a float, or None when the drawing lacks what it measures
+    (then the figure is infinite: it cannot be met).
+    """
+    ma, mb = (measure(k) for k in keys)
     worst = 0.0
     for frame, t in zip(frames, times):
-        stroke = _main(frame, cyclic)
-        worst = max(worst, np.inf if stroke is None else abs(stroke.length / ((1 - t) * la + t * lb) - 1))
+        value = measure(frame)
+        worst = max(worst, np.inf if value is None else abs(value / ((1 - t) * ma + t * mb) - 1))
+    return worst
+
+
+def _of_main(cyclic, f):
+    """``measure(drawing)``: ``f`` of the longest stroke (see :func:`_main`), None without one."""
+    return lambda drawing: None if _main(drawing, cyclic) is None else f(_main(drawing, cyclic))
+
+
+def figure_length_kept(keys, frames, times, tolerance=0.05, cyclic=None):
+    """Length of the longest stroke on every in-between within ``tolerance`` of the keys' blend."""
+    worst = _off_blend(keys, frames, times, _of_main(cyclic, lambda s: s.length))
     return _at_most("length change, worst frame", worst, tolerance, _percent(worst), f"≤ {_percent(tolerance)}")
 
 
@@ -666,12 +681,7 @@ def figure_middle_rotation(keys, frames, times, angle):
 
 def figure_area_kept(keys, frames, times, tolerance=0.05):
     """Area of the longest loop on every in-between within ``tolerance`` of the keys' blend."""
-    aa, ab = (abs(signed_area(_main(k, True).xy)) for k in keys)
-    worst = 0.0
-    for frame, t in zip(frames, times):
-        stroke = _main(frame, True)
-        area = np.nan if stroke is None else abs(signed_area(stroke.xy))
-        worst = max(worst, abs(area / ((1 - t) * aa + t * ab) - 1)) if np.isfinite(area) else np.inf
+    worst = _off_blend(keys, frames, times, _of_main(True, lambda s: abs(signed_area(s.xy))))
     return _at_most("area change, worst frame", worst, tolerance, _percent(worst), f"≤ {_percent(tolerance)}")
 
 
@@ -839,12 +849,7 @@ def figure_star(keys, frames, times, which, tolerance):
 
     Informative: how much a tip may pinch is a judgement, not a specification.
     """
-    ka, kb = (star_measures(_main(k, True).xy)[which] for k in keys)
-    worst = 0.0
-    for frame, t in zip(frames, times):
-        stroke = _main(frame, True)
-        value = np.inf if stroke is None else star_measures(stroke.xy)[which]
-        worst = max(worst, abs(value / ((1 - t) * ka + t * kb) - 1))
+    worst = _off_blend(keys, frames, times, _of_main(True, lambda s: star_measures(s.xy)[which]))
     name = ("tip radius", "valley radius", "tip sharpness")[which] + " off the keys' blend, worst"
     return _at_most(name, worst, tolerance, _percent(worst), f"≤ {_percent(tolerance)}", informative=True)
 
@@ -976,8 +981,7 @@ def _ink(drawing):
 
 def figure_ink_blend(keys, frames, times, tolerance=0.1):
     """Ink length (sum of stroke lengths) on every in-between against the keys' blend."""
-    la, lb = _ink(keys[0]), _ink(keys[1])
-    worst = max(abs(_ink(f) / ((1 - t) * la + t * lb) - 1) for f, t in zip(frames, times))
+    worst = _off_blend(keys, frames, times, _ink)
     return _at_most("ink length off the blend, worst", worst, tolerance, _percent(worst), f"≤ ±{_percent(tolerance)}")
 
 
