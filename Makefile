@@ -1,7 +1,7 @@
 # Two commands matter: `make demo` (the main job) and `make test` (everything CI runs).
 # Both bootstrap their own cached Python 3.11 + bpy environments (tools/bootstrap.sh).
 
-.PHONY: demo test lint build core-demo evaluate bench fuzz
+.PHONY: demo test lint build core-demo evaluate bench fuzz scenes
 
 demo:
 	tools/demo.sh
@@ -20,6 +20,11 @@ core-demo:
 
 evaluate:
 	$$(tools/bootstrap.sh 5.0.1) tools/evaluate.py
+
+# The animator-style scenes of issues 11 and 12 (tools/scenes.py): every figure of the core next to
+# the Blender-like baseline, in a few seconds (tools/scenes_blender.py adds Blender's own Interpolate).
+scenes:
+	$$(tools/bootstrap.sh 5.0.1) tools/scenes_report.py
 
 # Both benchmark tools: tools/benchmark.py (inside bpy) runs tools/bench_ballmap.py (plain CPython)
 # itself and writes docs/benchmark.md; 10-12 minutes on two shared cores.
