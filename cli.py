@@ -269,7 +269,7 @@ class _Run:
                     f"objects: {there})"
                 )
             if obj.type != "GREASEPENCIL":
-                kind = obj.type.replace("_", " ").lower()
+                kind = reports.object_kind(obj.type)
                 raise BadArgumentsError(f"--object '{name}' is a {kind}, not a Grease Pencil object")
             chosen.append(obj)
         return chosen

@@ -119,8 +119,8 @@ def selected_or_current(layer, current_frame):
     >>> selected_or_current(LayerKeys("Ink", keys=(1, 5, 9), selected=(1, 5, 9)), 30)
     ([(1, 5), (5, 9)], [])
     """
-    keys = list(layer.keys)
-    selected = [n for n in keys if n in set(layer.selected)]
+    keys, chosen = list(layer.keys), set(layer.selected)
+    selected = [n for n in keys if n in chosen]
     if len(selected) >= 2:
         return _with_room(layer, list(zip(selected[:-1], selected[1:])))
     if len(keys) < 2:

@@ -13,6 +13,7 @@ __all__ = [
     "LEVELS",
     "frames_text",
     "failure",
+    "object_kind",
     "no_object",
     "method_unavailable",
     "no_layers",
@@ -63,6 +64,11 @@ def failure(exc):
     return f"{type(exc).__name__}: {exc}"
 
 
+def object_kind(object_type):
+    """Blender's object type id as a word: ``'LIGHT_PROBE'`` -> ``'light probe'``."""
+    return object_type.replace("_", " ").lower()
+
+
 def is_warning(level):
     """Whether a report level asks for attention (a warning or an error)."""
     return level in (WARNING, ERROR)
@@ -78,9 +84,8 @@ def no_object(active_name=None, active_type=None):
     """
     if active_name is None:
         return f"No Grease Pencil object is active: select one and run {_NAME} again"
-    kind = active_type.replace("_", " ").lower()
     return (
-        f"The active object '{active_name}' is a {kind}, not a Grease Pencil object: "
+        f"The active object '{active_name}' is a {object_kind(active_type)}, not a Grease Pencil object: "
         f"make a Grease Pencil object active and run {_NAME} again"
     )
 
