@@ -1,10 +1,14 @@
 """Operators: thin glue that reads Grease Pencil data, calls the core, writes the result.
 
-``inbetween`` holds the operator; ``keys`` finds key intervals, ``morph`` computes them with
-the core, ``writer`` writes the frames all or nothing, ``generated`` remembers which frames
-the add-on made, ``grease_pencil`` is the only code that moves stroke data, ``options``
-declares the options once for the operator, the scene settings and the preferences, and
-``plans`` keeps the last run's plans for a redo.
+``inbetween`` holds the operator, a thin caller of ``service``, which in-betweens one object
+(the command line, ``cli.py``, calls it too). The service's steps: ``keys`` reads which layers
+and keys there are, ``pairing`` decides which keys pair up and which frames to write,
+``morph`` computes an interval with the core, ``writer`` writes the frames all or nothing, and
+``reports`` words what happened. ``generated`` remembers which frames the add-on made,
+``grease_pencil`` is the only code that moves stroke data, ``options`` declares the options
+once (with their core values) for the operator, the scene settings, the preferences and the
+command line, and ``plans`` keeps the last run's plans for a redo. ``pairing`` and ``reports``
+never import bpy: plain CPython tests them (tests/addon).
 """
 
 import bpy

@@ -1,7 +1,7 @@
 """Compute the in-betweens of one key interval: read both keys, ease, call the core.
 
-Nothing is written here: the operator computes every interval first and writes only when all
-of them are ready (see :mod:`.writer`).
+Nothing is written here: the service (:mod:`.service`) computes every interval first and writes
+only when all of them are ready (see :mod:`.writer`).
 """
 
 from dataclasses import dataclass, field
@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..ballmorph_core import StrokeSet, ease
-from . import grease_pencil
+from . import grease_pencil, reports
 from .plans import PLANS
 
 __all__ = ["Morphed", "morph_interval"]
@@ -20,11 +20,13 @@ _SINGULAR_DETERMINANT = 1e-12
 
 @dataclass
 class Morphed:
-    """The in-betweens of one :class:`.keys.Interval`, ready to write.
+    """The in-betweens of one :class:`.pairing.Interval`, ready to write.
 
     Attributes
     ----------
-    interval : keys.Interval
+    layer : bpy.types.GreasePencilLayer
+        The layer to write them on.
+    interval : pairing.Interval
     frames : list of StrokeSet
         One per ``interval.targets``, in layer space.
     messages : list of (level, text)
@@ -33,6 +35,7 @@ class Morphed:
         The core method that made the frames.
     """
 
+    layer: object
     interval: object
     frames: list
     messages: list = field(default_factory=list)
@@ -63,22 +66,27 @@ def _selection(key_a, key_b, messages):
     """Strokes to morph in each key and the first key's strokes to hold, for 'selected only'."""
     if not key_a.selected.any() or not key_b.selected.any():
         which = "first" if not key_a.selected.any() else "second"
-        messages.append(("INFO", f"no stroke is selected in the {which} key: all strokes were in-betweened"))
+        messages.append((reports.INFO, f"no stroke is selected in the {which} key: all strokes were in-betweened"))
         return key_a, key_b, None
     held = key_a.subset(np.flatnonzero(~key_a.selected))
     return key_a.subset(np.flatnonzero(key_a.selected)), key_b.subset(np.flatnonzero(key_b.selected)), held
 
 
-def morph_interval(interval, options, core_method):
+def morph_interval(layer, interval, values, method):
     """In-betweens of one interval.
+
+    This is the one place where the options reach the core: an option added to
+    :data:`.options.OPTIONS` for the morph is passed on here.
 
     Parameters
     ----------
-    interval : keys.Interval
-    options : dict
-        The operator's options (see :data:`.options.OPTIONS`).
-    core_method : str
-        The core's name of the method.
+    layer : bpy.types.GreasePencilLayer
+    interval : pairing.Interval
+        An interval of ``layer``.
+    values : dict
+        The options' values (:func:`.options.values_of`: the core's lowercase names).
+    method : str
+        The core method to use (``values['method']``, or the fallback morph).
 
     Returns
     -------
@@ -90,13 +98,10 @@ def morph_interval(interval, options, core_method):
     ballmorph_core.BallMorphError, ValueError
         When the core cannot in-between these keys at all.
     """
-    layer = interval.layer
     matrix = grease_pencil.layer_matrix(layer)
     identity = np.array_equal(matrix, np.eye(4))
     if not identity and abs(np.linalg.det(matrix[:3, :3])) < _SINGULAR_DETERMINANT:
-        raise ValueError(
-            f"layer '{layer.name}' has a flat transform (zero scale): give the layer a non-zero scale to in-between it"
-        )
+        raise ValueError(reports.flat_transform(layer.name))
     to_morph, to_layer = (None, None) if identity else (matrix, np.linalg.inv(matrix))
     key_a = grease_pencil.read_strokes(_frame(layer, interval.frame_a).drawing, to_morph)
     key_b = grease_pencil.read_strokes(_frame(layer, interval.frame_b).drawing, to_morph)
@@ -106,25 +111,22 @@ def morph_interval(interval, options, core_method):
         bad = ~np.isfinite(key.positions).all(axis=1)
         if bad.any():
             strokes = np.unique(np.searchsorted(key.offsets, np.flatnonzero(bad), side="right") - 1)
-            raise ValueError(
-                f"the key on frame {number} has points with invalid (NaN or infinite) coordinates in stroke(s) "
-                f"{', '.join(map(str, strokes[:6].tolist()))}: redraw or delete those strokes"
-            )
+            raise ValueError(reports.invalid_coordinates(number, strokes.tolist()))
     messages, held = [], None
-    if options["selected_only"]:
+    if values["selected_only"]:
         key_a, key_b, held = _selection(key_a, key_b, messages)
-    times = ease(interval.fractions, options["easing_type"], options["easing"])
+    times = ease(interval.fractions, values["easing_type"], values["easing"])
     # The times only enter at the evaluation: a redo with another frame count or easing reuses
     # the plan (matching, ball-maps, carriers) of the same keys and options.
     plan = PLANS.plan(
         key_a,
         key_b,
-        method=core_method,
-        carrier=options["carrier"],
-        matching=options["matching"],
-        unmatched=options["unmatched"],
+        method=method,
+        carrier=values["carrier"],
+        matching=values["matching"],
+        unmatched=values["unmatched"],
     )
     result = plan.evaluate(times)
     messages.extend((message.level, message.text) for message in result.messages)
     frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
-    return Morphed(interval, [_to_layer_space(frame, to_layer) for frame in frames], messages, core_method)
+    return Morphed(layer, interval, [_to_layer_space(frame, to_layer) for frame in frames], messages, method)

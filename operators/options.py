@@ -1,9 +1,15 @@
-"""The operator's options, declared once: enum tables, defaults, and the map to core names.
+"""The operator's options, declared once: enum items with their core values, labels, defaults.
 
-The same options appear three times in Blender: on the operator (what F9 edits), on the
-scene (what the sidebar panel shows) and in the add-on preferences (the defaults). Each of
-those builds its properties from :data:`OPTIONS` here, so labels, defaults and enum ids
-never drift apart.
+The same options appear four times: on the operator (what F9 edits), on the scene (what the
+sidebar panel shows), in the add-on preferences (the defaults) and on the command line
+(``blender -c ballmorph``). Each builds its options from :data:`OPTIONS` here, so labels,
+defaults, Blender's enum ids and the values passed on never drift apart.
+
+One vocabulary: every enum item pairs Blender's id (``'CIRCULAR_BALL'``, the operator's API)
+with its lowercase value (``'circular-ball'``): the core's own name for it, or, for the
+add-on's own options (``layers``), the word the command line takes. Everything past the
+Blender properties works with values: :func:`values_of` reads them from any holder of the
+properties, and only values reach the core.
 """
 
 from dataclasses import dataclass
@@ -15,59 +21,67 @@ from ..ballmorph_core import METHODS as CORE_METHODS
 __all__ = [
     "OPTIONS",
     "OPTION_NAMES",
+    "Item",
     "Option",
-    "CORE_METHOD",
-    "method_label",
+    "option",
+    "values_of",
+    "label",
     "method_available",
     "property_annotations",
     "draw_options",
 ]
 
-# Operator enum id -> (core method name, label, description). The ids are the operator's API.
+
+@dataclass(frozen=True)
+class Item:
+    """One enum item: Blender's id, the lowercase value it stands for, what the animator reads."""
+
+    id: str
+    value: str
+    label: str
+    description: str
+    icon: str = "NONE"
+
+
 _METHODS = (
-    (
+    Item(
         "CIRCULAR_BALL",
         "circular-ball",
         "Circular Ball-morph",
         "Points travel on circular arcs tangent to both strokes: smooth, tight in-betweens",
     ),
-    (
-        "LINEAR_BALL",
-        "linear-ball",
-        "Linear Ball-morph",
-        "Points travel straight between ball-map partners",
-    ),
-    (
+    Item("LINEAR_BALL", "linear-ball", "Linear Ball-morph", "Points travel straight between ball-map partners"),
+    Item(
         "PARABOLIC_BALL",
         "parabolic-ball",
         "Parabolic Ball-morph",
         "Points travel on parabolas through the maximal-disk centres",
     ),
-    (
+    Item(
         "LINEAR_INTERPOLATION",
         "linear-interpolation",
         "Linear Interpolation",
         "Arc-length matched points move in straight lines (like Blender's Interpolate)",
     ),
-    (
+    Item(
         "CLOSEST_PROJECTION",
         "closest-projection",
         "Closest Projection",
         "Each point moves to its closest point on the other stroke (comparison morph)",
     ),
-    (
+    Item(
         "CURVATURE_INTERPOLATION",
         "curvature-interpolation",
         "Curvature Interpolation",
         "Edge lengths and turning angles are blended (Sederberg et al.; comparison morph)",
     ),
-    (
+    Item(
         "LAPLACE_BLENDING",
         "laplace-blending",
         "Laplace Blending",
         "Laplacian coordinates are blended (comparison morph)",
     ),
-    (
+    Item(
         "HEAT_PROPAGATION",
         "heat-propagation",
         "Heat Propagation",
@@ -75,38 +89,42 @@ _METHODS = (
     ),
 )
 
-#: Operator method id -> core method name.
-CORE_METHOD = {ident: core for ident, core, _, _ in _METHODS}
-
-
-def method_label(ident):
-    """The animator-facing name of an operator method id."""
-    return next(label for i, _, label, _ in _METHODS if i == ident)
-
-
-def method_available(ident):
-    """Whether the vendored core implements this method."""
-    return CORE_METHOD.get(ident) in CORE_METHODS
-
-
 _EASING_TYPES = (
-    ("LINEAR", "Linear", "Straight-line interpolation between A and B (no easing)", "IPO_LINEAR"),
-    ("SINE", "Sinusoidal", "Sinusoidal easing (weakest, almost linear but with a slight curvature)", "IPO_SINE"),
-    ("QUAD", "Quadratic", "Quadratic easing", "IPO_QUAD"),
-    ("CUBIC", "Cubic", "Cubic easing", "IPO_CUBIC"),
-    ("QUART", "Quartic", "Quartic easing", "IPO_QUART"),
-    ("QUINT", "Quintic", "Quintic easing", "IPO_QUINT"),
-    ("EXPO", "Exponential", "Exponential easing (dramatic)", "IPO_EXPO"),
-    ("CIRC", "Circular", "Circular easing (strongest and most dynamic)", "IPO_CIRC"),
-    ("BACK", "Back", "Cubic easing with overshoot and settle", "IPO_BACK"),
-    ("BOUNCE", "Bounce", "Exponentially decaying parabolic bounce, like when objects collide", "IPO_BOUNCE"),
-    ("ELASTIC", "Elastic", "Exponentially decaying sine wave, like an elastic band", "IPO_ELASTIC"),
+    Item("LINEAR", "linear", "Linear", "Straight-line interpolation between A and B (no easing)", "IPO_LINEAR"),
+    Item(
+        "SINE",
+        "sine",
+        "Sinusoidal",
+        "Sinusoidal easing (weakest, almost linear but with a slight curvature)",
+        "IPO_SINE",
+    ),
+    Item("QUAD", "quad", "Quadratic", "Quadratic easing", "IPO_QUAD"),
+    Item("CUBIC", "cubic", "Cubic", "Cubic easing", "IPO_CUBIC"),
+    Item("QUART", "quart", "Quartic", "Quartic easing", "IPO_QUART"),
+    Item("QUINT", "quint", "Quintic", "Quintic easing", "IPO_QUINT"),
+    Item("EXPO", "expo", "Exponential", "Exponential easing (dramatic)", "IPO_EXPO"),
+    Item("CIRC", "circ", "Circular", "Circular easing (strongest and most dynamic)", "IPO_CIRC"),
+    Item("BACK", "back", "Back", "Cubic easing with overshoot and settle", "IPO_BACK"),
+    Item(
+        "BOUNCE",
+        "bounce",
+        "Bounce",
+        "Exponentially decaying parabolic bounce, like when objects collide",
+        "IPO_BOUNCE",
+    ),
+    Item("ELASTIC", "elastic", "Elastic", "Exponentially decaying sine wave, like an elastic band", "IPO_ELASTIC"),
 )
 _EASING_MODES = (
-    ("AUTO", "Automatic Easing", "Ease in for most types; ease out for Back, Bounce and Elastic", "IPO_EASE_IN_OUT"),
-    ("EASE_IN", "Ease In", "Only on the end closest to the next key", "IPO_EASE_IN"),
-    ("EASE_OUT", "Ease Out", "Only on the end closest to the first key", "IPO_EASE_OUT"),
-    ("EASE_IN_OUT", "Ease In and Out", "Segment between both keys", "IPO_EASE_IN_OUT"),
+    Item(
+        "AUTO",
+        "auto",
+        "Automatic Easing",
+        "Ease in for most types; ease out for Back, Bounce and Elastic",
+        "IPO_EASE_IN_OUT",
+    ),
+    Item("EASE_IN", "ease-in", "Ease In", "Only on the end closest to the next key", "IPO_EASE_IN"),
+    Item("EASE_OUT", "ease-out", "Ease Out", "Only on the end closest to the first key", "IPO_EASE_OUT"),
+    Item("EASE_IN_OUT", "ease-in-out", "Ease In and Out", "Segment between both keys", "IPO_EASE_IN_OUT"),
 )
 
 
@@ -114,7 +132,8 @@ _EASING_MODES = (
 class Option:
     """One option: its kind ('ENUM', 'INT', 'BOOLEAN'), label, description and default.
 
-    ``items`` are ``(id, label, description[, icon])`` for enums.
+    ``default`` is a value (for an enum: an item's lowercase value, not its Blender id);
+    ``items`` are the enum's :class:`Item`s.
     """
 
     name: str
@@ -126,10 +145,30 @@ class Option:
     min: int = 0
     soft_max: int = 0
 
+    @property
+    def values(self):
+        """The lowercase values of an enum's items, in order."""
+        return tuple(item.value for item in self.items)
+
+    def item(self, key):
+        """The item whose Blender id or value is ``key``."""
+        for item in self.items:
+            if key in (item.id, item.value):
+                return item
+        raise KeyError(f"option {self.name!r} has no item {key!r}")
+
+    def value(self, stored):
+        """The value of what a Blender property holds (an enum's id becomes its item's value)."""
+        return self.item(stored).value if self.kind == "ENUM" else stored
+
+    def blender(self, value):
+        """What a Blender property holds for a value (an enum's value becomes its item's id)."""
+        return self.item(value).id if self.kind == "ENUM" else value
+
     def raw(self, value):
-        """The value as Blender stores it (the item number for an enum)."""
+        """A value as Blender stores it in an ID property (the item number for an enum)."""
         if self.kind == "ENUM":
-            return [item[0] for item in self.items].index(value)
+            return self.items.index(self.item(value))
         return value
 
 
@@ -139,8 +178,8 @@ OPTIONS = (
         "ENUM",
         "Morph",
         "How points travel from the first key to the second",
-        "CIRCULAR_BALL",
-        items=tuple((i, label, desc) for i, _, label, desc in _METHODS),
+        "circular-ball",
+        items=_METHODS,
     ),
     Option(
         "frame_count",
@@ -151,17 +190,17 @@ OPTIONS = (
         min=0,
         soft_max=48,
     ),
-    Option("easing_type", "ENUM", "Easing", "Interpolation easing (Blender's easing types)", "LINEAR", _EASING_TYPES),
-    Option("easing", "ENUM", "Ease", "Which ends of the motion the easing affects", "EASE_IN", _EASING_MODES),
+    Option("easing_type", "ENUM", "Easing", "Interpolation easing (Blender's easing types)", "linear", _EASING_TYPES),
+    Option("easing", "ENUM", "Ease", "Which ends of the motion the easing affects", "ease-in", _EASING_MODES),
     Option(
         "layers",
         "ENUM",
         "Layers",
         "Which layers to in-between",
-        "ACTIVE",
+        "active",
         (
-            ("ACTIVE", "Active", "The active layer only"),
-            ("ALL", "All", "Every visible, unlocked layer"),
+            Item("ACTIVE", "active", "Active", "The active layer only"),
+            Item("ALL", "all", "All", "Every visible, unlocked layer"),
         ),
     ),
     Option(
@@ -176,11 +215,16 @@ OPTIONS = (
         "ENUM",
         "Carrier Motion",
         "Overall motion carried along for strokes that moved, turned or grew between the keys",
-        "SIMILARITY",
+        "similarity",
         (
-            ("SIMILARITY", "Similarity", "Move, turn and scale along a steady spiral, then ball-morph the shape"),
-            ("RIGID", "Rigid", "Move and turn only, then ball-morph the shape"),
-            ("NONE", "None", "Pure ball-morph: no carrier motion"),
+            Item(
+                "SIMILARITY",
+                "similarity",
+                "Similarity",
+                "Move, turn and scale along a steady spiral, then ball-morph the shape",
+            ),
+            Item("RIGID", "rigid", "Rigid", "Move and turn only, then ball-morph the shape"),
+            Item("NONE", "none", "None", "Pure ball-morph: no carrier motion"),
         ),
     ),
     Option(
@@ -188,10 +232,10 @@ OPTIONS = (
         "ENUM",
         "Stroke Matching",
         "How the strokes of the two keys are paired",
-        "AUTO",
+        "auto",
         (
-            ("AUTO", "Automatic", "By index when the stroke counts agree, otherwise by shape and position"),
-            ("INDEX", "By Index", "The i-th stroke of one key with the i-th stroke of the other"),
+            Item("AUTO", "auto", "Automatic", "By index when the stroke counts agree, otherwise by shape and position"),
+            Item("INDEX", "index", "By Index", "The i-th stroke of one key with the i-th stroke of the other"),
         ),
     ),
     Option(
@@ -199,20 +243,51 @@ OPTIONS = (
         "ENUM",
         "Unmatched Strokes",
         "What a stroke without a partner in the other key does",
-        "MIDDLE",
+        "middle",
         (
-            ("MIDDLE", "Switch Halfway", "Shown until (or from) the middle of the in-betweens"),
-            ("HOLD", "Hold", "Shown unchanged on every in-between"),
+            Item("MIDDLE", "middle", "Switch Halfway", "Shown until (or from) the middle of the in-betweens"),
+            Item("HOLD", "hold", "Hold", "Shown unchanged on every in-between"),
         ),
     ),
 )
 
 OPTION_NAMES = tuple(option.name for option in OPTIONS)
+_BY_NAME = {option.name: option for option in OPTIONS}
+
+
+def option(name):
+    """The :class:`Option` called ``name``."""
+    return _BY_NAME[name]
+
+
+def values_of(data):
+    """Every option's value as held by ``data`` (operator, scene settings or preferences).
+
+    Returns
+    -------
+    dict
+        ``{option name: value}``: an enum's lowercase value (``'circular-ball'``), the number or
+        flag of the others. This is what the in-betweening service takes.
+    """
+    return {option.name: option.value(getattr(data, option.name)) for option in OPTIONS}
+
+
+def label(name, value):
+    """The animator-facing label of an enum value (the value itself if the option has no such item)."""
+    try:
+        return option(name).item(value).label
+    except KeyError:
+        return value
+
+
+def method_available(value):
+    """Whether the vendored core implements this method (a value of the ``method`` option)."""
+    return value in CORE_METHODS
 
 
 def _enum_items(option):
     """Blender enum items with explicit numbers (needed by get/set callbacks)."""
-    return [(*item[:3], item[3] if len(item) > 3 else "NONE", number) for number, item in enumerate(option.items)]
+    return [(item.id, item.label, item.description, item.icon, number) for number, item in enumerate(option.items)]
 
 
 def property_annotations(flags=None, getter=None, setter=None):
@@ -235,7 +310,7 @@ def property_annotations(flags=None, getter=None, setter=None):
             kwargs["get"] = getter(option)
             kwargs["set"] = setter(option)
         else:
-            kwargs["default"] = option.default
+            kwargs["default"] = option.blender(option.default)
         if option.kind == "ENUM":
             annotations[option.name] = bpy.props.EnumProperty(items=_enum_items(option), **kwargs)
         elif option.kind == "INT":

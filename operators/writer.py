@@ -3,7 +3,7 @@
 Frames this add-on made earlier between the keys are removed first (their strokes are kept in
 memory); then every in-between frame is created and filled. If anything fails, the frames this
 run created are removed, the earlier ones restored and the record of generated frames put back,
-so the layers are as they were, and the error is raised again for the operator to report.
+so the layers are as they were, and the error is raised again for the caller to report.
 """
 
 from dataclasses import dataclass
@@ -21,7 +21,7 @@ class _Removed:
 
 
 def _remove_earlier(morphed, removed):
-    layer = morphed.interval.layer
+    layer = morphed.layer
     frames = {frame.frame_number: frame for frame in layer.frames}
     for number in morphed.interval.replace:
         strokes = grease_pencil.read_strokes(frames[number].drawing)
@@ -60,7 +60,7 @@ def write_all(grease_pencil_data, morphed_list):
         for morphed in morphed_list:
             _remove_earlier(morphed, removed)
         for morphed in morphed_list:
-            layer = morphed.interval.layer
+            layer = morphed.layer
             for number, strokes in zip(morphed.interval.targets.tolist(), morphed.frames):
                 frame = _new_breakdown(layer, number)
                 created.append((layer, number))

@@ -110,7 +110,7 @@ OURS_OPTIONS = {
 # Stages of one operator run: stage -> (module under the add-on, attribute path) to wrap. Names
 # that are missing (the core is being reworked) are skipped and the stage shows "n/a".
 STAGES = {
-    "keys": [("operators.keys", "find_intervals")],
+    "keys": [("operators.keys", "layer_keys"), ("operators.pairing", "intervals")],
     "read": [("operators.grease_pencil", "read_strokes")],
     "core": [("operators.plans", "PlanCache.plan"), ("ballmorph_core.drawing.plan", "InbetweenPlan.evaluate")],
     "match": [("ballmorph_core.drawing.plan", "match_strokes")],
@@ -602,7 +602,7 @@ def run_case(case, methods, replace):
                 case.redo = _redo_timed(case, ours_obj)
                 clean = _cold(ours_obj, case)
                 slow = case.ours[GOAL_METHOD].median > STAGE_SLOW
-                core_name = addon_module("operators.options").CORE_METHOD[GOAL_METHOD]
+                core_name = addon_module("operators.options").option("method").value(GOAL_METHOD)
                 runs = 1 if slow else STAGE_RUNS
                 case.stages = stage_times(lambda: call(GOAL_METHOD), clean, runs, core_name)
                 if replace:
@@ -938,9 +938,9 @@ def method_notes(cases):
   discarded warm-up; then at least {MIN_RUNS} runs and {BUDGET:g} s, at most {MAX_RUNS}; runs over
   {SLOW:g} s stop after {SLOW_RUNS}. The median is reported.
 - **Stages.** Separate runs of the circular ball-morph with the add-on's functions wrapped
-  (outermost call of each stage, `perf_counter`): `keys.find_intervals`, `grease_pencil.read_strokes`,
-  `PlanCache.plan` and `InbetweenPlan.evaluate` (the core) and inside them `match_strokes`,
-  `ball_maps`/`dense_maps`, the trajectories (`BallPaths` construction, every paths class's
+  (outermost call of each stage, `perf_counter`): `keys.layer_keys` + `pairing.intervals`,
+  `grease_pencil.read_strokes`, `PlanCache.plan` and `InbetweenPlan.evaluate` (the core) and
+  inside them `match_strokes`, `ball_maps`/`dense_maps`, the trajectories (`BallPaths` construction, every paths class's
   `at`, `Morph.frames`/`__call__`, the batch's `carrier_at`), `_assemble`; `writer.write_all`.
   The wrappers add a few microseconds per call; stages that the core no longer has show n/a.
 - **Peak memory.** One cold run per operator and drawing, each in a fresh bpy process (this

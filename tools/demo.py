@@ -77,7 +77,8 @@ def new_shot(name, x_offset, materials):
     bpy.context.scene.collection.objects.link(obj)
     for mat in materials:
         data.materials.append(mat)
-    data.layers.new("Ink")
+    # Flat 2D ink: the strokes show their material colours whatever the lights (Workbench has none)
+    data.layers.new("Ink").use_lights = False
     return obj
 
 

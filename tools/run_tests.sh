@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The project's one test command (README's `make test`, and .ci/run): lint, the core tests in
-# plain CPython, the extension's validate + build with Blender's own tool, then the Blender
-# tests inside bpy 4.5 LTS and 5.0. Bootstraps its own cached environments.
+# The project's one test command (README's `make test`, and .ci/run): lint, the core tests and the
+# add-on's bpy-free decision tests in plain CPython, the extension's validate + build with Blender's
+# own tool, then the Blender tests inside bpy 4.5 LTS and 5.0. Bootstraps its own cached environments.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 BPY_VERSIONS="${BPY_VERSIONS:-4.5.15 5.0.1}"
@@ -12,8 +12,8 @@ echo "== lint (ruff)"
 "$bin/ruff" check .
 "$bin/ruff" format --check .
 
-echo "== core tests (plain CPython, no bpy imported), with the fuzz target's short profile"
-timeout 1200 "$py" -m pytest -q tests/core tests/fuzz
+echo "== core and add-on decision tests (plain CPython, no bpy imported), with the fuzz target's short profile"
+timeout 1200 "$py" -m pytest -q tests/core tests/addon tests/fuzz
 
 echo "== extension: validate and build with Blender's own tool"
 tools/build_extension.sh

@@ -3,6 +3,7 @@
 import glob
 import os
 import subprocess
+import sys
 import tempfile
 
 import bpy
@@ -45,7 +46,8 @@ def test_built_zip_installs_and_runs(zip_repo):
     assert module in bpy.context.preferences.addons
     installed = os.path.join(directory, ADDON_ID)
     assert os.path.isfile(os.path.join(installed, "blender_manifest.toml"))
-    assert os.path.isfile(os.path.join(installed, "ballmorph_core", "inbetween.py"))
+    assert os.path.isfile(os.path.join(installed, "ballmorph_core", "__init__.py"))
+    assert os.path.isfile(os.path.join(installed, "cli.py"))  # blender -c ballmorph
     for left_out in ("tests", "tools", "Makefile", "pyproject.toml", "README.md"):
         assert not os.path.exists(os.path.join(installed, left_out)), left_out
 
@@ -57,3 +59,4 @@ def test_built_zip_installs_and_runs(zip_repo):
     assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
     assert [f.keyframe_type for f in layer.frames if 1 < f.frame_number < 5] == ["BREAKDOWN"] * 3
     assert bpy.types.BALLMORPH_OT_inbetween.__module__.startswith(module)
+    assert sys.modules[f"{module}.cli"]._handle is not None  # the command is registered

@@ -1,0 +1,225 @@
+"""In-between one Grease Pencil object: the one service the operator and the command line share.
+
+:func:`inbetween_object` does everything the operator promises, for one object and its chosen
+layers:
+
+1. finds the key intervals of each layer with a *pairing rule* (:mod:`.pairing`: the operator's
+   selected keys or current frame, or every key pair for ``blender -c ballmorph``), skipping
+   locked and hidden layers;
+2. computes every interval with the core (:mod:`.morph`), writing nothing yet; an interval whose
+   morph fails unexpectedly is redone whole with the core's fallback morph, and one that still
+   fails is left out, never the others;
+3. writes all frames at once, all or nothing (:mod:`.writer`);
+4. returns what happened per layer (:class:`ObjectResult`): the reports the operator passes to
+   ``self.report`` and the command line prints, and the intervals written.
+
+It takes the options as values (:func:`.options.values_of`), never reads the context, and never
+reports itself, so both callers say the same things.
+"""
+
+from dataclasses import dataclass, field
+
+from ..ballmorph_core import FALLBACK_METHOD, BallMorphError
+from . import keys, morph, options, pairing, reports, writer
+from .plans import PLANS
+
+__all__ = ["LayerResult", "ObjectResult", "Progress", "check_options", "inbetween_object"]
+
+
+@dataclass
+class LayerResult:
+    """What happened on one layer.
+
+    Attributes
+    ----------
+    name : str
+        The layer's name.
+    reports : list of (level, text)
+        In order: why the layer or some keys were skipped, then per interval what was written
+        (or why not) and what the morph said.
+    written : list of (pairing.Interval, str)
+        The intervals written and the core method that made each.
+    """
+
+    name: str
+    reports: list = field(default_factory=list)
+    written: list = field(default_factory=list)
+
+    @property
+    def frames(self):
+        """Number of frames written on this layer."""
+        return sum(len(interval.targets) for interval, _ in self.written)
+
+
+@dataclass
+class ObjectResult:
+    """What happened on one Grease Pencil object.
+
+    Attributes
+    ----------
+    name : str
+        The object's name.
+    layers : list of LayerResult
+        The layers the ``layers`` option chose, in stacking order.
+    error : str
+        Why nothing at all was written ('' otherwise): no layer to work on, or the write failed
+        (then nothing was changed).
+    """
+
+    name: str
+    layers: list = field(default_factory=list)
+    error: str = ""
+
+    @property
+    def frames(self):
+        """Number of frames written."""
+        return 0 if self.error else sum(layer.frames for layer in self.layers)
+
+    @property
+    def layers_written(self):
+        return sum(layer.frames > 0 for layer in self.layers)
+
+    def reports(self):
+        """Every layer's reports, layer by layer (the error is separate)."""
+        return [report for layer in self.layers for report in layer.reports]
+
+    @property
+    def warnings(self):
+        """Number of reports that ask for attention (warnings and errors)."""
+        return sum(reports.is_warning(level) for level, _ in self.reports())
+
+
+class Progress:
+    """Where the service says how far it is: the operator shows it in the window, the command
+    line on stderr. This one says nothing."""
+
+    def begin(self, total):
+        """``total`` intervals are about to be computed."""
+
+    def step(self, done, interval):
+        """``done`` intervals are computed; ``interval`` (a :class:`.pairing.Interval`) is next."""
+
+    def end(self):
+        """Computing is over (also after an error)."""
+
+
+def check_options(values):
+    """Why these option values cannot run at all ('' when they can)."""
+    if not options.method_available(values["method"]):
+        return reports.method_unavailable(options.label("method", values["method"]))
+    return ""
+
+
+def inbetween_object(obj, values, rule, progress=None):
+    """In-between the key intervals of a Grease Pencil object's chosen layers.
+
+    Parameters
+    ----------
+    obj : bpy.types.Object
+        A Grease Pencil (v3) object.
+    values : dict
+        The options' values (:func:`.options.values_of`), checked by :func:`check_options`.
+    rule : callable
+        ``rule(layer_keys) -> (pairs, problems)``, e.g. :func:`.pairing.every_pair` or
+        ``functools.partial(pairing.selected_or_current, current_frame=...)``.
+    progress : Progress, optional
+
+    Returns
+    -------
+    ObjectResult
+        Nothing was written when its ``frames`` is 0: then its reports (or its error) say why.
+        Keys are never modified; frames the animator drew are never overwritten or removed.
+    """
+    progress = progress or Progress()
+    data = obj.data
+    result = ObjectResult(obj.name)
+    layers = keys.target_layers(data, values["layers"])
+    if not layers:
+        result.error = reports.no_layers(obj.name, values["layers"])
+        return result
+    # With every layer chosen, a layer that has nothing to pair is normal; on the one layer
+    # the animator chose, it is worth a warning.
+    problem_level = reports.INFO if values["layers"] == "all" else reports.WARNING
+    work = []
+    for layer in layers:
+        layer_result = LayerResult(layer.name)
+        result.layers.append(layer_result)
+        blocker = keys.layer_blocker(layer)
+        if blocker:
+            layer_result.reports.append((reports.WARNING, blocker))
+            continue
+        found = keys.layer_keys(data, layer)
+        pairs, problems = rule(found)
+        layer_result.reports.extend((problem_level, text) for text in problems)
+        found_intervals = pairing.intervals(found, pairs, values["frame_count"])
+        work.extend((layer, layer_result, interval) for interval in found_intervals)
+
+    outcomes = _compute(work, values, progress)
+    morphed = [item for _, _, item, _ in outcomes if item is not None]
+    if morphed:
+        try:
+            writer.write_all(data, morphed)
+        except Exception as exc:  # the writer restored the layers; say why nothing changed
+            result.error = reports.write_failed(exc)
+            return result
+    for layer_result, interval, item, problem in outcomes:
+        if item is None:
+            layer_result.reports.append(problem)
+            continue
+        layer_result.written.append((interval, item.method))
+        layer_result.reports.extend(
+            reports.interval_reports(interval, options.label("method", item.method), item.messages)
+        )
+    return result
+
+
+def _compute(work, values, progress):
+    """Morph every interval (nothing written): ``(layer result, interval, Morphed or None, problem)``."""
+    outcomes = []
+    progress.begin(len(work))
+    PLANS.begin()
+    try:
+        for done, (layer, layer_result, interval) in enumerate(work):
+            progress.step(done, interval)
+            outcomes.append((layer_result, interval, *_morph(layer, interval, values)))
+    finally:
+        PLANS.end()
+        progress.end()
+    return outcomes
+
+
+def _morph(layer, interval, values):
+    """``(Morphed, None)`` for an interval, or ``(None, (level, text))`` saying why not."""
+    if len(interval.targets) == 0:
+        return None, (reports.WARNING, reports.all_drawn(interval.name))
+    try:
+        item = morph.morph_interval(layer, interval, values, values["method"])
+    except (BallMorphError, ValueError) as exc:  # the keys themselves cannot be in-betweened
+        return None, (reports.WARNING, f"{interval.name}: {exc}")
+    except Exception as exc:  # a bug: never lose the other intervals to it
+        return _fall_back(layer, interval, values, exc)
+    if item is None:
+        return None, (reports.WARNING, reports.both_keys_empty(interval.name))
+    return item, None
+
+
+def _fall_back(layer, interval, values, exc):
+    """Redo an interval whose morph failed unexpectedly with the core's fallback morph, whole.
+
+    Its frames are then made by one morph, never half of them; if the fallback fails too (or
+    was the morph that failed), nothing is written for the interval.
+    """
+    failed = reports.failure(exc)
+    method = values["method"]
+    if method != FALLBACK_METHOD:
+        try:
+            item = morph.morph_interval(layer, interval, values, FALLBACK_METHOD)
+        except Exception as second:  # reported below: nothing written
+            failed += f"; then {options.label('method', FALLBACK_METHOD)}: {reports.failure(second)}"
+        else:
+            if item is None:
+                return None, (reports.WARNING, reports.both_keys_empty(interval.name))
+            text = reports.fell_back(options.label("method", method), failed, options.label("method", FALLBACK_METHOD))
+            item.messages.insert(0, (reports.WARNING, text))
+            return item, None
+    return None, (reports.WARNING, reports.morph_failed(interval.name, failed))
