@@ -9,7 +9,7 @@ are joined and thinned into symmetric samples (:mod:`.thinning`, the paper's app
 comparison; ``'q'`` the mirror.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -76,21 +76,17 @@ class Correspondence:
 
     def inverse(self):
         """The same correspondence read from Q to P (Correspondence)."""
-        return Correspondence(
+        return replace(
+            self,
             p=self.q,
             q=self.p,
-            centers=self.centers,
-            radii=self.radii,
             normal_p=self.normal_q,
             normal_q=self.normal_p,
             s_p=self.s_q,
             s_q=self.s_p,
-            closed=self.closed,
             setup=self.setup.swapped(),
             dense_p=self.dense_q,
             dense_q=self.dense_p,
-            spacing=self.spacing,
-            report=self.report,
         )
 
     @classmethod

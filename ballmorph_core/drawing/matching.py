@@ -62,8 +62,9 @@ from ..geometry.polyline import as_curve, curve_length, resample
 from ..geometry.ragged import Ragged, budget_slices
 from ..morphs.linear import best_cyclic_alignment
 from ..options import MATCHINGS, check_option
+from .assignment import solve_assignment
 
-__all__ = ["Matching", "match_strokes", "solve_assignment"]
+__all__ = ["Matching", "match_strokes"]
 
 #: Stroke matching (ballmorph_core.matching). Costs are root-mean-square distances between
 #: corresponding arc-length samples of two strokes, once the keys' overall motion is removed,
@@ -124,103 +125,6 @@ class Matching:
     reason: str
     costs: list = field(default_factory=list)
     motion: np.ndarray = field(default_factory=lambda: np.zeros(2))
-
-
-def solve_assignment(cost):
-    """Minimum-cost assignment of rows to columns (rectangular allowed).
-
-    Shortest augmenting paths with dual potentials (the Hungarian method in the Jonker-Volgenant
-    form, rectangular variant as described by Crouse, "On implementing 2D rectangular
-    assignment algorithms", IEEE TAES 2016). Each Dijkstra step is one vectorised update over
-    all columns; a row-reduction start assigns every row whose cheapest column is still free.
-
-    Parameters
-    ----------
-    cost : array_like, shape (R, C)
-        Finite costs.
-
-    Returns
-    -------
-    rows, cols : ndarray of int, shape (min(R, C),)
-        Row ``rows[k]`` is assigned column ``cols[k]``; rows sorted. The sum of
-        ``cost[rows, cols]`` is minimal over all assignments of ``min(R, C)`` distinct rows to
-        distinct columns.
-
-    Raises
-    ------
-    InvalidCurveError
-        If ``cost`` is not a 2-D array of finite numbers.
-
-    Examples
-    --------
-    >>> rows, cols = solve_assignment([[4.0, 1.0, 3.0], [2.0, 0.0, 5.0], [3.0, 2.0, 2.0]])
-    >>> rows.tolist(), cols.tolist()
-    ([0, 1, 2], [1, 0, 2])
-    """
-    c = np.array(cost, dtype=np.float64)
-    if c.ndim != 2:
-        raise InvalidCurveError(f"cost: expected a 2-D array, got shape {c.shape}")
-    if not np.all(np.isfinite(c)):
-        raise InvalidCurveError("cost: every entry must be finite")
-    transposed = c.shape[0] > c.shape[1]
-    if transposed:
-        c = c.T
-    n_rows, n_cols = c.shape
-    if n_rows == 0:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-
-    # Row reduction: u_i = min_j c_ij, v = 0 is dual feasible (c_ij - u_i - v_j >= 0, v <= 0),
-    # and a row sitting on its cheapest column has zero reduced cost, so that partial
-    # assignment already satisfies complementary slackness.
-    u = c.min(axis=1)
-    v = np.zeros(n_cols)
-    row4col = np.full(n_cols, -1, np.int64)
-    col4row = np.full(n_rows, -1, np.int64)
-    cheapest = np.argmin(c, axis=1)
-    taken, first_row = np.unique(cheapest, return_index=True)
-    row4col[taken] = first_row
-    col4row[first_row] = taken
-
-    for cur in np.flatnonzero(col4row < 0):
-        shortest = np.full(n_cols, np.inf)
-        path = np.full(n_cols, -1, np.int64)
-        scanned = np.zeros(n_cols, bool)
-        visited_rows = []
-        i, min_val = int(cur), 0.0
-        while True:
-            visited_rows.append(i)
-            reduced = min_val + c[i] - u[i] - v
-            better = ~scanned & (reduced < shortest)
-            path[better] = i
-            shortest[better] = reduced[better]
-            remaining = np.where(scanned, np.inf, shortest)
-            min_val = remaining.min()
-            ties = remaining == min_val
-            free_ties = ties & (row4col < 0)
-            # Prefer a free column among equals: it ends the search at once.
-            j = int(np.argmax(free_ties)) if free_ties.any() else int(np.argmax(ties))
-            scanned[j] = True
-            if row4col[j] < 0:
-                break
-            i = int(row4col[j])
-        # Update the potentials so reduced costs stay >= 0 and the new path is tight.
-        u[cur] += min_val
-        others = np.asarray(visited_rows[1:], np.int64)
-        u[others] += min_val - shortest[col4row[others]]
-        v[scanned] -= min_val - shortest[scanned]
-        # Augment along the path back to the current row.
-        while True:
-            i = int(path[j])
-            row4col[j] = i
-            col4row[i], j = j, int(col4row[i])
-            if i == cur:
-                break
-
-    rows = np.arange(n_rows)
-    if transposed:
-        order = np.argsort(col4row)
-        return col4row[order], rows[order]
-    return rows, col4row.copy()
 
 
 def _clean(points, name, closed):
@@ -581,6 +485,13 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
         reason = f"stroke counts differ ({n_a} vs {n_b}): optimal assignment"
         return _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)
 
+    return _order_or_assignment(key_a, key_b, table, total, rows, cols, motion)
+
+
+def _order_or_assignment(key_a, key_b, table, total, rows, cols, motion):
+    """Equal counts: the drawing order when it fits (see :func:`match_strokes`), else the assignment."""
+    n_a, n_b = key_a.count, key_b.count
+    index = np.arange(n_a)
     index_motion = table.fit_motion(index, index)
     if len(rows) == n_a and np.array_equal(np.sort(rows), index) and np.array_equal(cols[np.argsort(rows)], index):
         # The optimal assignment is the drawing order itself: keep it, however far strokes moved.

@@ -29,16 +29,7 @@ __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
 PLANARITY = 1e-3
 
 
-def inbetween(
-    key_a,
-    key_b,
-    times,
-    method="circular-ball",
-    carrier="similarity",
-    matching="auto",
-    unmatched="middle",
-    spacing=None,
-):
+def inbetween(key_a, key_b, times, *options, **named):
     """In-between drawings of two keys: ``plan_inbetween(key_a, key_b, ...).evaluate(times)``.
 
     Parameters
@@ -47,17 +38,16 @@ def inbetween(
         The two keys (not modified).
     times : array_like, shape (T,)
         Morph times in [0, 1] (already eased; values outside are clamped).
-    method, carrier, matching, unmatched, spacing
-        See :func:`plan_inbetween`.
+    *options, **named
+        ``method``, ``carrier``, ``matching``, ``unmatched``, ``spacing``: see
+        :func:`plan_inbetween`.
 
     Returns
     -------
     InbetweenResult
     """
-    options = _check_inputs(key_a, key_b, method, carrier, matching, unmatched, spacing)
-    times = _check_times(times)
-    # The inputs are checked: build the plan directly rather than check the keys twice.
-    return InbetweenPlan(key_a, key_b, *options).evaluate(times)
+    times = _check_times(times)  # before the expensive part
+    return plan_inbetween(key_a, key_b, *options, **named).evaluate(times)
 
 
 def plan_inbetween(

@@ -160,6 +160,18 @@ class PointTree:
         boxes[nonempty, 3] = np.maximum.reduceat(pts[:, 1], idx)
         return boxes
 
+    def _descend(self, depth, q, node):
+        """The children of the surviving (query, node) pairs, below level ``depth``."""
+        if depth + 1 == len(self.levels):
+            return q, node
+        return np.repeat(q, 2), np.stack([2 * node, 2 * node + 1], axis=1).ravel()
+
+    def _leaf_points(self, q, node):
+        """Every (query, point) of the surviving leaves."""
+        starts, ends, _ = self.levels[-1]
+        owner, local = ragged_arange(ends[node] - starts[node])
+        return q[owner], self.perm[starts[node][owner] + local]
+
     def nearest_d2(self, x):
         """Squared distance from each query point to its nearest point of the tree, shape (K,).
 
@@ -180,15 +192,10 @@ class PointTree:
             bound = np.full(k, np.inf)
             np.minimum.at(bound, q, far)
             keep = near <= bound[q]
-            q, node = q[keep], node[keep]
-            if depth + 1 < len(self.levels):
-                q = np.repeat(q, 2)
-                node = np.stack([2 * node, 2 * node + 1], axis=1).ravel()
-        starts, ends, _ = self.levels[-1]
-        owner, local = ragged_arange(ends[node] - starts[node])
-        pts = self.perm[starts[node][owner] + local]
+            q, node = self._descend(depth, q[keep], node[keep])
+        pq, pts = self._leaf_points(q, node)
         best = np.full(k, np.inf)
-        np.minimum.at(best, q[owner], np.sum(np.square(self.points[pts] - x[q[owner]]), axis=1))
+        np.minimum.at(best, pq, np.sum(np.square(self.points[pts] - x[pq]), axis=1))
         return best
 
     def within(self, centres, radii, first_only=False):
@@ -224,14 +231,9 @@ class PointTree:
                 found_q.append(iq[owner])
                 found_p.append(self.perm[starts[inode][owner] + local])
             keep = near & ~inside
-            q, node = q[keep], node[keep]
-            if depth + 1 < len(self.levels):
-                q = np.repeat(q, 2)
-                node = np.stack([2 * node, 2 * node + 1], axis=1).ravel()
+            q, node = self._descend(depth, q[keep], node[keep])
         # Leaves that cross a boundary: test their points one by one.
-        starts, ends, _ = self.levels[-1]
-        owner, local = ragged_arange(ends[node] - starts[node])
-        pq, pp = q[owner], self.perm[starts[node][owner] + local]
+        pq, pp = self._leaf_points(q, node)
         d2 = np.sum(np.square(self.points[pp] - centres[pq]), axis=1)
         hit = d2 < r2[pq]
         found_q.append(pq[hit])

@@ -123,7 +123,24 @@ class SampledPaths(_Polylines):
         return (1 - u) * self.points[rows, i] + u * self.points[rows, i + 1]
 
 
-class LinearPaths:
+class _Endpoints:
+    """Paths from ``p`` to ``q`` (K of them)."""
+
+    def __len__(self):
+        return len(self.p)
+
+    @property
+    def start(self):
+        """Start points, shape (K, 2)."""
+        return self.p
+
+    @property
+    def end(self):
+        """End points, shape (K, 2)."""
+        return self.q
+
+
+class LinearPaths(_Endpoints):
     """Straight paths from ``p`` to ``q`` at constant speed.
 
     Parameters
@@ -135,17 +152,6 @@ class LinearPaths:
         self.p = np.asarray(p, dtype=np.float64)
         self.q = np.asarray(q, dtype=np.float64)
 
-    def __len__(self):
-        return len(self.p)
-
-    @property
-    def start(self):
-        return self.p
-
-    @property
-    def end(self):
-        return self.q
-
     def lengths(self):
         """Shape (K,)."""
         return np.linalg.norm(self.q - self.p, axis=1)
@@ -155,7 +161,7 @@ class LinearPaths:
         return self.p + float(t) * (self.q - self.p)
 
 
-class BallPaths:
+class BallPaths(_Endpoints):
     """One of the five ball-morph paths for every contact pair.
 
     Parameters
@@ -198,17 +204,6 @@ class BallPaths:
             self._beta = np.arctan2(_cross(a, b), np.einsum("ij,ij->i", a, b))
         elif kind == "parabolic":
             self._init_parabola()
-
-    def __len__(self):
-        return len(self.p)
-
-    @property
-    def start(self):
-        return self.p
-
-    @property
-    def end(self):
-        return self.q
 
     def _speed(self, s):
         """|B'(s)| of the Bezier curves, s of shape (K, ...)."""

@@ -10,12 +10,12 @@ from hypothesis import strategies as st
 from shapes import circle
 
 from ballmorph_core.drawing import matching
+from ballmorph_core.drawing.assignment import solve_assignment
 from ballmorph_core.drawing.matching import (
     _assign_within,
     _loop_shape,
     _padded_total,
     match_strokes,
-    solve_assignment,
 )
 from ballmorph_core.errors import InvalidCurveError
 from ballmorph_core.geometry.polyline import resample, reverse, signed_area
