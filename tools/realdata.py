@@ -1036,10 +1036,15 @@ def morph_table(results):
     return lines
 
 
-def timing_lines(results, wall, jobs):
-    """Markdown lines: wall time, and per family the summed stage times."""
+def timing_lines(results, wall, jobs, load):
+    """Markdown lines: wall time (and the machine's load average when the run began), and per
+    family the summed stage times."""
     cpu = platform.processor() or platform.machine()
-    lines = [f"Wall time {wall:.0f} s on {jobs} process(es) ({os.cpu_count()} CPUs, {cpu}).", ""]
+    lines = [
+        f"Wall time {wall:.0f} s on {jobs} process(es) ({os.cpu_count()} CPUs, {cpu}; load average {load:.1f}"
+        " when the run began: the machine may be shared).",
+        "",
+    ]
     lines += [
         "| family | read + flatten (s) | bm.inbetween (s) | slowest glyph (s) | scoring (s) |",
         "|---|---:|---:|---:|---:|",
@@ -1080,14 +1085,14 @@ METHOD_TEXT = f"""\
   contour order and from the font's start point (components decomposed). TrueType quadratic
   strings are split at their implied on-curve points. Each segment gets a fixed number of
   points (its end included, its start not), the same at every location, so the masters and
-  instances flatten to point-compatible polylines: its control polygon's length averaged over
-  the two keys, divided by {POINT_SPACING:g} ‰ em and rounded, at least 1 per line and 2 per
-  quadratic. The points are thus about evenly spaced, as a drawn stroke's are: a few hundred
-  per glyph (the count of one glyph is in the table of the worst ones). A constant count per
-  segment (tried first: 8 per curve, 4 per line) put 4 points on a 700 ‰ em stem and 8 on a
-  20 ‰ em curve, nothing like a drawing: the core's spline then spiked corners ('A': Hausdorff
-  over 200 ‰ em) and the baseline's resampling cut them. A point repeating its predecessor at
-  every location is dropped. Coordinates are in thousandths of an em (font
+  instances flatten to point-compatible polylines. That number is the segment's control
+  polygon length averaged over the two keys, divided by {POINT_SPACING:g} ‰ em and rounded (at
+  least 1 per line, 2 per quadratic): the points are about evenly spaced, as a drawn stroke's
+  are, a few hundred per glyph (see the table of the worst ones). A constant count per segment
+  (tried first: 8 per curve, 4 per line) put 4 points on a 700 ‰ em stem and 8 on a 20 ‰ em
+  curve, nothing like a drawing: the core's spline then spiked corners ('A': Hausdorff over
+  200 ‰ em) and the baseline's resampling cut them. A point repeating its predecessor at every
+  location is dropped. Coordinates are in thousandths of an em (font
   units x 1000 / unitsPerEm).
 - **Keys and truth.** Keys: the two ends of the weight axis (Thin 100 and Black 900). Truth:
   the instance at weight w in {", ".join(map(str, WEIGHTS))} (fontTools glyph set at that
@@ -1102,11 +1107,15 @@ METHOD_TEXT = f"""\
   on these point-compatible keys that would be the floor, so the baseline stands for keys whose
   points do not correspond, as hand-drawn ones.) *floor*: the designer's straight blend.
 - **Distances.** Between drawings (the union of their contour polylines): samples every
-  {SAMPLE_SPACING:g} ‰ em along each drawing, exact distances to the other's segments (numpy,
-  chunked). Hausdorff: the larger of the two directed maxima (at most {SAMPLE_SPACING / 2:g} ‰ em
-  short). Mean distance: the average of the two directed means. Per family, medians over every
+  {SAMPLE_SPACING:g} ‰ em along each drawing, exact distances to the other's nearest segment
+  (numpy; runs of {BLOCK} segments searched only where their bounding box can hold the nearest).
+  Hausdorff: the larger of the two directed maxima (at most {SAMPLE_SPACING / 2:g} ‰ em short).
+  Mean distance: the average of the two directed means. Per family, medians over every
   (glyph, weight); *ours / floor* is the ratio of the medians. A glyph counts as a win when
   ours' mean distance, averaged over the five weights, is below the baseline's.
+- **Goals.** 1: in every family, ours' median mean distance at most 1.5 times the floor's.
+  2: in every family, ours' median mean distance below the baseline's. 3: no in-between of
+  ours crossing where the truth does not (below).
 - **Crossings.** Segments that cross properly (each one's ends strictly on both sides of the
   other; neighbours along a contour excluded; candidates from a sweep over x). An in-between
   counts as crossing when more of its contours cross themselves, or more pairs of its contours
@@ -1117,7 +1126,7 @@ METHOD_TEXT = f"""\
   out of the medians."""
 
 
-def report(summaries, results, args, wall):
+def report(summaries, results, args, wall, load):
     """The markdown report (docs/realdata.md)."""
     date = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
     options = ", ".join(f"{k}={v!r}" for k, v in core_options(args).items()) or "default options"
@@ -1125,7 +1134,8 @@ def report(summaries, results, args, wall):
     lines = [
         "# Real-data benchmark: Inter glyph outlines (issue 11)",
         "",
-        f"`{command_line(args)}` on {date}, core at commit {git_commit()}; `bm.inbetween` with {options}.",
+        f"`{command_line(args)}` on {date}, core at commit {git_commit()} (its last change);"
+        f" `bm.inbetween` with {options}.",
         f"Glyphs ({len(glyphs)} per family): `{glyphs}`.",
         "",
         "## Goals",
@@ -1170,7 +1180,7 @@ def report(summaries, results, args, wall):
         "",
         "## Timings",
         "",
-        *timing_lines(results, wall, args.jobs),
+        *timing_lines(results, wall, args.jobs, load),
         "",
     ]
     return "\n".join(lines)
@@ -1187,12 +1197,18 @@ def command_line(args):
 
 
 def git_commit():
-    """The repository's HEAD (short), or 'unknown'."""
+    """The last commit that changed ``ballmorph_core/`` (short hash, '+ local changes' when the
+    core differs from it), or 'unknown' outside a git checkout."""
+
+    def git(*args):
+        out = subprocess.run(["git", *args, "--", "ballmorph_core"], cwd=ROOT, capture_output=True, text=True)
+        return out.stdout.strip() if out.returncode == 0 else None
+
     try:
-        out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True)
+        commit, status = git("log", "-1", "--format=%h"), git("status", "--porcelain")
     except OSError:
         return "unknown"
-    return out.stdout.strip() or "unknown"
+    return (commit or "unknown") + (" + local changes" if status else "")
 
 
 # --------------------------------------------------------------------------------------------
@@ -1231,24 +1247,27 @@ def draw_figure(results, path):
     chosen = figure_glyphs(results)
     if not chosen:
         return False
-    fig, axes = plt.subplots(1, len(chosen), figsize=(3.0 * len(chosen), 3.6), squeeze=False)
-    for ax, r in zip(axes[0], chosen):
+    cols = min(3, len(chosen))
+    rows = -(-len(chosen) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 4.6 * rows + 0.4), squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    for ax, r in zip(axes.flat, chosen):
         for name, style in STYLES.items():
             contours, closed = r.figure[name]
             for k, (c, cyc) in enumerate(zip(contours, closed)):
                 pts = np.vstack([c, c[:1]]) if cyc else c
                 ax.plot(pts[:, 0], pts[:, 1], **{**style, "label": style["label"] if k == 0 else None})
         w = next(w for w in r.weights if w.weight == FIGURE_WEIGHT)
+        means = ", ".join(f"{road} {w.scores[road].mean:.1f}" for road in ROADS)
         ax.set_title(
-            f"{r.family} '{r.char}' (t={w.t:.2f})\nmean ours {w.scores['ours'].mean:.1f}, "
-            f"baseline {w.scores['baseline'].mean:.1f}, floor {w.scores['floor'].mean:.1f}",
-            fontsize=8,
+            f"{r.family} '{r.char}', weight {FIGURE_WEIGHT} (t = {w.t:.2f})\nmean distance ‰ em: {means}", fontsize=9
         )
         ax.set_aspect("equal")
-        ax.axis("off")
-    axes[0][0].legend(loc="lower left", fontsize=7, bbox_to_anchor=(0.0, -0.25), ncol=2, frameon=False)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=9, frameon=False)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    fig.savefig(path, dpi=100)
     plt.close(fig)
     return True
 
@@ -1355,14 +1374,14 @@ def main(argv=None):
     """Run the benchmark; print the report or write it (with its figure)."""
     args = parse_args(sys.argv[1:] if argv is None else argv)
     fonts = find_fonts(args.font_dir)
-    start = time.perf_counter()
+    load, start = os.getloadavg()[0], time.perf_counter()
     results = run_benchmark(fonts, args.glyph_chars, core_options(args), args.jobs, args.timeout)
     wall = time.perf_counter() - start
     summaries = [summarise(family, [r for r in results if r.family == family]) for family, _ in fonts]
     if not any(s.glyphs for s in summaries):
         print("realdata: no glyph could be scored", file=sys.stderr)
         return 1
-    text = report(summaries, results, args, wall)
+    text = report(summaries, results, args, wall, load)
     if args.write:
         os.makedirs(os.path.dirname(os.path.abspath(args.write)), exist_ok=True)
         with open(args.write, "w", encoding="utf-8") as f:
