@@ -134,6 +134,11 @@ def test_hausdorff_and_mean_of_nested_squares():
     assert m == pytest.approx(0.5 * (1.0 + (2.0 + 2.0 * arc) / 4.0), abs=1e-4)
 
 
+def test_empty_drawing_is_infinitely_far():
+    square_ref = rd.Reference.of([square(2.0)], [True])
+    assert rd.compare_drawings(rd.Reference.of([], []), square_ref) == (np.inf, np.inf)
+
+
 def test_sample_drawing_spacing():
     pts = rd.sample_drawing([square(2.0)], [True], spacing=0.5)
     assert len(pts) == 16
@@ -246,6 +251,8 @@ def test_score_one_glyph():
     assert result.pairs and set(result.figure) >= {"ours", "baseline", "truth", "thin", "black"}
     missing = rd.score_glyph((rd.FAMILIES[0][0], FONT, "\u0f00", {}, 60.0))
     assert "not in" in missing.error
+    raising = rd.score_glyph((rd.FAMILIES[0][0], FONT, "l", {"spacing": -1.0}, 60.0))  # the core refuses it
+    assert raising.error.startswith("bm.inbetween raised") and not raising.weights
 
 
 def test_pair_reasons_in_brief():
