@@ -1,7 +1,7 @@
 # Two commands matter: `make demo` (the main job) and `make test` (everything CI runs).
 # Both bootstrap their own cached Python 3.11 + bpy environments (tools/bootstrap.sh).
 
-.PHONY: demo test lint build core-demo evaluate bench fuzz scenes
+.PHONY: demo test lint build core-demo evaluate bench fuzz scenes realdata
 
 demo:
 	tools/demo.sh
@@ -39,3 +39,19 @@ bench:
 fuzz:
 	py=$$(tools/bootstrap.sh 5.0.1) && ulimit -v 8000000 && \
 	HYPOTHESIS_PROFILE=fuzz timeout 14400 $$py -m pytest -q --timeout=0 tests/fuzz --hypothesis-show-statistics
+
+# The real-data benchmark (issue 11): Inter's glyph outlines, Thin and Black masters as keys,
+# the font's own instances at weights 300-700 as ground truth; writes docs/realdata.md and
+# docs/realdata.png (about 2 minutes on two cores). It needs the Debian package
+# fonts-inter-variable, installed here when running as root with apt-get; otherwise the tool
+# stops and says how (INTER_FONT_DIR=... points it at the fonts elsewhere).
+INTER_FONT_DIR ?= /usr/share/fonts/truetype/inter-vf
+INTER_FONTS = Inter-roman.var.ttf Inter-italic.var.ttf InterDisplay-roman.var.ttf
+realdata:
+	@for f in $(INTER_FONTS); do [ -f "$(INTER_FONT_DIR)/$$f" ] || missing=1; done; \
+	if [ -n "$$missing" ] && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+		echo "realdata: installing fonts-inter-variable (the Inter variable fonts)"; \
+		DEBIAN_FRONTEND=noninteractive apt-get install -y fonts-inter-variable || \
+		{ apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y fonts-inter-variable; }; \
+	fi
+	INTER_FONT_DIR="$(INTER_FONT_DIR)" $$(tools/bootstrap.sh 5.0.1) tools/realdata.py --write docs/realdata.md
