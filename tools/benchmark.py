@@ -115,22 +115,15 @@ STAGES = {
     "core": [("operators.plans", "PlanCache.plan"), ("ballmorph_core.drawing.plan", "InbetweenPlan.evaluate")],
     "match": [("ballmorph_core.drawing.plan", "match_strokes")],
     "ball-map": [
-        ("ballmorph_core.ballmap.correspondence", "ball_maps"),
-        ("ballmorph_core.drawing.batch", "ball_maps"),
-        ("ballmorph_core.ballmap.correspondence", "dense_maps"),
+        ("ballmorph_core.drawing.pipeline", "map_batch"),
+        ("ballmorph_core.morphs.ball", "ball_map"),
         ("ballmorph_core.morphs.composite", "dense_maps"),
     ],
     "frames": [
-        ("ballmorph_core.morphs.paths", "BallPaths.__init__"),
-        ("ballmorph_core.morphs.paths", "BallPaths.at"),
-        ("ballmorph_core.morphs.paths", "LinearPaths.at"),
-        ("ballmorph_core.morphs.paths", "SampledPaths.at"),
-        ("ballmorph_core.morphs.paths", "LevelPaths.at"),
-        ("ballmorph_core.drawing.batch", "carrier_at"),
-        ("ballmorph_core.morphs.base", "Morph.frames"),
-        ("ballmorph_core.morphs.base", "Morph.__call__"),
+        ("ballmorph_core.drawing.layout", "Layout.__init__"),
+        ("ballmorph_core.drawing.layout", "Layout.evaluate"),
     ],
-    "assemble": [("ballmorph_core.drawing.plan", "_assemble")],
+    "assemble": [("ballmorph_core.drawing.plan", "assemble_frames")],
     "write": [("operators.writer", "write_all")],
 }
 CORE_PARTS = ("match", "ball-map", "frames", "assemble")
@@ -773,6 +766,80 @@ def goals(cases, ballmap_rows, methods):
     return rows
 
 
+def _kind_section(kind, rows, methods, short):
+    """The report's tables for one kind of drawing (lines of markdown)."""
+    lines = []
+    title = "Loops (closed strokes)" if kind == "loops" else "Open strokes"
+    lines += [
+        "",
+        f"## {title}",
+        "",
+        "Median operator time in ms (runs in brackets); ratio = ours / built-in; points = points"
+        " of one in-between frame. Our runs are cold (no plan kept from an earlier run);"
+        " *redo* is a circular run on the same keys with another easing, as F9 does (the"
+        " kept plan re-evaluated at the new times, then written).",
+        "",
+        "| strokes x points x in-betweens | built-in | "
+        + " | ".join(short.get(m, m) for m in methods)
+        + " | redo | "
+        + " | ".join(f"{short.get(m, m)} / built-in" for m in methods)
+        + " | redo / built-in | points built-in / ours |",
+        "|---|" + "---:|" * (1 + 2 * len(methods) + 3),
+    ]
+    for c in rows:
+        redo = c.redo.median if c.redo is not None else None
+        cells = [f"{_ms(c.builtin.median)} ({len(c.builtin.seconds)})"]
+        cells += [f"{_ms(c.ours[m].median)} ({len(c.ours[m].seconds)})" for m in methods]
+        cells.append(f"{_ms(redo)} ({len(c.redo.seconds)})" if redo is not None else "n/a")
+        cells += [f"{c.ours[m].median / c.builtin.median:.1f}" for m in methods]
+        cells.append(f"{redo / c.builtin.median:.1f}" if redo is not None else "n/a")
+        ours_points = c.ours[methods[0]].points
+        cells.append(f"{c.builtin.points} / {ours_points}")
+        lines.append(f"| {c.label} | " + " | ".join(cells) + " |")
+    staged = [c for c in rows if c.stages]
+    if staged:
+        lines += [
+            "",
+            f"### {title}: where a circular ball-morph run spends its time (ms)",
+            "",
+            f"Instrumented operator runs (median of {STAGE_RUNS}; one for runs over {STAGE_SLOW:g} s)."
+            " *keys*: finding the keys and target frames; *read*: reading both keys into"
+            " StrokeSets; *core*: planning (`plan_inbetween`) and evaluating the plan, and inside it *match*"
+            " (stroke pairing), *ball-map* (`ball_maps`, all stroke pairs; *per pair* = ball-map"
+            " / pairs), *frames* (frames evaluation: building the trajectories, evaluating them"
+            " and the carrier at every in-between time), *assemble* (attributes and StrokeSets"
+            " per frame) and *core rest* (plane fit, registration, crossings and lenses,"
+            " fallbacks); *write*: the Blender write-back of every frame; *other*: the"
+            " operator's own overhead. *fallbacks*: stroke pairs that did not use the circular"
+            " ball-morph.",
+            "",
+            "| size | operator | keys | read | core | match | ball-map | per pair | frames | assemble"
+            " | core rest | write | other | pairs | fallbacks |",
+            "|---|" + "---:|" * 14,
+        ]
+        columns = ("operator", "keys", "read", "core", "match", "ball-map", "per pair", "frames", "assemble")
+        columns += ("core rest", "write", "other")
+        for c in staged:
+            cells = [_ms(c.stages[k]) for k in columns]
+            cells += [str(int(c.stages["pairs"])), str(int(c.stages["fallbacks"]))]
+            lines.append(f"| {c.label} | " + " | ".join(cells) + " |")
+    replaced = [c for c in rows if c.replace is not None]
+    if replaced:
+        lines += [
+            "",
+            f"### {title}: re-running over the in-betweens it made (circular, ms)",
+            "",
+            "| size | from a clean drawing | replacing its earlier in-betweens |",
+            "|---|---:|---:|",
+        ]
+        for c in replaced:
+            lines.append(
+                f"| {c.label} | {_ms(c.ours[GOAL_METHOD].median)} | {_ms(c.replace.median)} "
+                f"({len(c.replace.seconds)}) |"
+            )
+    return lines
+
+
 def report(cases, methods, ballmap_rows, info, wall, argv):
     short = {"CIRCULAR_BALL": "circular", "LINEAR_BALL": "linear", "PARABOLIC_BALL": "parabolic"}
     lines = [
@@ -800,76 +867,8 @@ def report(cases, methods, ballmap_rows, info, wall, argv):
         lines.append(f"| {goal} | {measured} | {'pass' if ok else '**FAIL**'} |")
     for kind in KINDS:
         rows = [c for c in cases if c.kind == kind]
-        if not rows:
-            continue
-        title = "Loops (closed strokes)" if kind == "loops" else "Open strokes"
-        lines += [
-            "",
-            f"## {title}",
-            "",
-            "Median operator time in ms (runs in brackets); ratio = ours / built-in; points = points"
-            " of one in-between frame. Our runs are cold (no plan kept from an earlier run);"
-            " *redo* is a circular run on the same keys with another easing, as F9 does (the"
-            " kept plan re-evaluated at the new times, then written).",
-            "",
-            "| strokes x points x in-betweens | built-in | "
-            + " | ".join(short.get(m, m) for m in methods)
-            + " | redo | "
-            + " | ".join(f"{short.get(m, m)} / built-in" for m in methods)
-            + " | redo / built-in | points built-in / ours |",
-            "|---|" + "---:|" * (1 + 2 * len(methods) + 3),
-        ]
-        for c in rows:
-            redo = c.redo.median if c.redo is not None else None
-            cells = [f"{_ms(c.builtin.median)} ({len(c.builtin.seconds)})"]
-            cells += [f"{_ms(c.ours[m].median)} ({len(c.ours[m].seconds)})" for m in methods]
-            cells.append(f"{_ms(redo)} ({len(c.redo.seconds)})" if redo is not None else "n/a")
-            cells += [f"{c.ours[m].median / c.builtin.median:.1f}" for m in methods]
-            cells.append(f"{redo / c.builtin.median:.1f}" if redo is not None else "n/a")
-            ours_points = c.ours[methods[0]].points
-            cells.append(f"{c.builtin.points} / {ours_points}")
-            lines.append(f"| {c.label} | " + " | ".join(cells) + " |")
-        staged = [c for c in rows if c.stages]
-        if staged:
-            lines += [
-                "",
-                f"### {title}: where a circular ball-morph run spends its time (ms)",
-                "",
-                f"Instrumented operator runs (median of {STAGE_RUNS}; one for runs over {STAGE_SLOW:g} s)."
-                " *keys*: finding the keys and target frames; *read*: reading both keys into"
-                " StrokeSets; *core*: planning (`plan_inbetween`) and evaluating the plan, and inside it *match*"
-                " (stroke pairing), *ball-map* (`ball_maps`, all stroke pairs; *per pair* = ball-map"
-                " / pairs), *frames* (frames evaluation: building the trajectories, evaluating them"
-                " and the carrier at every in-between time), *assemble* (attributes and StrokeSets"
-                " per frame) and *core rest* (plane fit, registration, crossings and lenses,"
-                " fallbacks); *write*: the Blender write-back of every frame; *other*: the"
-                " operator's own overhead. *fallbacks*: stroke pairs that did not use the circular"
-                " ball-morph.",
-                "",
-                "| size | operator | keys | read | core | match | ball-map | per pair | frames | assemble"
-                " | core rest | write | other | pairs | fallbacks |",
-                "|---|" + "---:|" * 14,
-            ]
-            columns = ("operator", "keys", "read", "core", "match", "ball-map", "per pair", "frames", "assemble")
-            columns += ("core rest", "write", "other")
-            for c in staged:
-                cells = [_ms(c.stages[k]) for k in columns]
-                cells += [str(int(c.stages["pairs"])), str(int(c.stages["fallbacks"]))]
-                lines.append(f"| {c.label} | " + " | ".join(cells) + " |")
-        replaced = [c for c in rows if c.replace is not None]
-        if replaced:
-            lines += [
-                "",
-                f"### {title}: re-running over the in-betweens it made (circular, ms)",
-                "",
-                "| size | from a clean drawing | replacing its earlier in-betweens |",
-                "|---|---:|---:|",
-            ]
-            for c in replaced:
-                lines.append(
-                    f"| {c.label} | {_ms(c.ours[GOAL_METHOD].median)} | {_ms(c.replace.median)} "
-                    f"({len(c.replace.seconds)}) |"
-                )
+        if rows:
+            lines += _kind_section(kind, rows, methods, short)
     probed = [c for c in cases if c.memory]
     if probed:
         ops = [BUILTIN, *methods]
@@ -989,9 +988,7 @@ def _quiet_stdout():
     return console
 
 
-def main(argv=None):
-    global _console
-    argv = sys.argv[1:] if argv is None else argv
+def _parser():
     parser = argparse.ArgumentParser(description="Benchmark the operator against Interpolate Sequence (issue 6).")
     parser.add_argument(
         "--quick", action="store_true", help=f"only {', '.join('x'.join(map(str, s)) for s in QUICK_SIZES)}"
@@ -1005,30 +1002,21 @@ def main(argv=None):
     parser.add_argument("--no-ballmap", action="store_true", help="skip the ball-map scaling table")
     parser.add_argument("--write", metavar="PATH", help="write the markdown report there (else print it)")
     parser.add_argument("--probe", nargs=3, metavar=("KIND", "SIZE", "OP"), help=argparse.SUPPRESS)
-    args = parser.parse_args(argv)
-    _console = _quiet_stdout()
-    if args.probe:  # a child of memory_of()
-        kind, size, op = args.probe
-        say(json.dumps(probe(kind, parse_sizes(size)[0], op)))
-        return 0
+    return parser
 
+
+def _chosen_sizes(args):
     if args.sizes:
         sizes = args.sizes
     elif args.quick:
         sizes = list(QUICK_SIZES)
     else:
         sizes = [(s, p, t) for s in STROKES for p in POINTS for t in INBETWEENS]
-    sizes.sort(key=lambda s: (s[0] * s[1] * s[2], s))
-    memory_sizes = args.memory_sizes if args.memory_sizes is not None else _default_memory_sizes(sizes)
-    kinds = [k for k in args.kinds.split(",") if k]
-    methods = [m for m in args.methods.split(",") if m]
-    for kind in kinds:
-        if kind not in KINDS:
-            parser.error(f"--kinds: {kind!r} is not one of {', '.join(KINDS)}")
+    return sorted(sizes, key=lambda s: (s[0] * s[1] * s[2], s))
 
-    info = machine()
-    say(f"benchmark: bpy {info['bpy']}, {info['cpu']}, nproc {info['nproc']}, commit {info['commit']}")
-    started = time.perf_counter()
+
+def _run_cases(kinds, sizes, methods, started):
+    """Every case timed in this process (the add-on enabled meanwhile)."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     link = enable_addon()
     cases = []
@@ -1045,6 +1033,30 @@ def main(argv=None):
                 )
     finally:
         disable_addon(link)
+    return cases
+
+
+def main(argv=None):
+    global _console
+    argv = sys.argv[1:] if argv is None else argv
+    parser = _parser()
+    args = parser.parse_args(argv)
+    _console = _quiet_stdout()
+    if args.probe:  # a child of memory_of()
+        kind, size, op = args.probe
+        say(json.dumps(probe(kind, parse_sizes(size)[0], op)))
+        return 0
+    sizes = _chosen_sizes(args)
+    memory_sizes = args.memory_sizes if args.memory_sizes is not None else _default_memory_sizes(sizes)
+    kinds = [k for k in args.kinds.split(",") if k]
+    methods = [m for m in args.methods.split(",") if m]
+    for kind in kinds:
+        if kind not in KINDS:
+            parser.error(f"--kinds: {kind!r} is not one of {', '.join(KINDS)}")
+    info = machine()
+    say(f"benchmark: bpy {info['bpy']}, {info['cpu']}, nproc {info['nproc']}, commit {info['commit']}")
+    started = time.perf_counter()
+    cases = _run_cases(kinds, sizes, methods, started)
     for case in cases:
         if case.size in memory_sizes:
             case.memory = memory_of(case, [BUILTIN, *methods])

@@ -71,8 +71,9 @@ def tangent_disks(x, n, a, b, N, eps):
     return best_r, best_u
 
 
-def _smallest_in_windows(x, n, a, b, N, windows, eps):
-    """Smallest tangent disk at each sample over its own window of edges: radii and contacts."""
+def _smallest_in_windows(x, n, edges, windows, eps):
+    """Smallest tangent disk at each sample over its own window of ``edges`` (a, b, N): radii and contacts."""
+    a, b, N = edges
     counts = np.array([len(w) for w in windows])
     owner, _ = ragged_arange(counts)
     e = np.concatenate(windows)
@@ -81,7 +82,7 @@ def _smallest_in_windows(x, n, a, b, N, windows, eps):
     return rr[best], a[e[best]] + uu[best][:, None] * (b[e[best]] - a[e[best]])
 
 
-def disk_between(x0, n0, x1, n1, a, b, N, window_a, window_b, eps, iterations=40):
+def disk_between(ends, edges, windows, eps, iterations=40):
     """Disks tangent to a curve between two samples that touch two other edge windows equally.
 
     For each row, the tangent point moves along the segment from ``x0`` to ``x1`` (normal
@@ -91,12 +92,12 @@ def disk_between(x0, n0, x1, n1, a, b, N, window_a, window_b, eps, iterations=40
 
     Parameters
     ----------
-    x0, n0, x1, n1 : ndarray, shape (J, 2)
-        The two samples and their unit gap normals.
-    a, b, N : ndarray, shape (E, 2)
-        Edges ``a -> b`` of the other curve with their gap normals.
-    window_a, window_b : list of ndarray of int
-        Edge indices per row.
+    ends : tuple of ndarray, each shape (J, 2)
+        ``(x0, n0, x1, n1)``: the two samples and their unit gap normals.
+    edges : tuple of ndarray, each shape (E, 2)
+        ``(a, b, N)``: edges ``a -> b`` of the other curve with their gap normals.
+    windows : tuple of list of ndarray of int
+        ``(window_a, window_b)``: edge indices per row.
     eps : float
     iterations : int
 
@@ -107,6 +108,7 @@ def disk_between(x0, n0, x1, n1, a, b, N, window_a, window_b, eps, iterations=40
     qa, qb : ndarray, shape (J, 2)
         Its contacts in the two windows.
     """
+    x0, n0, x1, n1 = ends
     lo = np.zeros(len(x0))
     hi = np.ones(len(x0))
 
@@ -114,7 +116,7 @@ def disk_between(x0, n0, x1, n1, a, b, N, window_a, window_b, eps, iterations=40
         x = x0 + lam[:, None] * (x1 - x0)
         n = n0 + lam[:, None] * (n1 - n0)
         n /= np.linalg.norm(n, axis=1, keepdims=True)
-        return x, n, [_smallest_in_windows(x, n, a, b, N, w, eps) for w in (window_a, window_b)]
+        return x, n, [_smallest_in_windows(x, n, edges, w, eps) for w in windows]
 
     for _ in range(iterations):
         mid = (lo + hi) / 2

@@ -135,7 +135,7 @@ def _repair(one_way, src, dst, eps):
     s_dst = np.where(better, s_new, s_dst)
     # Put each repaired contact on the lap nearest its old (unwrapped) position.
     s_dst = same_lap(s_dst, one_way.s_dst[idx], dst.rg.length[chain], dst.rg.closed[chain])
-    one_way.put(idx, disk_map(x, n, one_way.s_src[idx], chain, r, q, s_dst, n_edge, eps))
+    one_way.put(idx, disk_map((x, n, one_way.s_src[idx], chain), r, q, s_dst, n_edge, eps))
 
 
 def check_maps(maps, spacing, eps, reports):

@@ -19,12 +19,17 @@ from ..geometry.polyline import as_curve, resolve_spacing, scale_of
 from ..options import SAMPLINGS, check_option
 from .check import check_maps
 from .lacing import one_way
+from .onemap import OneWayMap
 from .report import CompatibilityReport
 from .sides import Sides
 from .thinning import symmetric_samples
 from .topology import PairSetup, orient_pair
 
-__all__ = ["Correspondence", "ball_map", "ball_maps", "DenseMaps", "dense_maps"]
+__all__ = ["Correspondence", "MapBatch", "map_batch", "ball_map", "ball_maps", "DenseMaps", "dense_maps"]
+
+
+#: Fields of a Correspondence that trade places when it is read from Q to P.
+_MIRROR = (("p", "q"), ("normal_p", "normal_q"), ("s_p", "s_q"), ("dense_p", "dense_q"))
 
 
 @dataclass
@@ -76,18 +81,8 @@ class Correspondence:
 
     def inverse(self):
         """The same correspondence read from Q to P (Correspondence)."""
-        return replace(
-            self,
-            p=self.q,
-            q=self.p,
-            normal_p=self.normal_q,
-            normal_q=self.normal_p,
-            s_p=self.s_q,
-            s_q=self.s_p,
-            setup=self.setup.swapped(),
-            dense_p=self.dense_q,
-            dense_q=self.dense_p,
-        )
+        mirrored = {a: getattr(self, b) for pair in _MIRROR for a, b in (pair, pair[::-1])}
+        return replace(self, setup=self.setup.swapped(), **mirrored)
 
     @classmethod
     def from_map(cls, one_way, setup, dense_p, dense_q, spacing, report):
@@ -110,28 +105,6 @@ class Correspondence:
         )
 
 
-def _static(setup, side, spacing):
-    """Coincident curves: every point maps to itself with a zero disk."""
-    s = side.cum[: len(side.pts)]
-    pts = side.pts
-    return Correspondence(
-        p=pts,
-        q=pts.copy(),
-        centers=pts.copy(),
-        radii=np.zeros(len(pts)),
-        normal_p=side.vnormals,
-        normal_q=side.vnormals,
-        s_p=s,
-        s_q=s.copy(),
-        closed=setup.closed,
-        setup=setup,
-        dense_p=pts,
-        dense_q=pts.copy(),
-        spacing=spacing,
-        report=CompatibilityReport("coincident", samples=len(pts)),
-    )
-
-
 def _both_sides(setups, spacing):
     closed = np.array([s.closed for s in setups], dtype=bool)
     sp = Sides([s.P for s in setups], closed, [s.side_p for s in setups], spacing)
@@ -145,6 +118,73 @@ def _count_samples(maps, reports):
         counts = np.bincount(one_way_map.chain, minlength=len(reports))
         for c, report in enumerate(reports):
             report.samples += int(counts[c])
+
+
+@dataclass
+class MapBatch:
+    """The ball-maps of a batch of pairs as arrays, chain after chain.
+
+    Attributes
+    ----------
+    samples : OneWayMap
+        Every pair's samples, sorted by pair (its ``chain``) and along P; a coincident pair's are
+        its dense points with zero disks.
+    offsets : ndarray of int, shape (C + 1,)
+        Pair ``c`` owns samples ``offsets[c]:offsets[c + 1]``.
+    sides_p, sides_q : Sides
+        The dense curves (their ``rg.length`` are the lengths the samples' arc lengths run along).
+    reports : list of CompatibilityReport
+    spacing : ndarray, shape (C,)
+    """
+
+    samples: OneWayMap
+    offsets: np.ndarray
+    sides_p: Sides
+    sides_q: Sides
+    reports: list
+    spacing: np.ndarray
+
+
+def _static_rows(setups, sp):
+    """Coincident pairs: every dense point maps to itself with a zero disk (OneWayMap)."""
+    coincident = np.array([s.coincident for s in setups], dtype=bool)
+    rows = coincident[sp.rg.owner]
+    pts, normals = sp.rg.pts[rows], sp.vnormals[rows]
+    zeros = np.zeros(len(pts))
+    return OneWayMap(
+        pts, pts, pts, zeros, np.ones(len(pts), bool), sp.rg.s[rows], sp.rg.s[rows], normals, normals, sp.rg.owner[rows]
+    )
+
+
+def map_batch(setups, spacing, sampling="symmetric", eps=None):
+    """Ball-maps of many oriented pairs at once, as arrays (MapBatch; see :func:`ball_maps`)."""
+    n = len(setups)
+    spacing = np.broadcast_to(np.asarray(spacing, dtype=np.float64), (n,)).copy()
+    if eps is None:
+        eps = np.array([tol.COINCIDENT * scale_of(s.P, s.Q) for s in setups])
+    eps = float(np.min(eps))
+    # Both one-way maps sample their source at the output spacing; the symmetric thinning then
+    # keeps about one of their union's pairs per spacing (half the spacing would double the work
+    # for no visible gain: every kept pair is an exact contact either way).
+    _, sp, sq, reports = _both_sides(setups, spacing)
+    fwd = one_way(sp, sq, eps) if sampling in ("p", "symmetric") else None
+    bwd = one_way(sq, sp, eps) if sampling in ("q", "symmetric") else None
+    maps = [(m, a, b, d) for m, a, b, d in ((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")) if m is not None]
+    _count_samples(maps, reports)
+    check_maps(maps, spacing, eps, reports)
+    if sampling == "p":
+        out = fwd
+    elif sampling == "q":
+        out = bwd.flipped()
+    else:
+        out = symmetric_samples(fwd, bwd, sp, sq, spacing, spacing, reports)
+    coincident = np.array([s.coincident for s in setups], dtype=bool)
+    if coincident.any():
+        out = OneWayMap.concatenate([out.take(~coincident[out.chain]), _static_rows(setups, sp)])
+        out = out.take(np.argsort(out.chain, kind="stable"))
+    for c in np.flatnonzero(coincident):
+        reports[c] = CompatibilityReport("coincident", samples=int(np.sum(out.chain == c)))
+    return MapBatch(out, np.searchsorted(out.chain, np.arange(n + 1)), sp, sq, reports, spacing)
 
 
 def ball_maps(setups, spacing, sampling="symmetric", check=True, eps=None):
@@ -169,40 +209,18 @@ def ball_maps(setups, spacing, sampling="symmetric", check=True, eps=None):
     -------
     list of Correspondence
     """
-    n = len(setups)
-    if n == 0:
+    if not setups:
         return []
-    spacing = np.broadcast_to(np.asarray(spacing, dtype=np.float64), (n,)).copy()
-    if eps is None:
-        eps = np.array([tol.COINCIDENT * scale_of(s.P, s.Q) for s in setups])
-    eps = float(np.min(eps))
-    # Both one-way maps sample their source at the output spacing; the symmetric thinning then
-    # keeps about one of their union's pairs per spacing (half the spacing would double the work
-    # for no visible gain: every kept pair is an exact contact either way).
-    closed, sp, sq, reports = _both_sides(setups, spacing)
-    fwd = one_way(sp, sq, eps) if sampling in ("p", "symmetric") else None
-    bwd = one_way(sq, sp, eps) if sampling in ("q", "symmetric") else None
-    maps = [(m, a, b, d) for m, a, b, d in ((fwd, sp, sq, "P"), (bwd, sq, sp, "Q")) if m is not None]
-    _count_samples(maps, reports)
-    check_maps(maps, spacing, eps, reports)
-    if sampling == "p":
-        out = fwd
-    elif sampling == "q":
-        out = bwd.flipped()
-    else:
-        out = symmetric_samples(fwd, bwd, sp, sq, spacing, spacing, reports)
-    seg = np.searchsorted(out.chain, np.arange(n + 1))
+    batch = map_batch(setups, spacing, sampling, eps)
     result = []
     for c, setup in enumerate(setups):
+        if check and batch.reports[c].violations:
+            raise IncompatibleCurvesError(batch.reports[c].describe(), batch.reports[c])
+        rows = batch.samples.take(slice(batch.offsets[c], batch.offsets[c + 1]))
+        dense_p, dense_q = batch.sides_p.rg.curve(c), batch.sides_q.rg.curve(c)
         if setup.coincident:
-            result.append(_static(setup, sp.view(c), float(spacing[c])))
-            continue
-        if check and reports[c].violations:
-            raise IncompatibleCurvesError(reports[c].describe(), reports[c])
-        rows = out.take(slice(seg[c], seg[c + 1]))
-        result.append(
-            Correspondence.from_map(rows, setup, sp.rg.curve(c), sq.rg.curve(c), float(spacing[c]), reports[c])
-        )
+            dense_q = dense_p.copy()
+        result.append(Correspondence.from_map(rows, setup, dense_p, dense_q, float(batch.spacing[c]), batch.reports[c]))
     return result
 
 

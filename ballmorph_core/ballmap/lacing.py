@@ -92,8 +92,8 @@ def _lace(src, dst, eps):
         rr = np.where(outside, np.inf, rr)
         pp = np.where(np.isfinite(rr), np.clip(pp, p_lo, p_hi), p_lo)
         r[mid], pos[mid] = rr, pp
-        chain, lo, hi = np.r_[chain, chain], np.r_[lo, mid], np.r_[mid, hi]
-        p_lo, p_hi = np.r_[p_lo, pp], np.r_[pp, p_hi]
+        chain, lo, hi = np.concatenate([chain, chain]), np.concatenate([lo, mid]), np.concatenate([mid, hi])
+        p_lo, p_hi = np.concatenate([p_lo, pp]), np.concatenate([pp, p_hi])
 
 
 def contacts(dst, chain, pos):
@@ -188,8 +188,9 @@ def _keep_order(better, s_new, s_dst, src, length, chain):
     return better
 
 
-def disk_map(x, n, s_src, chain, r, q, s_dst, n_edge, eps):
-    """A OneWayMap from samples, radii (inf: none) and contacts."""
+def disk_map(samples, r, q, s_dst, n_edge, eps):
+    """A OneWayMap from samples ``(x, n, s_src, chain)``, radii (inf: none) and contacts."""
+    x, n, s_src, chain = samples
     ok = np.isfinite(r)
     rr = np.where(ok, r, 0.0)
     m = x + rr[:, None] * n
@@ -218,4 +219,4 @@ def one_way(src, dst, eps):
     r = np.where(better, r_new, r)
     q = np.where(better[:, None], q_new, q)
     s_dst = np.where(better, s_new, s_dst)
-    return disk_map(src.rg.pts, src.vnormals, src.rg.s, chain, r, q, s_dst, n_edge, eps)
+    return disk_map((src.rg.pts, src.vnormals, src.rg.s, chain), r, q, s_dst, n_edge, eps)

@@ -11,6 +11,9 @@ import numpy as np
 
 __all__ = ["OneWayMap"]
 
+#: Fields that trade places when a map is read backwards.
+_MIRROR = (("src", "dst"), ("s_src", "s_dst"), ("n_src", "n_dst"))
+
 
 @dataclass
 class OneWayMap:
@@ -62,15 +65,15 @@ class OneWayMap:
 
     def flipped(self):
         """The same disks read from the target to the source (the check's marks are dropped)."""
-        return replace(
-            self,
-            src=self.dst,
-            dst=self.src,
-            s_src=self.s_dst,
-            s_dst=self.s_src,
-            n_src=self.n_dst,
-            n_dst=self.n_src,
-            bad=None,
+        mirrored = {a: getattr(self, b) for pair in _MIRROR for a, b in (pair, pair[::-1])}
+        return replace(self, bad=None, **mirrored)
+
+    @classmethod
+    def empty(cls):
+        """A map of no sample."""
+        points, values = np.zeros((0, 2)), np.zeros(0)
+        return cls(
+            points, points, points, values, np.zeros(0, bool), values, values, points, points, np.zeros(0, np.int64)
         )
 
     @classmethod

@@ -77,25 +77,24 @@ def _with_held(drawing, shown):
     )
 
 
-def assemble_frames(parts, strokes_a, strokes_b, ka, kb, held, times, plane, unmatched):
+def assemble_frames(parts, plan, times):
     """One StrokeSet per time from every pair's frames and the strokes without a partner.
 
     Parameters
     ----------
     parts : PairFrames
-        Every pair's samples at ``times``.
-    strokes_a, strokes_b : list of KeyStroke
-        Each pair's two strokes.
-    ka, kb : ProjectedKey
-    held : list of Held
+        Every pair's samples at ``times`` (the second strokes' fractions along them as drawn).
+    plan : InbetweenPlan
+        Its ``strokes`` (each pair's two KeyStrokes), projected keys ``ka`` and ``kb``, ``held``
+        strokes, drawing ``plane`` and ``unmatched`` choice.
     times : ndarray, shape (T,)
-    plane : Plane
-    unmatched : {'middle', 'hold'}
 
     Returns
     -------
     list of StrokeSet
     """
+    strokes_a, strokes_b = [a for a, _, _ in plan.strokes], [b for _, b, _ in plan.strokes]
+    ka, kb, held, plane, unmatched = plan.ka, plan.kb, plan.held, plan.plane, plan.unmatched
     index_a = np.array([a.index for a in strokes_a], dtype=np.int64)
     index_b = np.array([b.index for b in strokes_b], dtype=np.int64)
     va, vb = _pair_values(parts, index_a, index_b, ka, kb)

@@ -1,55 +1,91 @@
 """Where every pair's samples sit in a drawing's frames, and how they are evaluated.
 
-The pipeline hands over *segments*: the samples of one chain of one pair (a lens, an overlap, a
-whole pair), either as ball-map contacts ``(p, m, q)`` -- all of them evaluated together as one
-:class:`~ballmorph_core.morphs.paths.BallPaths` -- or as a :class:`~ballmorph_core.morphs.base.Morph`
-(a fallback, a comparison morph, straight point motion). Consecutive chains of a pair share an
-endpoint (a crossing, the end of an overlap), kept once; the last chain of a loop cut into
-pieces ends where the first starts.
+The pipeline hands over the samples of every *chain* (a lens, an overlap, a whole pair): those
+of the ball road as arrays of ball-map contacts ``(p, m, q)`` (:class:`BallRows`), evaluated
+together as one :class:`~ballmorph_core.morphs.paths.BallPaths`, and the others as
+:class:`Segment`\\ s holding a :class:`~ballmorph_core.morphs.base.Morph` (a fallback, a
+comparison morph, straight point motion). Consecutive chains of a pair share an endpoint (a
+crossing, the end of an overlap), kept once; the last chain of a loop cut into pieces ends where
+the first starts.
 """
 
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..geometry.ragged import ragged_arange
 from ..morphs.paths import BallPaths
 
-__all__ = ["Segment", "PairFrames", "Layout"]
+__all__ = ["BallRows", "Segment", "PairFrames", "Layout"]
+
+
+@dataclass
+class BallRows:
+    """The ball road's chains as arrays, chain after chain.
+
+    Attributes
+    ----------
+    pair, order : ndarray of int, shape (H,)
+        Each chain's pair and position along it.
+    sizes : ndarray of int, shape (H,)
+        Samples per chain.
+    range_p, range_q : ndarray, shape (H, 2)
+        Arc-length start and end of each chain's pieces on its pair's curves.
+    static : ndarray of bool, shape (H,)
+        Overlaps (their contacts are the piece's own points).
+    u_p, u_q : ndarray, shape (K,)
+        Each sample's fraction along its chain's pieces of P and Q (as given).
+    p, m, q : ndarray, shape (K, 2)
+        Contacts and disk centres.
+    """
+
+    pair: np.ndarray
+    order: np.ndarray
+    sizes: np.ndarray
+    range_p: np.ndarray
+    range_q: np.ndarray
+    static: np.ndarray
+    u_p: np.ndarray
+    u_q: np.ndarray
+    p: np.ndarray
+    m: np.ndarray
+    q: np.ndarray
+
+    def without(self, pairs):
+        """The chains of the other pairs (BallRows)."""
+        keep = ~np.isin(self.pair, list(pairs))
+        rows = np.repeat(keep, self.sizes)
+        chains = (self.pair, self.order, self.sizes, self.range_p, self.range_q, self.static)
+        return BallRows(*(a[keep] for a in chains), *(a[rows] for a in (self.u_p, self.u_q, self.p, self.m, self.q)))
+
+    @classmethod
+    def empty(cls):
+        """No chain at all."""
+        ints, points = np.zeros(0, np.int64), np.zeros((0, 2))
+        return cls(
+            ints, ints, ints, points, points, np.zeros(0, bool), np.zeros(0), np.zeros(0), points, points, points
+        )
 
 
 @dataclass
 class Segment:
-    """The samples of one chain.
+    """A chain whose samples a morph makes.
 
     Attributes
     ----------
-    pair : int
-    order : int
-        Position of the chain along its pair.
-    u_p, u_q : ndarray, shape (K,)
-        Fractions along the chain's pieces of P and Q (as given).
+    pair, order : int
+        Its pair and its position along it.
     range_p, range_q : tuple of float
-        Arc-length start and end of the pieces on the pair's curves.
-    contacts : tuple of ndarray, optional
-        ``(p, m, q)``, each shape (K, 2): ball-map contacts and disk centres.
-    morph : Morph, optional
-        Or the morph whose frames are these samples.
-    method : str, optional
-        What made contacts that are not the ball-morph's own ('static' for an overlap).
+        Arc-length start and end of its pieces on the pair's curves.
+    morph : Morph
+        ``morph.u_p`` and ``u_q`` are the fractions along the pieces.
     """
 
     pair: int
     order: int
-    u_p: np.ndarray
-    u_q: np.ndarray
     range_p: tuple
     range_q: tuple
-    contacts: tuple = None
-    morph: object = None
-    method: str = None
-
-    def __len__(self):
-        return len(self.u_p)
+    morph: object
 
 
 @dataclass
@@ -87,9 +123,16 @@ class PairFrames:
         return self.frames[:, sl], self.u_a[sl], self.u_b[sl]
 
 
-def _fractions(local, rng, length, closed):
-    u = (rng[0] + local * (rng[1] - rng[0])) / max(length, 1e-300)
-    return np.mod(u, 1.0) if closed else np.clip(u, 0.0, 1.0)
+def _chains(ball, segments):
+    """Every chain (ball rows first, then the segments): pair, order, size, ranges (arrays)."""
+    sizes = [len(s.morph.u_p) for s in segments]
+    pair = np.r_[ball.pair, [s.pair for s in segments]].astype(np.int64)
+    order = np.r_[ball.order, [s.order for s in segments]].astype(np.int64)
+    ranges = [
+        np.concatenate([getattr(ball, f"range_{k}"), np.reshape([getattr(s, f"range_{k}") for s in segments], (-1, 2))])
+        for k in "pq"
+    ]
+    return pair, order, np.r_[ball.sizes, sizes].astype(np.int64), ranges
 
 
 class Layout:
@@ -97,49 +140,58 @@ class Layout:
 
     Parameters
     ----------
+    ball : BallRows
     segments : list of Segment
     closed : ndarray of bool, shape (C,)
         Whether each pair's in-betweens are loops.
     joined : ndarray of bool, shape (C,)
         Loops cut into pieces (their last piece's last sample is their first).
     lengths : ndarray, shape (C, 2)
-        Length of each pair's P and Q (the arc lengths of the ranges are along them).
+        Length of each pair's P and Q (the ranges are arc lengths along them).
     kind : str
         The ball-morph path of the contacts (see :class:`~ballmorph_core.morphs.paths.BallPaths`).
     """
 
-    def __init__(self, segments, closed, joined, lengths, kind="circular"):
-        n = len(closed)
-        segments = sorted(segments, key=lambda s: (s.pair, s.order))
-        pair = np.array([s.pair for s in segments], dtype=np.int64)
-        first = np.r_[True, pair[1:] != pair[:-1]]
-        last = np.r_[pair[1:] != pair[:-1], True]
+    def __init__(self, ball, segments, closed, joined, lengths, kind="circular"):
         self.closed = np.asarray(closed, dtype=bool)
-        keeps, u_a, u_b, sizes = [], [], [], np.zeros(n, dtype=np.int64)
-        for k, seg in enumerate(segments):
-            keep = np.arange(len(seg))[(0 if first[k] else 1) : len(seg) - (1 if last[k] and joined[seg.pair] else 0)]
-            keeps.append(keep)
-            sizes[seg.pair] += len(keep)
-            length_p, length_q = lengths[seg.pair]
-            u_a.append(_fractions(seg.u_p[keep], seg.range_p, length_p, self.closed[seg.pair]))
-            u_b.append(_fractions(seg.u_q[keep], seg.range_q, length_q, self.closed[seg.pair]))
-        self.offsets = np.concatenate([[0], np.cumsum(sizes)])
-        self.u_a = np.concatenate(u_a) if u_a else np.zeros(0)
-        self.u_b = np.concatenate(u_b) if u_b else np.zeros(0)
-        start = np.cumsum([0] + [len(k) for k in keeps])
-        self.pair_of = np.repeat(pair, [len(k) for k in keeps]).astype(np.int64)
-        ball = [k for k, s in enumerate(segments) if s.contacts is not None]
-        self._ball_rows = np.concatenate([np.arange(start[k], start[k + 1]) for k in ball]) if ball else None
-        self._paths = (
-            BallPaths(*(np.concatenate([segments[k].contacts[i][keeps[k]] for k in ball]) for i in range(3)), kind)
-            if ball
-            else None
-        )
+        pair, order, sizes, (range_p, range_q) = _chains(ball, segments)
+        rank = np.empty(len(pair), dtype=np.int64)
+        rank[np.lexsort((order, pair))] = np.arange(len(pair))
+        ordered = np.argsort(rank)
+        first = np.r_[True, pair[ordered][1:] != pair[ordered][:-1]][rank]
+        last = np.r_[pair[ordered][1:] != pair[ordered][:-1], True][rank]
+        chain, local = ragged_arange(sizes)
+        keep = ~((local == 0) & ~first[chain]) & ~((local == sizes[chain] - 1) & last[chain] & joined[pair[chain]])
+        # Rows as given (ball rows, then each segment's) -> their place in the frames.
+        rows = np.flatnonzero(keep)
+        rows = rows[np.lexsort((local[rows], rank[chain[rows]]))]
+        self.position = np.full(len(chain), -1, dtype=np.int64)
+        self.position[rows] = np.arange(len(rows))
+        c = chain[rows]
+        owner = pair[c]
+        self.offsets = np.searchsorted(owner, np.arange(len(self.closed) + 1))
+        u_p = np.concatenate([ball.u_p, *[s.morph.u_p for s in segments]])[rows]
+        u_q = np.concatenate([ball.u_q, *[s.morph.u_q for s in segments]])[rows]
+        self.u_a = self._fractions(u_p, range_p[c], lengths[owner, 0], owner)
+        self.u_b = self._fractions(u_q, range_q[c], lengths[owner, 1], owner)
+        self.pair_of = owner
+        n_ball = len(ball.u_p)
+        kept = keep[:n_ball]
+        self._ball_rows = self.position[:n_ball][kept]
+        self._paths = BallPaths(ball.p[kept], ball.m[kept], ball.q[kept], kind) if kept.any() else None
+        starts = np.cumsum(np.r_[n_ball, [len(s.morph.u_p) for s in segments]])
         self._morphs = [
-            (segments[k].morph, keeps[k], slice(start[k], start[k + 1]))
-            for k, s in enumerate(segments)
-            if s.morph is not None
+            (
+                s.morph,
+                np.flatnonzero(keep[a : a + len(s.morph.u_p)]),
+                self.position[a : a + len(s.morph.u_p)][keep[a : a + len(s.morph.u_p)]],
+            )
+            for s, a in zip(segments, starts)
         ]
+
+    def _fractions(self, local, rng, length, owner):
+        u = (rng[:, 0] + local * (rng[:, 1] - rng[:, 0])) / np.maximum(length, 1e-300)
+        return np.where(self.closed[owner], np.mod(u, 1.0), np.clip(u, 0.0, 1.0))
 
     def evaluate(self, times, motions=None):
         """Every sample at every time, shape (T, K, 2); ``motions`` carries registered pairs along."""

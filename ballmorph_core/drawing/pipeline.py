@@ -27,17 +27,25 @@ step works on all pairs at once (a single pair is a batch of one), and nothing h
 the in-between times: :class:`PairPlans` is the plan, :meth:`PairPlans.frames` its evaluation.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap import ball_maps
+from ..ballmap.correspondence import map_batch
+from ..ballmap.onemap import OneWayMap
 from ..errors import InvalidCurveError
-from ..geometry.polyline import as_curve, coarsen, default_spacing, default_spacings, pair_scales, resolve_spacing
+from ..geometry.polyline import (
+    as_curve,
+    coarsen,
+    curve_length,
+    default_spacings,
+    pair_scales,
+    resolve_spacing,
+)
 from ..geometry.ragged import Ragged
 from .fallbacks import BALL_METHODS, chain_fallback, comparison_morph, linear_fallback, point_motion, unsplittable
-from .layout import Layout, PairFrames, Segment
+from .layout import BallRows, Layout, PairFrames, Segment
 from .registration import Motions, register
 from .splitting import cut_chains, find_events
 
@@ -85,7 +93,7 @@ class PairCurves:
 
 
 def _length(curve, closed):
-    return float(Ragged.from_list([curve], [closed]).length[0])
+    return curve_length(curve, closed)
 
 
 def prepare(pair, method, spacing):
@@ -125,7 +133,7 @@ class PairPlans:
 
     def __init__(self, pairs):
         n = len(pairs)
-        self.segments, self.used, self.notes = [], [""] * n, [list(p.notes) for p in pairs]
+        self.segments, self.ball, self.used, self.notes = [], [], [""] * n, [list(p.notes) for p in pairs]
         self.closed, self.joined = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
         self.lengths = np.ones((n, 2))
         self.motions, self.layout = None, None
@@ -136,25 +144,29 @@ class PairPlans:
         if ranges is None:
             self.closed[c], self.lengths[c] = closed, lengths
             ranges = ((0.0, self.lengths[c, 0]), (0.0, self.lengths[c, 1]))
-        self.segments.append(Segment(c, order, morph.u_p, morph.u_q, *ranges, morph=morph))
+        self.segments.append(Segment(c, order, *ranges, morph=morph))
 
     def drop(self, pairs, notes_kept):
         """Forget what was planned for ``pairs`` (keeping their first ``notes_kept[c]`` notes)."""
         self.segments = [s for s in self.segments if s.pair not in pairs]
+        self.ball = [rows.without(pairs) for rows in self.ball]
         for c in pairs:
             del self.notes[c][notes_kept[c] :]
 
     def finish(self, kind="circular"):
         """Name each pair's morphs and lay the segments out (step 8)."""
+        ball = _joined(self.ball)
         methods = [set() for _ in self.used]
         for seg in self.segments:
-            methods[seg.pair].add(seg.morph.method if seg.morph is not None else seg.method or f"{kind}-ball")
+            methods[seg.pair].add(seg.morph.method)
+        for c, static in zip(ball.pair, ball.static):
+            methods[c].add("static" if static else f"{kind}-ball")
         for c, names in enumerate(methods):
             self.used[c] = "+".join(sorted(names))
             if self.motions is not None and self.motions.moving[c]:
                 self.used[c] += f" on a {self.motions.kind} carrier"
-        self.layout = Layout(self.segments, self.closed, self.joined, self.lengths, kind)
-        self.segments = None
+        self.layout = Layout(ball, self.segments, self.closed, self.joined, self.lengths, kind)
+        self.segments = self.ball = None
         return self
 
     def frames(self, times):
@@ -164,6 +176,13 @@ class PairPlans:
         return PairFrames(
             frames, self.layout.offsets, self.layout.u_a, self.layout.u_b, self.closed, self.used, self.notes
         )
+
+
+def _joined(parts):
+    """One BallRows from several (the ball road's batches)."""
+    if not parts:
+        return BallRows.empty()
+    return BallRows(*(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(BallRows)))
 
 
 @dataclass
@@ -199,52 +218,93 @@ def choose_roads(R, Q, events, coincident, carrier, scale):
     return _Roads(kind, reason)
 
 
+@dataclass
+class _ChainMaps:
+    """The ball-maps of every chain that was mapped (step 6), as arrays.
+
+    Attributes
+    ----------
+    samples : OneWayMap
+        Their samples, ``chain`` the chain's index in the Chains.
+    lengths : ndarray, shape (H, 2)
+        Length of each chain's dense P and Q (0 where not mapped).
+    reports : list of CompatibilityReport or None
+    """
+
+    samples: OneWayMap
+    lengths: np.ndarray
+    reports: list
+
+
 def map_chains(chains, spacing, eps):
-    """Step 6: the ball-maps of every chain, in batches of whole pairs (list of Correspondence)."""
-    sizes = [len(s.P) + len(s.Q) for s in chains.setups]
+    """Step 6: the ball-maps of every chain but the static overlaps, in batches of whole pairs."""
+    mapped = np.flatnonzero(~chains.static)
+    sizes = [len(chains.setups[k].P) + len(chains.setups[k].Q) for k in mapped]
     starts = np.cumsum([0] + sizes)[:-1] // BALLMAP_BATCH_POINTS
-    first_of_pair = np.r_[True, chains.pair[1:] != chains.pair[:-1]]
-    batch_of = np.maximum.accumulate(np.where(first_of_pair, starts, 0))
-    corrs = [None] * len(chains)
+    pair = chains.pair[mapped]
+    first_of_pair = np.r_[True, pair[1:] != pair[:-1]]
+    batch_of = np.maximum.accumulate(np.where(first_of_pair, starts, 0)) if len(mapped) else starts
+    parts, lengths, reports = [], np.zeros((len(chains), 2)), [None] * len(chains)
     for number in np.unique(batch_of):
-        members = np.flatnonzero(batch_of == number)
+        members = mapped[batch_of == number]
         owners = chains.pair[members]
-        found = ball_maps(
-            [chains.setups[i] for i in members], spacing[owners], "symmetric", check=False, eps=eps[owners]
-        )
-        for i, corr in zip(members, found):
-            corrs[i] = corr
-    return corrs
+        batch = map_batch([chains.setups[i] for i in members], spacing[owners], "symmetric", eps[owners])
+        batch.samples.chain = members[batch.samples.chain]
+        parts.append(batch.samples)
+        lengths[members] = np.c_[batch.sides_p.rg.length, batch.sides_q.rg.length]
+        for i, report in zip(members, batch.reports):
+            reports[i] = report
+    return _ChainMaps(OneWayMap.concatenate(parts) if parts else OneWayMap.empty(), lengths, reports)
 
 
-def _chain_segment(chains, k, pair, corr):
-    """The segment of chain ``k`` whose ball-map holds (or of a static overlap)."""
-    setup = chains.setups[k]
-    order = k - np.searchsorted(chains.pair, chains.pair[k])
-    rng = (tuple(chains.range_p[k]), tuple(chains.range_q[k]))
-    if chains.static[k]:
-        u = Ragged.from_list([setup.P], [False]).s / max(_length(setup.P, False), 1e-300)
-        return Segment(pair, int(order), u, u, *rng, contacts=(setup.P, setup.P, setup.P), method="static")
-    u_p = corr.s_p / max(_length(corr.dense_p, corr.closed), 1e-300)
-    u_q = corr.s_q / max(_length(corr.dense_q, corr.closed), 1e-300)
-    return Segment(pair, int(order), u_p, u_q, *rng, contacts=(corr.p, corr.centers, corr.q))
+def _ball_rows(chains, maps, index, good):
+    """The ball road's samples (BallRows): the chains whose ball-maps hold, and the overlaps."""
+    rows = maps.samples.take(good[maps.samples.chain])
+    statics = np.flatnonzero(chains.static)
+    overlap = Ragged.from_list([chains.setups[k].P for k in statics], False)
+    chain = np.r_[rows.chain, statics[overlap.owner]].astype(np.int64)
+    order = np.argsort(chain, kind="stable")
+    # An overlap stays where it is: its fractions along the piece are its own.
+    along = overlap.s / np.maximum(overlap.length, 1e-300)[overlap.owner]
+    lengths = np.maximum(maps.lengths[rows.chain], 1e-300)
+    u_p, u_q = np.r_[rows.s_src / lengths[:, 0], along], np.r_[rows.s_dst / lengths[:, 1], along]
+    p, m, q = (np.concatenate([getattr(rows, f), overlap.pts]) for f in ("src", "m", "dst"))
+    chain, kept = chain[order], np.flatnonzero(good | chains.static)
+    first = np.searchsorted(chains.pair, chains.pair[kept])
+    return BallRows(
+        pair=index[chains.pair[kept]],
+        order=kept - first,
+        sizes=np.bincount(chain, minlength=len(chains))[kept],
+        range_p=chains.range_p[kept],
+        range_q=chains.range_q[kept],
+        static=chains.static[kept],
+        u_p=u_p[order],
+        u_q=u_q[order],
+        p=p[order],
+        m=m[order],
+        q=q[order],
+    )
 
 
-def _fall_back(plans, chains, corrs, events, index, kind, spacing):
-    """Step 7 for chains that are not b-compatible: composite, then linear (the notes say which)."""
+def _fall_back(plans, chains, maps, events, index, kind, spacing):
+    """Step 7 for chains that are not b-compatible: composite, then linear (the notes say which).
+
+    Returns the chains whose ball-maps hold, shape (H,) of bool.
+    """
     counts = np.bincount(chains.pair, minlength=len(index))
-    for k, corr in enumerate(corrs):
+    good = np.array([r is not None and not r.violations for r in maps.reports], dtype=bool)
+    for k in np.flatnonzero(~good & ~chains.static):
         c, setup = chains.pair[k], chains.setups[k]
-        if chains.static[k] or not corr.report.violations:
-            plans.segments.append(_chain_segment(chains, k, int(index[c]), corr))
-            continue
         order = k - np.searchsorted(chains.pair, c)
         where = f"lens {order + 1}/{counts[c]}" if events.count[c] else ("loops" if setup.closed else "stroke")
-        morph, note = chain_fallback(setup.P, setup.Q, setup.closed, kind, spacing[c], where, corr.report.describe())
+        morph, note = chain_fallback(
+            setup.P, setup.Q, setup.closed, kind, spacing[c], where, maps.reports[k].describe()
+        )
         plans.notes[index[c]].append(note)
         plans.add_morph(
             int(index[c]), morph, setup.closed, order=int(order), ranges=(chains.range_p[k], chains.range_q[k])
         )
+    return good
 
 
 def _ball_road(plans, pairs, index, kind, carrier, spacing):
@@ -252,8 +312,8 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing):
     closed = np.array([pairs[c].closed for c in index], dtype=bool)
     # Curves drawn far more densely than they will be sampled are resampled first, each at its
     # own default spacing (the keys may differ in size a lot).
-    P = Ragged.from_list([_coarse(pairs[c].P, pairs[c].closed, spacing) for c in index], closed)
-    Q = Ragged.from_list([_coarse(pairs[c].Q, pairs[c].closed, spacing) for c in index], closed)
+    P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
+    Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     motions, R, residual = register(P, Q, carrier, pair_scales(P, Q))
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
@@ -272,15 +332,13 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing):
     mapped = np.flatnonzero(roads.kind != "linear")
     plans.closed[index[mapped]], plans.lengths[index[mapped]] = closed[mapped], lengths[mapped]
     plans.joined[index[mapped]] = closed[mapped] & lensed[mapped]
-    _fall_back(plans, chains, map_chains(chains, h, tol.COINCIDENT * scale), events, index, kind, h)
+    maps = map_chains(chains, h, tol.COINCIDENT * scale)
+    good = _fall_back(plans, chains, maps, events, index, kind, h)
+    plans.ball.append(_ball_rows(chains, maps, index, good))
     pieces = np.bincount(chains.pair, minlength=len(index))
     for c in np.flatnonzero(lensed & (pieces > 1)):
         plans.notes[index[c]].append(f"split at {pieces[c]} crossing/overlap pieces")
     return motions
-
-
-def _coarse(curve, closed, spacing):
-    return coarsen(curve, closed, spacing or default_spacing(curve, closed=closed))
 
 
 def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing):
@@ -324,6 +382,20 @@ def _spread_motions(motions, index, n):
     return Motions(a, b, moving, centre, motions.kind)
 
 
+def _comparison_road(plans, pairs, ready, method, spacing):
+    """The paper's comparison morphs, pair by pair, each with its fallback."""
+    if not ready:
+        return
+    closed = np.array([pairs[c].closed for c in ready], dtype=bool)
+    Ps = coarsen(Ragged.from_list([pairs[c].P for c in ready], closed), spacing)
+    Qs = coarsen(Ragged.from_list([pairs[c].Q for c in ready], closed), spacing)
+    for k, c in enumerate(ready):
+        P, Q, loop = Ps.curve(k), Qs.curve(k), bool(closed[k])
+        morph, notes = comparison_morph(P, Q, loop, method, resolve_spacing(P, Q, loop, spacing))
+        plans.notes[c] += notes
+        plans.add_morph(c, morph, loop, (Ps.length[k], Qs.length[k]))
+
+
 def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None):
     """Plan every stroke pair of a drawing (see the module docstring).
 
@@ -346,12 +418,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         if pair.P is None:
             plans.add_morph(c, point_motion(pair.xy_a, pair.u_a, pair.xy_b, pair.u_b), False)
     if method not in BALL_METHODS:
-        for c in ready:
-            pair = pairs[c]
-            P, Q = _coarse(pair.P, pair.closed, spacing), _coarse(pair.Q, pair.closed, spacing)
-            morph, notes = comparison_morph(P, Q, pair.closed, method, resolve_spacing(P, Q, pair.closed, spacing))
-            plans.notes[c] += notes
-            plans.add_morph(c, morph, pair.closed, (_length(P, pair.closed), _length(Q, pair.closed)))
+        _comparison_road(plans, pairs, ready, method, spacing)
         return plans.finish()
     kind = method[: -len("-ball")]
     if ready:

@@ -155,12 +155,9 @@ class InbetweenPlan:
             _report_pair(result, a, b, flip, parts.used[k], parts.notes[k])
         for h in self.held:
             _report_unmatched(result, h.index, h.from_a, self.unmatched)
-        strokes_a, strokes_b = [a for a, _, _ in self.strokes], [b for _, b, _ in self.strokes]
         # The second key's fractions are along its stroke as morphed: read them back as drawn.
         parts.u_b = _as_drawn(parts, self.strokes)
-        result.frames = assemble_frames(
-            parts, strokes_a, strokes_b, self.ka, self.kb, self.held, times, self.plane, self.unmatched
-        )
+        result.frames = assemble_frames(parts, self, times)
         result.messages.extend(self.planarity)
         return result
 

@@ -148,11 +148,12 @@ def find_events(R, Q, scale, spacing, wanted):
     """
     n, closed = len(R), R.closed
     end_eps = tol.SHARED_ENDPOINT * scale
-    cx = batch_crossings(R, Q, scale, wanted)
+    # Overlaps need nearly parallel segments close together: only those pairs are searched.
+    cx, along = batch_crossings(R, Q, scale, wanted, overlap_reach=tol.OVERLAP * scale)
     pair, s_p, s_q = cx.pair, cx.s_a, cx.s_b
     interior = closed[pair] | ((s_p > end_eps[pair]) & (s_p < R.length[pair] - end_eps[pair]))
     pair, s_p, s_q = pair[interior], s_p[interior], s_q[interior]
-    over = _overlaps(R, Q, scale, spacing, wanted)
+    over = _overlaps(R, Q, scale, spacing, wanted & along)
     o_pair = over[:, 0].astype(np.int64)
     for row in over:  # rare: only pairs drawn partly on top of each other
         lap = np.where(closed[pair] & (s_p < row[1] - end_eps[pair]), R.length[pair], 0.0)  # a loop's overlap may wrap

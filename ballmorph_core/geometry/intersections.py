@@ -17,6 +17,9 @@ from .spatial import box_pairs
 
 __all__ = ["Crossings", "batch_crossings", "crossings", "self_crossings", "is_simple", "segment_hits"]
 
+#: Two segments whose directions differ by less than this sine may lie along each other.
+_PARALLEL_SINE = 1e-3
+
 
 @dataclass
 class Crossings:
@@ -87,7 +90,63 @@ def _first_of_each(pair, s_a, s_b, scale):
     return np.sort(first)
 
 
-def batch_crossings(A, B, scale, wanted=None):
+def _candidates(A, B, wanted):
+    """Segment pairs of curve c of A and curve c of B whose boxes overlap: global first-vertex
+    indices of each segment, shape (K,) each."""
+    wanted = np.ones(len(A), dtype=bool) if wanted is None else wanted
+    ea = np.flatnonzero((A.nxt >= 0) & wanted[A.owner])
+    eb = np.flatnonzero((B.nxt >= 0) & wanted[B.owner])
+    a0, b0 = A.pts[ea], B.pts[eb]
+    i, j = box_pairs(_boxes(a0, a0 + A.edge[ea]), _boxes(b0, b0 + B.edge[eb]))
+    keep = A.owner[ea[i]] == B.owner[eb[j]]
+    return ea[i[keep]], eb[j[keep]]
+
+
+def _crossings_of(A, B, ga, gb, scale):
+    """The crossings among candidate segment pairs (see :func:`batch_crossings`)."""
+    pair = A.owner[ga]
+    ok, sa, sb = segment_hits(A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb], scale[pair])
+    ga, gb, sa, sb, pair = ga[ok], gb[ok], sa[ok], sb[ok], pair[ok]
+    s_a = A.s[ga] + sa * A.length_of_edge[ga]
+    s_b = B.s[gb] + sb * B.length_of_edge[gb]
+    slack = tol.COINCIDENT * scale[pair]
+    s_a = np.where(A.closed[pair] & (s_a >= A.length[pair] - slack), 0.0, s_a)
+    s_b = np.where(B.closed[pair] & (s_b >= B.length[pair] - slack), 0.0, s_b)
+    first = _first_of_each(pair, s_a, s_b, scale)
+    ga, gb, sa, pair, s_a, s_b = ga[first], gb[first], sa[first], pair[first], s_a[first], s_b[first]
+    order = np.lexsort((s_a, pair))
+    ga, gb, sa, pair, s_a, s_b = ga[order], gb[order], sa[order], pair[order], s_a[order], s_b[order]
+    points = A.pts[ga] + sa[:, None] * A.edge[ga]
+    return Crossings(pair, points, s_a, s_b, ga - A.offsets[pair], gb - B.offsets[pair])
+
+
+def _to_segments(points, a0, d):
+    """Distance from each point to its segment ``a0 + s d``, shape (K,)."""
+    dd = np.einsum("ij,ij->i", d, d)
+    f = np.clip(np.divide(np.einsum("ij,ij->i", points - a0, d), dd, out=np.zeros_like(dd), where=dd > 0), 0.0, 1.0)
+    return np.linalg.norm(a0 + f[:, None] * d - points, axis=1)
+
+
+def _lying_along(A, B, ga, gb, reach):
+    """Pairs with two candidate segments nearly parallel and within ``reach`` of each other: the
+    only pairs whose curves may overlap, shape (C,) of bool."""
+    a0, da, b0, db = A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb]
+    sine = np.abs(da[:, 0] * db[:, 1] - da[:, 1] * db[:, 0]) / np.maximum(
+        A.length_of_edge[ga] * B.length_of_edge[gb], 1e-300
+    )
+    gap = np.minimum.reduce(
+        [
+            _to_segments(b0, a0, da),
+            _to_segments(b0 + db, a0, da),
+            _to_segments(a0, b0, db),
+            _to_segments(a0 + da, b0, db),
+        ]
+    )
+    along = (sine <= _PARALLEL_SINE) & (gap <= reach[A.owner[ga]])
+    return np.bincount(A.owner[ga][along], minlength=len(A)) > 0
+
+
+def batch_crossings(A, B, scale, wanted=None, overlap_reach=None):
     """Points where curve ``c`` of ``A`` meets curve ``c`` of ``B`` (crossing or touching), for every c.
 
     Parameters
@@ -98,34 +157,22 @@ def batch_crossings(A, B, scale, wanted=None):
         Length scale of each pair's tolerances.
     wanted : ndarray of bool, shape (C,), optional
         Pairs to search (default all).
+    overlap_reach : ndarray, shape (C,), optional
+        Also say which pairs have nearly parallel segments within this distance of each other.
 
     Returns
     -------
     Crossings
         Collinear overlapping segments are not reported: an overlap is a stretch, not a point.
         On a loop, a crossing within round-off of its end is put at its start.
+    maybe_overlapping : ndarray of bool, shape (C,)
+        Only with ``overlap_reach``: the pairs whose curves may overlap somewhere.
     """
-    wanted = np.ones(len(A), dtype=bool) if wanted is None else wanted
-    ea = np.flatnonzero((A.nxt >= 0) & wanted[A.owner])
-    eb = np.flatnonzero((B.nxt >= 0) & wanted[B.owner])
-    a0, da, b0, db = A.pts[ea], A.edge[ea], B.pts[eb], B.edge[eb]
-    i, j = box_pairs(_boxes(a0, a0 + da), _boxes(b0, b0 + db))
-    keep = A.owner[ea[i]] == B.owner[eb[j]]
-    i, j = i[keep], j[keep]
-    pair = A.owner[ea[i]]
-    ok, sa, sb = segment_hits(a0[i], da[i], b0[j], db[j], scale[pair])
-    i, j, sa, sb, pair = i[ok], j[ok], sa[ok], sb[ok], pair[ok]
-    s_a = A.s[ea[i]] + sa * A.length_of_edge[ea[i]]
-    s_b = B.s[eb[j]] + sb * B.length_of_edge[eb[j]]
-    slack = tol.COINCIDENT * scale[pair]
-    s_a = np.where(A.closed[pair] & (s_a >= A.length[pair] - slack), 0.0, s_a)
-    s_b = np.where(B.closed[pair] & (s_b >= B.length[pair] - slack), 0.0, s_b)
-    first = _first_of_each(pair, s_a, s_b, scale)
-    i, j, sa, pair, s_a, s_b = i[first], j[first], sa[first], pair[first], s_a[first], s_b[first]
-    order = np.lexsort((s_a, pair))
-    i, j, sa, pair, s_a, s_b = i[order], j[order], sa[order], pair[order], s_a[order], s_b[order]
-    points = a0[i] + sa[:, None] * da[i]
-    return Crossings(pair, points, s_a, s_b, ea[i] - A.offsets[pair], eb[j] - B.offsets[pair])
+    ga, gb = _candidates(A, B, wanted)
+    found = _crossings_of(A, B, ga, gb, scale)
+    if overlap_reach is None:
+        return found
+    return found, _lying_along(A, B, ga, gb, overlap_reach)
 
 
 def crossings(a, closed_a, b, closed_b):

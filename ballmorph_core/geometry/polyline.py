@@ -230,18 +230,36 @@ def resolve_spacing(P, Q, closed, spacing):
     return value
 
 
-def coarsen(curve, closed, spacing):
-    """A curve drawn far more densely than ``spacing``, resampled to ``COARSEN_RATIO`` points per
-    spacing on its spline (others are returned unchanged), shape (M, 2).
+def coarsen(curves, spacing=None):
+    """Curves drawn far more densely than their spacing, resampled to ``COARSEN_RATIO`` points per
+    spacing on their spline (the others are kept as drawn).
 
     A 100,000-point stroke morphed at a spacing of 1/2000 of its length gains nothing from its
     extra points but the cost of every intersection test on them.
+
+    Parameters
+    ----------
+    curves : Ragged
+    spacing : float, optional
+        Default: each curve's own :func:`default_spacings`.
+
+    Returns
+    -------
+    Ragged
+        ``curves`` itself when none is that dense.
     """
-    length = curve_length(curve, closed)
-    wanted = int(np.ceil(COARSEN_RATIO * length / spacing)) + 1
-    if len(curve) <= 2 * wanted:
-        return curve
-    return resample(curve, closed, count=wanted)
+    if spacing is None and not np.any(curves.n > 2 * (COARSEN_RATIO * DEFAULT_SAMPLES_MIN + 1)):
+        return curves  # no default spacing is coarser than length / DEFAULT_SAMPLES_MIN
+    own = default_spacings(curves) if spacing is None else np.full(len(curves), float(spacing))
+    wanted = np.ceil(COARSEN_RATIO * curves.length / own).astype(np.int64) + 1
+    dense = curves.n > 2 * wanted
+    if not dense.any():
+        return curves
+    pieces = [
+        resample(curves.curve(c), bool(curves.closed[c]), count=int(wanted[c])) if dense[c] else curves.curve(c)
+        for c in range(len(curves))
+    ]
+    return Ragged.from_list(pieces, curves.closed)
 
 
 def default_spacing(*curves, closed=False):

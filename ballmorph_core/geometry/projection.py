@@ -10,13 +10,14 @@ import numpy as np
 
 from .. import tolerances as tol
 from .polyline import scale_of
-from .ragged import Ragged, budget_slices
+from .ragged import Ragged
 from .spatial import PointTree, box_pairs
 
 __all__ = ["nearest_within", "PolylineProjector", "distances_to_polyline"]
 
-#: Candidate (query, edge) pairs held at once (memory bound).
-_PAIR_BUDGET = 2_000_000
+#: Queries searched at once: the grid search's candidates are sparse, but a query far from its
+#: curve has a large reach; this bounds the candidates of such queries.
+_QUERY_CHUNK = 20_000
 
 
 def nearest_within(points, owner, curves, reach):
@@ -34,7 +35,7 @@ def nearest_within(points, owner, curves, reach):
     Returns
     -------
     dist : ndarray, shape (K,)
-        ``inf`` where no edge lies within reach.
+        ``inf`` where the curve lies farther than the reach.
     edge : ndarray of int, shape (K,)
         Global first-vertex index of the closest edge (ties: the lower one); 0 where none.
     frac : ndarray, shape (K,)
@@ -49,7 +50,8 @@ def nearest_within(points, owner, curves, reach):
     a, d = curves.pts[e], curves.edge[e]
     seg_boxes = np.concatenate([np.minimum(a, a + d), np.maximum(a, a + d)], axis=1)
     dist, edge, frac = np.full(len(points), np.inf), np.zeros(len(points), np.int64), np.zeros(len(points))
-    for sl in budget_slices(np.full(len(points), max(len(e), 1)), _PAIR_BUDGET):
+    for start in range(0, len(points), _QUERY_CHUNK):
+        sl = slice(start, min(start + _QUERY_CHUNK, len(points)))
         x, r = points[sl], reach[sl][:, None]
         i, j = box_pairs(np.concatenate([x - r, x + r], axis=1), seg_boxes)
         keep = curves.owner[e[j]] == owner[sl][i]
@@ -59,6 +61,8 @@ def nearest_within(points, owner, curves, reach):
         d2 = np.sum(np.square(a[j] + f[:, None] * d[j] - x[i]), axis=1)
         order = np.lexsort((j, d2, i))
         first = order[np.r_[True, i[order][1:] != i[order][:-1]]] if len(order) else order
+        # A nearer edge would lie within reach too: the best candidate within reach is the closest.
+        first = first[d2[first] <= np.square(r[i[first], 0])]
         hit = np.arange(sl.start, sl.stop)[i[first]]
         dist[hit], edge[hit], frac[hit] = np.sqrt(d2[first]), e[j[first]], f[first]
     return dist, edge, frac
@@ -118,7 +122,7 @@ def distances_to_polyline(points, curve, closed, reach):
     curve : ndarray, shape (N, 2)
     closed : bool
     reach : float
-        Points farther than this from every edge's bounding box get ``inf``.
+        Points farther than this from the curve get ``inf``.
 
     Returns
     -------

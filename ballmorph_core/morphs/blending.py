@@ -130,18 +130,8 @@ def _bridge(maps, side, first, last):
     b_e = np.roll(own.pts, -1, axis=0)[:n_edges] if closed else own.pts[1:]
     wa, wb = _lip_windows(lip_a, lip_b, n_edges, closed)
     src, nrm_src = other_map.src, other_map.n_src
-    x, nrm, r, qa, qb = disk_between(
-        src[i : i + 1],
-        nrm_src[i : i + 1],
-        src[j : j + 1],
-        nrm_src[j : j + 1],
-        a_e,
-        b_e,
-        own.enormals,
-        [wa],
-        [wb],
-        maps.eps,
-    )
+    ends = (src[i : i + 1], nrm_src[i : i + 1], src[j : j + 1], nrm_src[j : j + 1])
+    x, nrm, r, qa, qb = disk_between(ends, (a_e, b_e, own.enormals), ([wa], [wb]), maps.eps)
     # A bridging disk larger than both curves together bridges nothing drawable.
     if not np.isfinite(r[0]) or r[0] <= 0 or r[0] > own.length + other.length:
         raise IncompatibleCurvesError(f"composite ball-morph: no disk bridges {side} near s={s_a:.4g}")

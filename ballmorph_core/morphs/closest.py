@@ -192,20 +192,20 @@ class ProjectionDefect:
         return f"the closest points of {self.curve} do not go once around {other}"
 
 
-def _defects(name, src, s_src, length_src, proj, projector, s_feet, closed, spacing):
+def _defects(name, samples, feet, closed, spacing):
     """Where the projection of consecutive samples onto a curve is not a homeomorphism.
 
     Parameters
     ----------
     name : str
         The projected curve, ``'P'`` or ``'Q'``.
-    src : ndarray, shape (K, 2)
-        Its uniform samples, in order; ``s_src`` (K,) their arc lengths along it as given and
-        ``length_src`` its length.
-    proj : Projection
-        Their closest points on the target, whose ``projector`` runs the same way as ``src``.
-    s_feet : ndarray, shape (K,)
-        Arc lengths of the closest points along the target as given.
+    samples : tuple
+        ``(src, s_src, length_src)``: its uniform samples in order, shape (K, 2), their arc
+        lengths along it as given, shape (K,), and its length.
+    feet : tuple
+        ``(proj, projector, s_feet)``: their closest points on the target (Projection), the
+        Projector (running the same way as ``src``), and the arc lengths of the closest points
+        along the target as given, shape (K,).
     closed : bool
     spacing : float
 
@@ -221,6 +221,7 @@ def _defects(name, src, s_src, length_src, proj, projector, s_feet, closed, spac
     (else the closest point jumped over a bulge of the target: a point in between has two
     closest projections). A loop's projections must go around the target exactly once.
     """
+    (src, s_src, length_src), (proj, projector, s_feet) = samples, feet
     k = len(src)
     n = projector.n_edges
     nxt = np.r_[np.arange(1, k), 0] if closed else np.arange(1, k)
@@ -320,7 +321,7 @@ class _ClosestPair:
             self.maps[src] = (x, proj.foot, u_src, u_dst)
             length = self.lengths[src]
             s_feet = u_dst * self.lengths[dst]
-            self.defects += _defects(src, x, u_src * length, length, proj, projector, s_feet, closed, spacing)
+            self.defects += _defects(src, (x, u_src * length, length), (proj, projector, s_feet), closed, spacing)
 
     def _uniform(self, k):
         return np.arange(k) / (k if self.closed else k - 1)

@@ -270,11 +270,13 @@ def accelerations(frames, closed):
     Parameters
     ----------
     frames : ndarray, shape (T + 1, K, 2)
+        The morph at times ``0, eps, ..., 1``.
     closed : bool
 
     Returns
     -------
     ndarray, shape (K,)
+        The measure of each sample's trajectory.
     """
     frames = _check_frames(frames, closed)
     v = np.diff(frames, axis=0)  # (T, K, 2)

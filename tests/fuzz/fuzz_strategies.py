@@ -124,42 +124,51 @@ def similarity(curve, rng, big):
     return scale * curve @ rot.T + shift
 
 
+def _spike(c, closed, rng, size):
+    k = int(rng.integers(0, len(c) - 1))
+    return np.concatenate([c[: k + 1], [c[k] + rng.uniform(-1, 1, 2) * size], c[k:]])
+
+
+def _collinear(c, closed, rng, size):
+    direction = rng.standard_normal(2)
+    direction /= max(np.linalg.norm(direction), 1e-12)
+    return np.outer(c @ direction, direction)
+
+
+def _flatten_run(c, closed, rng, size):
+    a, b = sorted(rng.choice(len(c), 2, replace=False))
+    t = np.linspace(0.0, 1.0, b - a + 1)[:, None]
+    c[a : b + 1] = (1 - t) * c[a] + t * c[b]
+    return c
+
+
+def _zigzag_run(c, closed, rng, size):
+    a, b = sorted(rng.choice(len(c), 2, replace=False))
+    c[a:b:2] += 0.05 * size * normals(c, closed)[a:b:2]
+    return c
+
+
+#: Degenerate edits: name -> (fewest points it needs, edit(curve, closed, rng, size)).
+_EDITS_BY_NAME = {
+    "duplicate-points": (1, lambda c, closed, rng, size: np.repeat(c, rng.integers(1, 4, size=len(c)), axis=0)),
+    "repeat-first-at-end": (1, lambda c, closed, rng, size: np.concatenate([c, c[:1]])),
+    "reverse": (0, lambda c, closed, rng, size: c[::-1].copy()),
+    "collapse-to-point": (1, lambda c, closed, rng, size: np.repeat(c[:1], len(c), axis=0)),
+    "two-points": (2, lambda c, closed, rng, size: c[[0, -1]].copy()),
+    "single-point": (1, lambda c, closed, rng, size: c[:1].copy()),
+    "spike": (2, _spike),
+    "collinear": (1, _collinear),
+    "flatten-run": (4, _flatten_run),
+    "zigzag-run": (4, _zigzag_run),
+}
+
+
 def apply_edit(curve, edit, closed, rng):
     """One degenerate edit (a new array; the input is left alone)."""
     c = np.array(curve, dtype=np.float64, copy=True)
-    n = len(c)
-    size = float(np.ptp(c, axis=0).max()) if n else 1.0
-    if edit == "duplicate-points" and n:
-        reps = rng.integers(1, 4, size=n)
-        return np.repeat(c, reps, axis=0)
-    if edit == "repeat-first-at-end" and n:
-        return np.concatenate([c, c[:1]])
-    if edit == "reverse":
-        return c[::-1].copy()
-    if edit == "collapse-to-point" and n:
-        return np.repeat(c[:1], n, axis=0)
-    if edit == "two-points" and n >= 2:
-        return c[[0, -1]].copy()
-    if edit == "single-point" and n:
-        return c[:1].copy()
-    if edit == "spike" and n >= 2:
-        k = int(rng.integers(0, n - 1))
-        tip = c[k] + rng.uniform(-1, 1, 2) * size
-        return np.concatenate([c[: k + 1], [tip], c[k:]])
-    if edit == "collinear" and n:
-        direction = rng.standard_normal(2)
-        direction /= max(np.linalg.norm(direction), 1e-12)
-        return np.outer(c @ direction, direction)
-    if edit == "flatten-run" and n >= 4:
-        a, b = sorted(rng.choice(n, 2, replace=False))
-        t = np.linspace(0.0, 1.0, b - a + 1)[:, None]
-        c[a : b + 1] = (1 - t) * c[a] + t * c[b]
-        return c
-    if edit == "zigzag-run" and n >= 4:
-        a, b = sorted(rng.choice(n, 2, replace=False))
-        c[a:b:2] += 0.05 * size * normals(c, closed)[a:b:2]
-        return c
-    return c
+    size = float(np.ptp(c, axis=0).max()) if len(c) else 1.0
+    fewest, edit_curve = _EDITS_BY_NAME.get(edit, (np.inf, None))
+    return edit_curve(c, closed, rng, size) if len(c) >= fewest else c
 
 
 @st.composite

@@ -1,0 +1,213 @@
+"""geometry/ and the typed data between the ball-map's steps, tested directly against brute force."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from shapes import circle, distance_to_polyline
+
+from ballmorph_core.ballmap.onemap import OneWayMap
+from ballmorph_core.geometry.circles import circumcircles
+from ballmorph_core.geometry.intersections import batch_crossings, crossings
+from ballmorph_core.geometry.polyline import (
+    default_spacing,
+    default_spacings,
+    pair_scales,
+    points_in_loop,
+    reversal_order,
+    reverse,
+    reversed_fractions,
+    scale_of,
+    subcurve,
+)
+from ballmorph_core.geometry.projection import PolylineProjector, distances_to_polyline, nearest_within
+from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange
+from ballmorph_core.geometry.spatial import CurveTree, PointTree, box_pairs
+
+POINTS = st.integers(0, 2**32 - 1).map(lambda seed: np.random.default_rng(seed).uniform(-1, 1, (60, 2)))
+
+
+def _wobbly(n, seed, closed=True):
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0, 2 * np.pi, n, endpoint=not closed)
+    r = 1 + 0.3 * np.sin(3 * t + rng.uniform(0, 6)) + 0.05 * rng.standard_normal(n)
+    return np.c_[r * np.cos(t), r * np.sin(t)] + rng.uniform(-0.5, 0.5, 2)
+
+
+# ------------------------------------------------------------------ ragged arrays
+
+
+def test_ragged_arange_and_budget_slices():
+    owner, local = ragged_arange([3, 0, 2])
+    assert owner.tolist() == [0, 0, 0, 2, 2] and local.tolist() == [0, 1, 2, 0, 1]
+    slices = list(budget_slices([5, 1, 1, 9, 2], 6))
+    assert [(s.start, s.stop) for s in slices] == [(0, 2), (2, 3), (3, 4), (4, 5)]
+    assert list(budget_slices([], 6)) == []
+
+
+def test_group_argmin_finds_the_first_minimum_of_each_group():
+    values = np.array([3.0, 1.0, 1.0, 5.0, 0.5, 7.0])
+    owner = np.array([0, 0, 0, 2, 2, 3])
+    assert group_argmin(values, owner, 4).tolist() == [1, 0, 4, 5]
+
+
+def test_ragged_measures_each_curve_as_the_single_curve_functions_do():
+    a, b = circle(1.0, 40), _wobbly(30, 1, closed=False)
+    rg = Ragged.from_list([a, b], [True, False])
+    np.testing.assert_allclose(
+        rg.length, [2 * 40 * np.sin(np.pi / 40), np.linalg.norm(np.diff(b, axis=0), axis=1).sum()]
+    )
+    assert rg.n_edges.tolist() == [40, 29]
+    np.testing.assert_allclose(rg.boxes()[1], [*b.min(axis=0), *b.max(axis=0)])
+    piece = rg.pieces(np.array([0]), np.array([1.0]), np.array([2.0]))
+    np.testing.assert_allclose(piece.curve(0), subcurve(a, True, 1.0, 2.0))
+
+
+@given(POINTS)
+@settings(max_examples=20)
+def test_containment_matches_brute_force(points):
+    loop = _wobbly(50, 3)
+    rg = Ragged.from_list([circle(0.2, 10), loop], [True, True])
+    got = rg.contains(points, np.ones(len(points), dtype=np.int64))
+    np.testing.assert_array_equal(got, points_in_loop(points, loop))
+    # brute force: winding number
+    d = loop[None] - points[:, None]
+    ang = np.arctan2(d[..., 1], d[..., 0])
+    turn = np.mod(np.diff(np.concatenate([ang, ang[:, :1]], axis=1), axis=1) + np.pi, 2 * np.pi) - np.pi
+    np.testing.assert_array_equal(got, np.abs(turn.sum(axis=1)) > np.pi)
+
+
+def test_reversal_helpers_agree_with_reverse():
+    c = _wobbly(12, 4)
+    for closed in (True, False):
+        np.testing.assert_array_equal(c[reversal_order(len(c), closed)], reverse(c, closed))
+    u = np.array([0.0, 0.25, 0.9])
+    np.testing.assert_allclose(reversed_fractions(u, True), [0.0, 0.75, 0.1])
+    np.testing.assert_allclose(reversed_fractions(u, False), [1.0, 0.75, 0.1])
+
+
+def test_batched_spacings_and_scales_are_the_single_ones():
+    curves_a = [_wobbly(40, k) for k in range(4)]
+    curves_b = [1.5 * _wobbly(25, k + 9) for k in range(4)]
+    A, B = Ragged.from_list(curves_a, True), Ragged.from_list(curves_b, True)
+    want = [default_spacing(a, b, closed=True) for a, b in zip(curves_a, curves_b)]
+    np.testing.assert_allclose(default_spacings(A, B), want, rtol=1e-12)
+    np.testing.assert_allclose(pair_scales(A, B), [scale_of(a, b) for a, b in zip(curves_a, curves_b)], rtol=1e-12)
+
+
+# ------------------------------------------------------------------ spatial search
+
+
+@given(POINTS, POINTS)
+@settings(max_examples=20)
+def test_box_pairs_finds_exactly_the_overlapping_boxes(a, b):
+    boxes_a = np.c_[a, a + 0.2]
+    boxes_b = np.c_[b, b + 0.05]
+    i, j = box_pairs(boxes_a, boxes_b)
+    ba, bb = boxes_a[:, None], boxes_b[None]
+    overlap = (
+        (ba[..., 0] <= bb[..., 2])
+        & (bb[..., 0] <= ba[..., 2])
+        & (ba[..., 1] <= bb[..., 3])
+        & (bb[..., 1] <= ba[..., 3])
+    )
+    assert sorted(zip(i.tolist(), j.tolist())) == sorted(zip(*np.nonzero(overlap)))
+
+
+@given(POINTS, POINTS)
+@settings(max_examples=20)
+def test_point_tree_nearest_and_within_match_brute_force(points, queries):
+    tree = PointTree(points, leaf_size=4)
+    d2 = ((queries[:, None] - points[None]) ** 2).sum(axis=2)
+    np.testing.assert_allclose(tree.nearest_d2(queries), d2.min(axis=1))
+    radii = np.full(len(queries), 0.3)
+    q, p = tree.within(queries, radii)
+    assert sorted(zip(q.tolist(), p.tolist())) == sorted(zip(*np.nonzero(d2 < 0.09)))
+
+
+def test_curve_tree_searches_only_the_curves_named():
+    a, b = _wobbly(80, 5), _wobbly(70, 6) + 0.1
+    pts = np.concatenate([a, b])
+    tree = CurveTree(pts, [0, 80, 150], leaf_size=4)
+    centres = np.array([[0.0, 0.0], [0.5, 0.5]])
+    q, p = tree.within(centres, np.array([1.0, 0.8]), np.array([[1], [0]]))
+    d2 = ((centres[:, None] - pts[None]) ** 2).sum(axis=2)
+    want = [(0, k) for k in range(80, 150) if d2[0, k] < 1.0] + [(1, k) for k in range(80) if d2[1, k] < 0.64]
+    assert sorted(zip(q.tolist(), p.tolist())) == sorted(want)
+
+
+# ------------------------------------------------------------------ closest points, crossings, circles
+
+
+@given(POINTS)
+@settings(max_examples=20)
+def test_closest_points_match_brute_force(queries):
+    curve = _wobbly(45, 7, closed=False)
+    dist, _ = distances_to_polyline(queries, curve, False, np.inf)
+    np.testing.assert_allclose(dist, distance_to_polyline(queries, curve, False), atol=1e-12)
+    projector = PolylineProjector(curve, False)
+    feet = projector.foot(*projector.nearest(queries))
+    np.testing.assert_allclose(np.linalg.norm(feet - queries, axis=1), dist, atol=1e-12)
+    near, _, _ = nearest_within(queries, np.zeros(len(queries), np.int64), Ragged.from_list([curve], [False]), 0.1)
+    np.testing.assert_array_equal(np.isfinite(near), dist <= 0.1)
+    np.testing.assert_allclose(near[dist <= 0.1], dist[dist <= 0.1], atol=1e-12)
+
+
+def test_batched_crossings_are_the_crossings_of_each_pair():
+    pairs = [
+        (circle(1.0, 60), circle(1.0, 50, centre=(0.7, 0.2))),
+        (_wobbly(70, 8), _wobbly(80, 9)),
+        (circle(1.0, 30), circle(0.3, 30)),
+    ]
+    A = Ragged.from_list([p for p, _ in pairs], True)
+    B = Ragged.from_list([q for _, q in pairs], True)
+    found = batch_crossings(A, B, pair_scales(A, B))
+    for c, (p, q) in enumerate(pairs):
+        alone = crossings(p, True, q, True)
+        np.testing.assert_allclose(found.s_a[found.pair == c], alone.s_a, atol=1e-12)
+        np.testing.assert_allclose(found.points[found.pair == c], alone.points, atol=1e-12)
+    assert np.sum(found.pair == 2) == 0  # nested circles never meet
+    assert np.sum(found.pair == 0) == 2
+
+
+def test_circumcircles_of_points_on_a_circle_and_a_line():
+    t = np.array([[0.1, 0.9, 2.0], [3.0, 3.5, 5.0]])
+    pts = 2.0 * np.stack([np.cos(t), np.sin(t)], axis=-1) + [1.0, -1.0]
+    centre, radius, ok = circumcircles(pts[:, 0], pts[:, 1], pts[:, 2])
+    np.testing.assert_allclose(centre, [[1.0, -1.0]] * 2, atol=1e-12)
+    np.testing.assert_allclose(radius, 2.0)
+    assert ok.all()
+    line = np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])
+    assert not circumcircles(line[:1], line[1:2], line[2:])[2][0]
+
+
+# ------------------------------------------------------------------ one-way maps
+
+
+def _map(n, chain):
+    rng = np.random.default_rng(n)
+    v = lambda *shape: rng.standard_normal(shape)  # noqa: E731
+    return OneWayMap(v(n, 2), v(n, 2), v(n, 2), v(n), np.ones(n, bool), v(n), v(n), v(n, 2), v(n, 2), np.full(n, chain))
+
+
+def test_one_way_maps_take_flip_and_join():
+    a, b = _map(5, 0), _map(3, 1)
+    both = OneWayMap.concatenate([a, b])
+    assert len(both) == 8 and both.chain.tolist() == [0] * 5 + [1] * 3
+    back = a.flipped()
+    np.testing.assert_array_equal(back.src, a.dst)
+    np.testing.assert_array_equal(back.s_dst, a.s_src)
+    np.testing.assert_array_equal(back.n_src, a.n_dst)
+    np.testing.assert_array_equal(back.flipped().src, a.src)
+    some = both.take(np.array([1, 6]))
+    np.testing.assert_array_equal(some.r, both.r[[1, 6]])
+    a.put(np.array([0]), b.take(np.array([2])))
+    np.testing.assert_array_equal(a.dst[0], b.dst[2])
+    np.testing.assert_array_equal(a.src[0], _map(5, 0).src[0])  # sources are not overwritten
+
+
+@pytest.mark.parametrize("closed", [True, False])
+def test_subcurve_keeps_the_stretch(closed):
+    c = _wobbly(40, 10, closed=not closed) if not closed else _wobbly(40, 10)
+    piece = subcurve(c, closed, 0.5, 1.7)
+    assert np.linalg.norm(np.diff(piece, axis=0), axis=1).sum() == pytest.approx(1.2, rel=1e-9)
