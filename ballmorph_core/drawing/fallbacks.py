@@ -13,6 +13,7 @@ from ..errors import BallMorphError, IncompatibleCurvesError
 from ..geometry.intersections import is_simple
 from ..morphs import make_morph
 from ..morphs.base import PathMorph
+from ..morphs.linear import sample_count, uniform_correspondence
 from ..morphs.paths import LinearPaths
 
 __all__ = [
@@ -21,6 +22,7 @@ __all__ = [
     "short",
     "chain_fallback",
     "linear_fallback",
+    "arc_length_morph",
     "unsplittable",
     "comparison_morph",
     "point_motion",
@@ -72,6 +74,18 @@ def chain_fallback(P, Q, closed, kind, spacing, where, reason):
 def linear_fallback(P, Q, closed, spacing, reason):
     """Linear interpolation for a pair no ball-morph can follow: ``(morph, note)``."""
     return make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing), f"{reason}: {FALLBACK_METHOD} used"
+
+
+def arc_length_morph(R, Q, closed, spacing):
+    """Registered curves that nearly coincide, matched by arc length with straight paths
+    between them (the carrier does the motion): ``'arc-length'`` (PathMorph).
+
+    Loops are aligned by the cyclic shift that moves their samples least, in the direction they
+    have (the stroke matching made it the same).
+    """
+    count = sample_count(R, Q, closed, spacing, "symmetric")
+    p, q, u_p, u_q = uniform_correspondence(R, Q, closed, count, match_orientation=True)
+    return PathMorph("arc-length", closed, LinearPaths(p, q), u_p, u_q)
 
 
 def unsplittable(P, Q, closed, why):

@@ -37,6 +37,8 @@ class BallRows:
         Each sample's fraction along its chain's pieces of P and Q (as given).
     p, m, q : ndarray, shape (K, 2)
         Contacts and disk centres.
+    offset : ndarray, shape (K, 2)
+        Added as ``(1 - t)`` times this to each sample (the end gaps of open strokes).
     """
 
     pair: np.ndarray
@@ -50,20 +52,33 @@ class BallRows:
     p: np.ndarray
     m: np.ndarray
     q: np.ndarray
+    offset: np.ndarray
 
     def without(self, pairs):
         """The chains of the other pairs (BallRows)."""
         keep = ~np.isin(self.pair, list(pairs))
         rows = np.repeat(keep, self.sizes)
         chains = (self.pair, self.order, self.sizes, self.range_p, self.range_q, self.static)
-        return BallRows(*(a[keep] for a in chains), *(a[rows] for a in (self.u_p, self.u_q, self.p, self.m, self.q)))
+        per_sample = (self.u_p, self.u_q, self.p, self.m, self.q, self.offset)
+        return BallRows(*(a[keep] for a in chains), *(a[rows] for a in per_sample))
 
     @classmethod
     def empty(cls):
         """No chain at all."""
         ints, points = np.zeros(0, np.int64), np.zeros((0, 2))
         return cls(
-            ints, ints, ints, points, points, np.zeros(0, bool), np.zeros(0), np.zeros(0), points, points, points
+            ints,
+            ints,
+            ints,
+            points,
+            points,
+            np.zeros(0, bool),
+            np.zeros(0),
+            np.zeros(0),
+            points,
+            points,
+            points,
+            points,
         )
 
 
@@ -79,6 +94,8 @@ class Segment:
         Arc-length start and end of its pieces on the pair's curves.
     morph : Morph
         ``morph.u_p`` and ``u_q`` are the fractions along the pieces.
+    offset : ndarray, shape (K, 2), optional
+        Added as ``(1 - t)`` times this to each sample (the end gaps of open strokes).
     """
 
     pair: int
@@ -86,6 +103,7 @@ class Segment:
     range_p: tuple
     range_q: tuple
     morph: object
+    offset: np.ndarray = None
 
 
 @dataclass
@@ -179,15 +197,14 @@ class Layout:
         kept = keep[:n_ball]
         self._ball_rows = self.position[:n_ball][kept]
         self._paths = BallPaths(ball.p[kept], ball.m[kept], ball.q[kept], kind) if kept.any() else None
+        self._ball_offset = ball.offset[kept] if np.any(ball.offset[kept]) else None
         starts = np.cumsum(np.r_[n_ball, [len(s.morph.u_p) for s in segments]])
-        self._morphs = [
-            (
-                s.morph,
-                np.flatnonzero(keep[a : a + len(s.morph.u_p)]),
-                self.position[a : a + len(s.morph.u_p)][keep[a : a + len(s.morph.u_p)]],
-            )
-            for s, a in zip(segments, starts)
-        ]
+        self._morphs = []
+        for seg, a in zip(segments, starts):
+            kept_rows = keep[a : a + len(seg.morph.u_p)]
+            local = np.flatnonzero(kept_rows)
+            offset = None if seg.offset is None or not np.any(seg.offset) else seg.offset[local]
+            self._morphs.append((seg.morph, local, self.position[a : a + len(seg.morph.u_p)][kept_rows], offset))
 
     def _fractions(self, local, rng, length, owner):
         u = (rng[:, 0] + local * (rng[:, 1] - rng[:, 0])) / np.maximum(length, 1e-300)
@@ -198,9 +215,10 @@ class Layout:
         frames = np.empty((len(times), len(self.u_a), 2))
         for ti, t in enumerate(times):
             if self._paths is not None:
-                frames[ti, self._ball_rows] = self._paths.at(t)
-            for morph, keep, rows in self._morphs:
-                frames[ti, rows] = morph(t)[keep]
+                at = self._paths.at(t)
+                frames[ti, self._ball_rows] = at if self._ball_offset is None else at + (1.0 - t) * self._ball_offset
+            for morph, keep, rows, offset in self._morphs:
+                frames[ti, rows] = morph(t)[keep] if offset is None else morph(t)[keep] + (1.0 - t) * offset
             if motions is not None:
                 frames[ti] = motions.apply(t, frames[ti], self.pair_of)
         return frames

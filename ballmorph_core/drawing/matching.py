@@ -1,55 +1,45 @@
-"""Stroke matching: which stroke of one key morphs into which stroke of the other.
+"""Stroke matching: which stroke of one key morphs into which stroke of the other, and which way.
 
 Two keys rarely list their strokes in the same order with the same count: the animator adds a
-line, redraws an eye first, draws a loop the other way round. Blender's own interpolation pairs
-strokes by index and drops the surplus; :func:`match_strokes` keeps that pairing when it fits
-the drawings and otherwise solves an optimal assignment on a shape distance.
+line, redraws an eye first, draws a loop the other way round, and between the keys the character
+moves, turns and grows. Blender's own interpolation pairs strokes by index and drops the surplus;
+:func:`match_strokes` keeps that pairing when it fits the drawings and otherwise solves an optimal
+assignment on a cost that does not care how each stroke moved.
 
-Shape distance
---------------
-Every stroke is resampled to ``MATCH_SAMPLES`` points at uniform arc length (on its
-chords: the samples only describe the shape). The cost of pairing stroke ``i`` of key A with
-stroke ``j`` of key B is the root-mean-square distance between corresponding samples,
+The cost of a pair
+------------------
+Every stroke is resampled to ``MATCH_SAMPLES`` points at uniform arc length (on its chords).
+With complex coordinates and samples centred on their own centroid, the best similarity (turn and
+scale) taking stroke ``i`` onto stroke ``j`` leaves the normalised residual
 
-    cost_ij = sqrt(mean_k |a_ik - (b_jk - tau)|^2) / scale  (+ MATCH_CYCLIC_PENALTY if mixed),
+    e_ij = 1 - |<a_i, b_j>|^2 / (|a_i|^2 |b_j|^2)   (in [0, 1]: 0 when the shapes are similar),
 
-minimised over B's direction (open strokes) or over B's direction and cyclic shift (when both are
-loops). ``tau`` is the keys' overall translation (the character moved between the keys) and
-``scale`` the drawing size: the smaller of the two keys' bounding-box diagonals, so a far-off
-stroke that exists in one key only does not loosen every threshold. Loops start anywhere, so a
-loop pair's cost carries up to about half a sample spacing of phase error (the samples of the
-two loops need not line up); the thresholds are far above it.
+minimised over B's direction (open strokes) or B's cyclic shift (loops, all at once by FFT). The
+cost adds where the strokes lie and how their sizes differ, each relative to the strokes' *own*
+sizes (``r``, the RMS distance of the samples from their centroid), once the keys' overall motion
+``G`` (a similarity) is taken out:
 
-The root-mean-square (rather than plain mean) distance is chosen because it splits exactly into
-a shape part and a position part: with ``~`` marking samples centred on their stroke's own
-centroid ``c``,
+    cost_ij = W_SHAPE sqrt(e_ij) + W_PLACE |G(c_i) - c_j| / (|G| r_i + r_j)
+              + W_SCALE |log(r_j / (|G| r_i))| / log 4 + W_TURN |arg G| / pi
+              (+ MATCH_CYCLIC_PENALTY if mixed).
 
-    mean_k |a_k - b_k + tau|^2 = mean_k |~a_k - ~b_k|^2 + |c_a - c_b + tau|^2,
+So a stroke turned by any angle, scaled from 1/4 to 4 times or moved by a few of its own sizes
+still pairs, and a small stroke is not paired with a big one across the drawing. ``G`` is found by
+alternating (assign, fit ``G`` to the paired centroids) from a few starting guesses.
 
-and reversing or cyclically shifting ``b`` changes neither centroid. So the expensive part
-(directions and shifts: Gram matrices, ``S_a x S_b x m`` work, chunked) is computed once, and
-trying another overall translation costs only ``S_a x S_b`` operations. It is also the criterion
-of :func:`~ballmorph_core.morphs.linear.best_cyclic_alignment`, which decides the direction of
-loop pairs, so the reported flag agrees with the alignment the loop morphs use.
-
-Overall motion
---------------
-``tau`` is estimated by alternating (assign, fit ``tau`` to the pairs by least squares) from
-three starting guesses: no motion, the difference of the keys' ink centroids, and the
-difference of the coordinate-wise medians of the stroke centroids (robust to a minority of
-strokes present in one key only). The guess whose assignment has the lowest total is kept.
-Scale changes between keys are not modelled: the two keys of a tight in-between are drawn at
-the same size, and a size estimate is easily upset by a stroke present in one key only.
+Direction
+---------
+An open stroke of B runs the way that fits with the smaller residual plus
+``DIRECTION_TURN (turn / pi)^2`` (a reading that needs a half turn must fit clearly better);
+between equal ones, the way it was drawn. Read one way
+but not the other, strokes whose ends (nearly) coincide keep that way: the ends stayed put. A loop
+of B runs the other way when its orientation (the sign of its area) differs.
 
 Unmatched strokes
 -----------------
-The assignment is rectangular and a pair costing ``MATCH_MAX_COST`` or more is never formed.
-This is the classic padding with dummy rows and columns (every stroke may instead take a dummy
-partner costing ``MATCH_MAX_COST / 2``, so a real pair is worth forming only below
-``MATCH_MAX_COST``), solved without enlarging the matrix: clipping the costs at
-``MATCH_MAX_COST``, solving the rectangular problem and dropping the clipped pairs has the same
-optimum. What becomes of an unmatched stroke (appear or disappear at the middle of the
-in-between range, or hold) is the caller's choice (:func:`~ballmorph_core.inbetween.inbetween`).
+A pair costing ``MATCH_MAX_COST`` or more is never formed: both strokes stay unmatched (they
+appear or disappear, see :func:`~ballmorph_core.inbetween`), except that a stroke alone in both
+keys always pairs.
 """
 
 from dataclasses import dataclass, field
@@ -60,32 +50,45 @@ from .. import tolerances as tol
 from ..errors import InvalidCurveError
 from ..geometry.polyline import as_curve, curve_length, resample
 from ..geometry.ragged import Ragged, budget_slices
-from ..morphs.linear import best_cyclic_alignment
 from ..options import MATCHINGS, check_option
 from .assignment import solve_assignment
 
 __all__ = ["Matching", "match_strokes"]
 
-#: Stroke matching (ballmorph_core.matching). Costs are root-mean-square distances between
-#: corresponding arc-length samples of two strokes, once the keys' overall motion is removed,
-#: relative to the drawing size (the smaller of the two keys' bounding-box diagonals).
 #: Samples per stroke in the matching descriptor.
 MATCH_SAMPLES = 32
-#: A pair costing this much or more is never formed: both strokes stay unmatched (they appear
-#: or disappear) rather than morphing across the drawing. Equivalent to padding the
-#: assignment with dummy partners costing half of this each.
-MATCH_MAX_COST = 0.5
+#: Weights of the cost's shape, place and scale terms, and the cost at which a pair is never
+#: formed. A similar shape moved by four of its own sizes and grown three times still pairs.
+W_SHAPE, W_PLACE, W_SCALE = 1.5, 0.2, 0.3
+MATCH_MAX_COST = 1.5
 #: Added to the cost of a pair where one stroke is cyclic and the other is not.
 MATCH_CYCLIC_PENALTY = 0.1
-#: 'AUTO' keeps the drawing order (pairing by index) when the counts agree, every index pair
+#: 'auto' keeps the drawing order (pairing by index) when the counts agree, every index pair
 #: costs less than MATCH_INDEX_MAX_COST, and the index pairing's total is within
 #: MATCH_INDEX_FACTOR of the optimal assignment's.
-MATCH_INDEX_MAX_COST = 0.25
+MATCH_INDEX_MAX_COST = 0.75
 MATCH_INDEX_FACTOR = 1.25
-#: Per pair, totals closer than this are equal (round-off of the Gram-matrix cost evaluation).
+#: Per pair, totals closer than this are equal (round-off of the cost evaluation).
 MATCH_ROUNDOFF = 1e-6
-#: Alternations of (assign strokes, re-fit the keys' overall translation) per starting guess.
+#: Alternations of (assign strokes, re-fit the keys' overall motion) per starting guess.
 MATCH_MOTION_ITERATIONS = 3
+#: A direction whose fit needs a half turn must fit better than the other by this much of the
+#: residual ``e`` (quadratic in the turn): a hook turned 170 degrees (``e`` 0.5 read backwards)
+#: keeps its turn, an arch flipped about its chord (``e`` 0.33 read forward) is not a half turn.
+DIRECTION_TURN = 0.45
+#: Directions whose costs differ by less than this are equally good: the drawn one is kept.
+EQUAL_FIT = 1e-4
+#: Cost of each pair per half turn of the keys' overall motion: between motions that fit
+#: equally (a symmetric drawing), the one that turns less.
+W_TURN = 0.1
+#: An open stroke whose ends are both within this fraction of the strokes' sizes of its
+#: partner's ends (read one way and not the other) keeps that direction whatever the fits say:
+#: its ends stay put and the animator redrew the middle (a flipped arch is not a half turn).
+MATCH_SHARED_ENDS = 0.05
+#: Shape term of a dot paired with a stroke (it grows out of the dot or shrinks into it).
+DOT_SHAPE = 0.5
+#: Two dots have no size: their distance counts relative to this fraction of the drawings' size.
+DOT_SPREAD = 0.05
 
 # Elements per block when a product would otherwise allocate S_a x S_b x m at once (memory only).
 _CHUNK = 2_000_000
@@ -100,11 +103,7 @@ class Matching:
     pairs : list of (int, int, bool)
         ``(i, j, reverse)``: stroke ``i`` of key A morphs into stroke ``j`` of key B, sorted by
         ``i``. ``reverse`` is True when B's stroke runs opposite to A's, so the caller reverses
-        B's stroke before morphing. Open strokes (and mixed pairs, which are morphed as open
-        strokes along their vertex order): reversing B's point order makes the two run the same
-        way. Two loops: B's loop has the opposite orientation (the direction found by
-        :func:`~ballmorph_core.morphs.linear.best_cyclic_alignment`; for simple loops the signs
-        of their signed areas differ).
+        B's stroke before morphing.
     unmatched_a, unmatched_b : list of int
         Strokes with no partner, sorted.
     method : str
@@ -112,10 +111,10 @@ class Matching:
     reason : str
         Why, in a short sentence for the animator.
     costs : list of float
-        The cost of each pair (root-mean-square distance over the drawing size, see the module
-        notes); ``inf`` for a pair involving a stroke with no points.
+        The cost of each pair (see the module notes); ``inf`` for a pair involving a stroke
+        with no points.
     motion : ndarray, shape (2,)
-        The keys' overall translation used (key B is about key A moved by ``motion``).
+        The translation of the keys' overall motion (key B is about key A moved by it).
     """
 
     pairs: list
@@ -240,6 +239,19 @@ class _Key:
         """Sample centroid of each stroke's own descriptor (ring for loops), shape (S, 2)."""
         return np.where(self.loop[:, None], self.ring.mean(axis=1), self.open.mean(axis=1))
 
+    def sizes(self):
+        """Each stroke's own size: RMS distance of its samples from their centroid, shape (S,)
+        (exactly 0 for dots, whatever the round-off of their centroid)."""
+        samples = np.where(self.loop[:, None, None], self.ring, self.open)
+        rms = np.sqrt(np.mean(np.sum((samples - self.centroids()[:, None]) ** 2, axis=2), axis=1))
+        return np.where(self.length > 0, rms, 0.0)
+
+    def areas(self):
+        """Signed area of each loop's samples (counter-clockwise positive; 0 for strokes), shape (S,)."""
+        x, y = self.ring[..., 0], self.ring[..., 1]
+        area = 0.5 * np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1)
+        return np.where(self.loop, area, 0.0)
+
     def ink_centroid(self):
         """Length-weighted mean of the stroke centroids, shape (2,) (dots weigh in if no ink)."""
         ctr, w = self.centroids()[self.valid], self.length[self.valid]
@@ -247,105 +259,131 @@ class _Key:
             w = np.ones(len(ctr))
         return (w[:, None] * ctr).sum(axis=0) / w.sum()
 
-    def median_centroid(self):
-        """Coordinate-wise median of the stroke centroids, shape (2,)."""
-        return np.median(self.centroids()[self.valid], axis=0)
+
+def _complex(samples):
+    return samples[..., 0] + 1j * samples[..., 1]
 
 
-def _open_shape(a, b):
-    """Shape part of the open-stroke cost for every pair.
+def _open_shapes(a, b):
+    """Residuals of open (and mixed) pairs, both directions, and the turns of the fits.
 
     Parameters
     ----------
-    a : ndarray, shape (S_a, m, 2)
-    b : ndarray, shape (S_b, m, 2)
+    a, b : ndarray of complex, shape (S_a, m), (S_b, m)
         Samples centred on their own centroids.
 
     Returns
     -------
-    sq : ndarray, shape (S_a, S_b)
-        ``min(mean_k |a_k - b_k|^2, mean_k |a_k - b_(m-1-k)|^2)``.
-    reverse : ndarray of bool, shape (S_a, S_b)
-        Where the reversed direction is the smaller.
+    e_fwd, e_rev : ndarray, shape (S_a, S_b)
+    turn_fwd, turn_rev : ndarray, shape (S_a, S_b)
+    """
+    norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
+    fwd, rev = np.conj(a) @ b.T, np.conj(a) @ b[:, ::-1].T
+    e = [np.clip(1.0 - np.abs(d) ** 2 / norms, 0.0, 1.0) for d in (fwd, rev)]
+    return e[0], e[1], np.angle(fwd), np.angle(rev)
+
+
+def _shared_ends(a, b, spread):
+    """Whether open strokes share both ends read forward and read backwards, shapes (S_a, S_b).
+
+    ``a``, ``b``: samples, shapes (S_a, m, 2), (S_b, m, 2); ``spread``: sizes, shape (S_a, S_b).
+    """
+
+    def gap(i, j):
+        return np.linalg.norm(a[:, None, i] - b[None, :, j], axis=2)
+
+    limit = MATCH_SHARED_ENDS * spread
+    return np.maximum(gap(0, 0), gap(-1, -1)) <= limit, np.maximum(gap(0, -1), gap(-1, 0)) <= limit
+
+
+def _loop_shapes(a, b):
+    """Residuals of loop pairs over every cyclic shift of B's samples, shape (L_a, L_b).
+
+    ``a`` and ``b`` (complex, centred) run the same way (the caller reversed B's where needed).
     """
     m = a.shape[1]
-    fa, fb, fr = a.reshape(len(a), 2 * m), b.reshape(len(b), 2 * m), b[:, ::-1].reshape(len(b), 2 * m)
-    norms = (fa * fa).sum(axis=1)[:, None] + (fb * fb).sum(axis=1)[None, :]
-    # Gram expansion |x - y|^2 = |x|^2 + |y|^2 - 2 x.y: two matrix products instead of S_a x S_b x m.
-    fwd = norms - 2.0 * fa @ fb.T
-    bwd = norms - 2.0 * fa @ fr.T
-    return np.maximum(np.minimum(fwd, bwd), 0.0) / m, bwd < fwd
-
-
-def _loop_shape(a, b):
-    """Shape part of the loop cost: minimum over B's cyclic shift and direction.
-
-    Parameters
-    ----------
-    a : ndarray, shape (L_a, m, 2)
-    b : ndarray, shape (L_b, m, 2)
-        Loop samples centred on their own centroids.
-
-    Returns
-    -------
-    ndarray, shape (L_a, L_b)
-        ``min over shift s, direction d of mean_k |a_k - b^d_(k+s)|^2`` (``b^d`` reversed keeping
-        its first sample, as :func:`~ballmorph_core.curves.reverse` does).
-    """
-    m = a.shape[1]
-    shifts = (np.arange(m)[:, None] + np.arange(m)[None, :]) % m  # [s, k] -> k + s
-    backwards = np.concatenate([b[:, :1], b[:, :0:-1]], axis=1)
-    # Every shifted copy of every B loop, both directions, as rows: (L_b * 2 * m, 2 m).
-    copies = np.stack([b[:, shifts], backwards[:, shifts]], axis=1).reshape(-1, 2 * m)
-    fa = a.reshape(len(a), 2 * m)
+    fa, fb = np.conj(np.fft.fft(a, axis=1)), np.fft.fft(b, axis=1)
+    norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
     best = np.empty((len(a), len(b)))
-    for sl in budget_slices(np.full(len(a), len(copies)), _CHUNK):
-        best[sl] = (fa[sl] @ copies.T).reshape(sl.stop - sl.start, len(b), 2 * m).max(axis=2)
-    norms = (fa * fa).sum(axis=1)[:, None] + (b * b).sum(axis=(1, 2))[None, :]
-    return np.maximum(norms - 2.0 * best, 0.0) / m
+    for sl in budget_slices(np.full(len(a), len(b) * m), _CHUNK):
+        corr = np.fft.ifft(fa[sl, None, :] * fb[None, :, :], axis=2)
+        best[sl] = np.abs(corr).max(axis=2) ** 2
+    return np.clip(1.0 - best / norms, 0.0, 1.0)
+
+
+def _backwards(samples):
+    """Loop samples read the other way round, keeping the first (shape (..., m))."""
+    return np.concatenate([samples[..., :1], samples[..., :0:-1]], axis=-1)
 
 
 class _CostTable:
-    """Pair costs of two keys, for any overall translation (see the module notes).
+    """Pair costs of two keys, for any overall motion (see the module notes).
 
     Attributes
     ----------
     shape : ndarray, shape (S_a, S_b)
-        Translation-free squared part.
-    offset : ndarray, shape (S_a, S_b, 2)
-        ``c_a - c_b`` (stroke centroids of the descriptors each pair uses).
-    reverse_open : ndarray of bool, shape (S_a, S_b)
-        Direction of open and mixed pairs.
+        ``sqrt(e_ij)``, the similarity-free shape difference.
+    reverse : ndarray of bool, shape (S_a, S_b)
+        Whether B's stroke runs opposite to A's.
     """
 
-    def __init__(self, key_a, key_b, scale):
-        self.scale = scale
+    def __init__(self, key_a, key_b):
         ca, cb = key_a.centroids(), key_b.centroids()
-        both_loops = key_a.loop[:, None] & key_b.loop[None, :]
-        self.mixed = key_a.loop[:, None] != key_b.loop[None, :]
+        self.ca, self.cb = _complex(ca), _complex(cb)
+        self.ra, self.rb = key_a.sizes(), key_b.sizes()
         self.valid = key_a.valid[:, None] & key_b.valid[None, :]
-        oa, ob = key_a.open.mean(axis=1), key_b.open.mean(axis=1)
-        self.shape, self.reverse_open = _open_shape(key_a.open - oa[:, None], key_b.open - ob[:, None])
-        self.offset = oa[:, None, :] - ob[None, :, :]
+        self.mixed = key_a.loop[:, None] != key_b.loop[None, :]
+        self.dot_spread = DOT_SPREAD * max(key_a.diagonal, key_b.diagonal, 1e-300)
+        oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
+        ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
+        e_f, e_r, t_f, t_r = _open_shapes(oa, ob)
+        # The better fit, a turn counting against it; then the drawn direction.
+        cost_f, cost_r = e_f + DIRECTION_TURN * (t_f / np.pi) ** 2, e_r + DIRECTION_TURN * (t_r / np.pi) ** 2
+        self.reverse = cost_r < cost_f - EQUAL_FIT
+        shared_f, shared_r = _shared_ends(key_a.open, key_b.open, self.ra[:, None] + self.rb[None, :])
+        self.reverse = np.where(shared_f & ~shared_r, False, np.where(shared_r & ~shared_f, True, self.reverse))
+        e = np.minimum(e_f, e_r)
         la, lb = np.flatnonzero(key_a.loop), np.flatnonzero(key_b.loop)
         if la.size and lb.size:
-            ring_a = key_a.ring[la] - ca[la, None]
-            ring_b = key_b.ring[lb] - cb[lb, None]
-            self.shape[np.ix_(la, lb)] = _loop_shape(ring_a, ring_b)
-            self.offset[both_loops] = (ca[:, None, :] - cb[None, :, :])[both_loops]
+            ra = _complex(key_a.ring[la]) - self.ca[la, None]
+            rb = _complex(key_b.ring[lb]) - self.cb[lb, None]
+            # A loop drawn the other way (its area's sign) is read backwards before fitting.
+            flip = np.sign(key_a.areas()[la])[:, None] * np.sign(key_b.areas()[lb])[None, :] < 0
+            same, other = _loop_shapes(ra, rb), _loop_shapes(ra, _backwards(rb))
+            e[np.ix_(la, lb)] = np.where(flip, other, same)
+            self.reverse[np.ix_(la, lb)] = flip
+        self.shape = np.sqrt(e)
+        both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)
+        one_dot = (self.ra[:, None] <= 0) != (self.rb[None, :] <= 0)
+        self.shape = np.where(both_dots, 0.0, np.where(one_dot, DOT_SHAPE, self.shape))
 
-    def costs(self, motion):
-        """Pair costs with key B moved back by ``motion`` (shape (2,)), shape (S_a, S_b)."""
-        d = self.offset + motion
-        c = np.sqrt(self.shape + (d * d).sum(axis=2)) / self.scale + MATCH_CYCLIC_PENALTY * self.mixed
+    def costs(self, a, b):
+        """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b)."""
+        scale = max(abs(a), 1e-300)
+        moved = a * self.ca + b
+        spread = np.maximum(scale * self.ra[:, None] + self.rb[None, :], self.dot_spread)
+        place = np.abs(moved[:, None] - self.cb[None, :]) / spread
+        ratio = np.maximum(self.rb[None, :], 1e-300) / np.maximum(scale * self.ra[:, None], 1e-300)
+        size = np.where((self.ra[:, None] > 0) & (self.rb[None, :] > 0), np.abs(np.log(ratio)) / np.log(4.0), 0.0)
+        c = W_SHAPE * self.shape + W_PLACE * place + W_SCALE * size + MATCH_CYCLIC_PENALTY * self.mixed
+        c = c + W_TURN * abs(np.angle(a)) / np.pi
         return np.where(self.valid, c, np.inf)
 
     def fit_motion(self, rows, cols):
-        """Least-squares overall translation for given pairs, shape (2,) (zero if none)."""
+        """Least-squares similarity of the paired centroids (weighted by size): ``(a, b)`` complex."""
         keep = self.valid[rows, cols]
-        if not keep.any():
-            return np.zeros(2)
-        return -self.offset[rows[keep], cols[keep]].mean(axis=0)
+        rows, cols = rows[keep], cols[keep]
+        if not len(rows):
+            return 1.0 + 0j, 0j
+        w = np.maximum(self.ra[rows] + self.rb[cols], 1e-300)
+        za, zb = self.ca[rows], self.cb[cols]
+        ma, mb = np.sum(w * za) / w.sum(), np.sum(w * zb) / w.sum()
+        if len(rows) < 2:
+            return 1.0 + 0j, mb - ma
+        da, db = za - ma, zb - mb
+        norm = np.sum(w * np.abs(da) ** 2)
+        a = np.sum(w * np.conj(da) * db) / norm if norm > 0 else 1.0 + 0j
+        return a, mb - a * ma
 
 
 def _assign_within(costs):
@@ -363,6 +401,18 @@ def _padded_total(pair_costs, n_a, n_b):
     return float(np.sum(pair_costs)) + 0.5 * MATCH_MAX_COST * unmatched
 
 
+def _guesses(table, key_a, key_b):
+    """Starting guesses of the keys' overall motion (complex ``a, b``)."""
+    guesses = [(1.0 + 0j, 0j)]
+    if key_a.valid.any() and key_b.valid.any():
+        shift = _complex(key_b.ink_centroid() - key_a.ink_centroid())
+        guesses.append((1.0 + 0j, complex(shift)))
+        if key_a.count == key_b.count:
+            index = np.arange(key_a.count)
+            guesses.append(table.fit_motion(index, index))
+    return guesses
+
+
 def _best_assignment(table, key_a, key_b):
     """Alternate assignment and motion fit from each starting guess; keep the cheapest.
 
@@ -370,24 +420,20 @@ def _best_assignment(table, key_a, key_b):
     -------
     total : float
     rows, cols : ndarray of int
-    motion : ndarray, shape (2,)
+    motion : tuple of complex
     """
-    guesses = [np.zeros(2)]
-    if key_a.valid.any() and key_b.valid.any():
-        guesses += [
-            key_b.ink_centroid() - key_a.ink_centroid(),
-            key_b.median_centroid() - key_a.median_centroid(),
-        ]
     best, tried = None, []
-    for motion in guesses:
+    for motion in _guesses(table, key_a, key_b):
         for _ in range(MATCH_MOTION_ITERATIONS):
             # A motion already evaluated (the previous pairs refit to the same motion, or another
             # guess led here) would give the same assignment: this guess has converged.
-            if any(np.linalg.norm(motion - t) <= MATCH_ROUNDOFF * table.scale for t in tried):
+            if any(abs(motion[0] - a) + abs(motion[1] - b) <= MATCH_ROUNDOFF for a, b in tried):
                 break
             tried.append(motion)
-            costs = table.costs(motion)
+            costs = table.costs(*motion)
             rows, cols = _assign_within(costs)
+            if key_a.valid.sum() == 1 and key_b.valid.sum() == 1:  # alone in both keys: always a pair
+                rows, cols = np.flatnonzero(key_a.valid), np.flatnonzero(key_b.valid)
             total = _padded_total(costs[rows, cols], key_a.count, key_b.count)
             if best is None or total < best[0]:
                 best = (total, rows, cols, motion)
@@ -397,25 +443,18 @@ def _best_assignment(table, key_a, key_b):
     return best
 
 
-def _reverse_flag(key_a, key_b, table, i, j):
-    """Whether B's stroke j runs opposite to A's stroke i (see :class:`Matching`)."""
-    if not table.valid[i, j]:
-        return False
-    if key_a.loop[i] and key_b.loop[j]:
-        return bool(best_cyclic_alignment(key_a.ring[i], key_b.ring[j])[1])
-    return bool(table.reverse_open[i, j])
-
-
 def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
-    costs = table.costs(motion)[rows, cols]
+    costs = table.costs(*motion)[rows, cols]
+    order = np.argsort(rows, kind="stable")
+    rows, cols, costs = rows[order], cols[order], costs[order]
     return Matching(
-        pairs=[(int(i), int(j), _reverse_flag(key_a, key_b, table, i, j)) for i, j in zip(rows, cols)],
+        pairs=[(int(i), int(j), bool(table.reverse[i, j]) if table.valid[i, j] else False) for i, j in zip(rows, cols)],
         unmatched_a=sorted(set(range(key_a.count)) - {int(i) for i in rows}),
         unmatched_b=sorted(set(range(key_b.count)) - {int(j) for j in cols}),
         method=method,
         reason=reason,
         costs=[float(c) for c in costs],
-        motion=np.asarray(motion, dtype=np.float64),
+        motion=np.array([motion[1].real, motion[1].imag]),
     )
 
 
@@ -437,7 +476,7 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
         ``MATCH_INDEX_MAX_COST`` and their total is within ``MATCH_INDEX_FACTOR`` of the
         optimal assignment's), which keeps the animator's order when it is right; otherwise it
         returns the optimal assignment, where no pair costs ``MATCH_MAX_COST`` or more.
-        Either way each pair's direction is checked.
+        Either way each pair's direction is chosen (see the module notes).
 
     Returns
     -------
@@ -449,11 +488,6 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
         For a malformed stroke (named ``strokes_a[i]``), flags of the wrong length, or an
         unknown ``mode``.
 
-    Notes
-    -----
-    The cost is described in the module notes. Work: ``O(S_a S_b m)`` for the costs (``m`` is
-    ``MATCH_SAMPLES``, times ``m`` again for loop pairs' shifts), plus the assignment.
-
     Examples
     --------
     >>> import numpy as np
@@ -464,27 +498,23 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
     ([(0, 1, False), (1, 0, True)], 'assignment')
     """
     mode = check_option("mode", mode, MATCHINGS)
-    m = MATCH_SAMPLES
-    key_a = _Key(strokes_a, closed_a, "strokes_a", "closed_a", m)
-    key_b = _Key(strokes_b, closed_b, "strokes_b", "closed_b", m)
-    diagonals = [d for d in (key_a.diagonal, key_b.diagonal) if d > 0]
-    table = _CostTable(key_a, key_b, min(diagonals) if diagonals else 1.0)
+    key_a = _Key(strokes_a, closed_a, "strokes_a", "closed_a", MATCH_SAMPLES)
+    key_b = _Key(strokes_b, closed_b, "strokes_b", "closed_b", MATCH_SAMPLES)
+    table = _CostTable(key_a, key_b)
     n_a, n_b = key_a.count, key_b.count
     index = np.arange(min(n_a, n_b))
-
     if mode == "index":
         extra = f"; {abs(n_a - n_b)} extra stroke(s) of key {'A' if n_a > n_b else 'B'} unmatched" if n_a != n_b else ""
         motion = table.fit_motion(index, index)
-        reason = f"paired by drawing order (mode 'index'){extra}"
-        return _matching(key_a, key_b, table, index, index, motion, "index", reason)
+        return _matching(
+            key_a, key_b, table, index, index, motion, "index", f"paired by drawing order (mode 'index'){extra}"
+        )
     if n_a == n_b == 0:
-        return _matching(key_a, key_b, table, index, index, np.zeros(2), "index", "neither key has strokes")
-
+        return _matching(key_a, key_b, table, index, index, (1.0 + 0j, 0j), "index", "neither key has strokes")
     total, rows, cols, motion = _best_assignment(table, key_a, key_b)
     if n_a != n_b:
         reason = f"stroke counts differ ({n_a} vs {n_b}): optimal assignment"
         return _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)
-
     return _order_or_assignment(key_a, key_b, table, total, rows, cols, motion)
 
 
@@ -496,14 +526,14 @@ def _order_or_assignment(key_a, key_b, table, total, rows, cols, motion):
     if len(rows) == n_a and np.array_equal(np.sort(rows), index) and np.array_equal(cols[np.argsort(rows)], index):
         # The optimal assignment is the drawing order itself: keep it, however far strokes moved.
         reason = "same stroke count and the optimal assignment is the drawing order"
-        return _matching(key_a, key_b, table, index, index, index_motion, "index", reason)
-    index_costs = table.costs(index_motion)[index, index]
+        return _matching(key_a, key_b, table, index, index, motion, "index", reason)
+    index_costs = table.costs(*index_motion)[index, index]
     worst = int(np.argmax(index_costs))
     index_total = _padded_total(index_costs, n_a, n_b)
     if index_costs[worst] >= MATCH_INDEX_MAX_COST:
         reason = (
-            f"drawing order does not fit: stroke {worst} -> {worst} costs {index_costs[worst]:.3g} of the "
-            f"drawing size (limit {MATCH_INDEX_MAX_COST:g}): optimal assignment"
+            f"drawing order does not fit: stroke {worst} -> {worst} costs {index_costs[worst]:.3g} "
+            f"(limit {MATCH_INDEX_MAX_COST:g}): optimal assignment"
         )
     elif index_total > MATCH_INDEX_FACTOR * total + MATCH_ROUNDOFF * n_a:
         reason = (

@@ -11,7 +11,9 @@ Ball-morph methods::
    ball-morph runs between the registered P and Q and the carrier undoes the registration
    progressively.
 3. *find events* (:mod:`.splitting`): where the registered curves cross or overlap.
-4. *choose roads*: registered curves that coincide are the carrier alone; nested loops and
+4. *choose roads*: registered curves that coincide are the carrier alone; curves within
+   ``NEAR`` of each other that cross (the same stroke redrawn) are matched by arc length on the
+   carrier; nested loops and
    strokes sharing their endpoints are ball-mapped whole; crossing pairs are cut into lenses;
    pairs no ball-morph can follow (tangled crossings, loops side by side, strokes that do not
    share their endpoints without a carrier) take linear interpolation, and the report says why.
@@ -35,6 +37,7 @@ from .. import tolerances as tol
 from ..ballmap.correspondence import map_batch
 from ..ballmap.onemap import OneWayMap
 from ..errors import InvalidCurveError
+from ..geometry.intersections import batch_crossings
 from ..geometry.polyline import (
     as_curve,
     coarsen,
@@ -44,9 +47,17 @@ from ..geometry.polyline import (
     resolve_spacing,
 )
 from ..geometry.ragged import Ragged
-from .fallbacks import BALL_METHODS, chain_fallback, comparison_morph, linear_fallback, point_motion, unsplittable
+from .fallbacks import (
+    BALL_METHODS,
+    arc_length_morph,
+    chain_fallback,
+    comparison_morph,
+    linear_fallback,
+    point_motion,
+    unsplittable,
+)
 from .layout import BallRows, Layout, PairFrames, Segment
-from .registration import Motions, register
+from .registration import Motions, fit_pairs, identity_residual, motions
 from .splitting import cut_chains, find_events
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
@@ -55,6 +66,11 @@ __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 #: pair's chains share one tolerance): one batch for a typical drawing, several for a huge one,
 #: which bounds the ball-map's temporaries.
 BALLMAP_BATCH_POINTS = 60_000
+
+#: Registered curves within this fraction of their size of each other (RMS) are the same stroke
+#: redrawn: their points are matched by arc length and the carrier does the motion. A ball-map
+#: of two curves this close would only follow the redrawing's jitter, cut at its many crossings.
+NEAR = 0.01
 
 
 @dataclass
@@ -194,10 +210,11 @@ class _Roads:
     reason: list
 
 
-def choose_roads(R, Q, events, coincident, carrier, scale):
+def choose_roads(R, Q, events, coincident, near, carrier, scale):
     """Step 4: the road of every pair (see the module docstring)."""
     n, closed = len(R), R.closed
     kind = np.where(closed & (events.count == 0), "whole", "lenses").astype(object)
+    kind[near & ~coincident & (events.count > 0)] = "near"
     reason = [""] * n
     end_eps = tol.SHARED_ENDPOINT * scale
     first = np.linalg.norm(R.pts[R.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
@@ -206,6 +223,8 @@ def choose_roads(R, Q, events, coincident, carrier, scale):
     for c in range(n):
         if coincident[c]:
             kind[c] = "carrier"
+        elif kind[c] == "near":
+            continue
         elif carrier == "none" and not closed[c] and not (first[c] and last[c]):
             kind[c], reason[c] = "linear", "the strokes do not share endpoints and no carrier is used"
         elif not events.agree[c]:
@@ -283,6 +302,7 @@ def _ball_rows(chains, maps, index, good):
         p=p[order],
         m=m[order],
         q=q[order],
+        offset=np.zeros_like(p),
     )
 
 
@@ -307,6 +327,48 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing):
     return good
 
 
+def _handled_directly(P, Q, scale):
+    """Pairs the ball-morph follows as they are drawn: strokes sharing both endpoints, loops one
+    inside the other without crossing (paper configurations 2 and 1)."""
+    n, closed = len(P), P.closed
+    end_eps = tol.SHARED_ENDPOINT * scale
+    first = np.linalg.norm(P.pts[P.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
+    last = np.linalg.norm(P.pts[P.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
+    inside = P.contains(Q.pts[Q.offsets[:-1]], np.arange(n)) | Q.contains(P.pts[P.offsets[:-1]], np.arange(n))
+    nested = closed & inside
+    if nested.any():
+        cx = batch_crossings(P, Q, scale, nested)
+        nested &= np.bincount(cx.pair, minlength=n) == 0
+    return (~closed & first & last) | nested
+
+
+def register(P, Q, carrier, scale):
+    """Step 2: each pair's registration and carrier (see :mod:`.registration`).
+
+    Pairs the ball-morph follows as drawn (and every pair with carrier 'none') get none.
+
+    Returns
+    -------
+    motions : Motions
+    R : Ragged
+        The registered P.
+    residual : ndarray, shape (C,)
+        RMS distance left between the registered P and Q (uniform samples).
+    """
+    n = len(P)
+    if carrier == "none":
+        motion = Motions.identity(n)
+    else:
+        fits = fit_pairs(P, Q)
+        still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
+            np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
+        )
+        motion = motions(P, fits, carrier, scale, ~_handled_directly(P, Q, scale) & ~still)
+    pts = np.einsum("kij,kj->ki", motion.A[P.owner], P.pts) + motion.b[P.owner]
+    R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
+    return motion, R, identity_residual(R, Q)
+
+
 def _ball_road(plans, pairs, index, kind, carrier, spacing):
     """Steps 2-7 for the pairs ``index`` of ``pairs`` (validated); returns their Motions."""
     closed = np.array([pairs[c].closed for c in index], dtype=bool)
@@ -320,16 +382,21 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing):
     h = default_spacings(R, Q) if spacing is None else np.full(len(index), float(spacing))
     coincident = residual <= tol.OVERLAP * scale
     events = find_events(R, Q, scale, h / 2, ~coincident)
-    roads = choose_roads(R, Q, events, coincident, carrier, scale)
+    near = (residual <= NEAR * scale) & motions.moving
+    roads = choose_roads(R, Q, events, coincident, near, carrier, scale)
     lengths = np.c_[R.length, Q.length]
     for c in np.flatnonzero(roads.kind == "linear"):
         morph, note = linear_fallback(R.curve(c), Q.curve(c), bool(closed[c]), h[c], roads.reason[c])
         plans.notes[index[c]].append(note)
         plans.add_morph(int(index[c]), morph, bool(closed[c]), lengths[c])
+    for c in np.flatnonzero(roads.kind == "near"):
+        plans.add_morph(
+            int(index[c]), arc_length_morph(R.curve(c), Q.curve(c), bool(closed[c]), h[c]), bool(closed[c]), lengths[c]
+        )
     lensed = roads.kind == "lenses"
     whole = np.flatnonzero((roads.kind == "whole") | (roads.kind == "carrier"))
     chains = cut_chains(R, Q, events, lensed, whole, coincident, scale)
-    mapped = np.flatnonzero(roads.kind != "linear")
+    mapped = np.flatnonzero((roads.kind != "linear") & (roads.kind != "near"))
     plans.closed[index[mapped]], plans.lengths[index[mapped]] = closed[mapped], lengths[mapped]
     plans.joined[index[mapped]] = closed[mapped] & lensed[mapped]
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
@@ -364,22 +431,18 @@ def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing):
             )
             plans.notes[c].append(note)
             plans.add_morph(c, morph, pair.closed, pair.lengths)
-            parts.append(
-                Motions(
-                    np.ones(1, complex), np.zeros(1, complex), np.zeros(1, bool), np.zeros(1, complex), "similarity"
-                )
-            )
-    return Motions(
-        *(np.concatenate([getattr(m, f) for m in parts]) for f in ("a", "b", "moving", "centre")), parts[0].kind
-    )
+            parts.append(Motions.identity(1))
+    names = [f.name for f in fields(Motions) if f.name != "kind"]
+    return Motions(*(np.concatenate([getattr(m, name) for m in parts]) for name in names), parts[-1].kind)
 
 
-def _spread_motions(motions, index, n):
+def _spread_motions(motion, index, n):
     """A batch's motions indexed by every pair of the drawing (the identity elsewhere)."""
-    a, b = np.ones(n, dtype=complex), np.zeros(n, dtype=complex)
-    moving, centre = np.zeros(n, dtype=bool), np.zeros(n, dtype=complex)
-    a[index], b[index], moving[index], centre[index] = motions.a, motions.b, motions.moving, motions.centre
-    return Motions(a, b, moving, centre, motions.kind)
+    out = Motions.identity(n, motion.kind)
+    for f in fields(Motions):
+        if f.name != "kind":
+            getattr(out, f.name)[index] = getattr(motion, f.name)
+    return out
 
 
 def _comparison_road(plans, pairs, ready, method, spacing):

@@ -1,26 +1,29 @@
-"""Registration and carrier motions (paper section 1.4; Rossignac & Vinacua's steady motions).
+"""Registration and carrier motions (paper section 1.4).
 
 The paper's ball-morph needs strokes that share both endpoints, or nested loops. An animator's
-keys rarely are: an arm turns and bends, a ball moves. We *register* P onto Q with a
-similarity ``S`` (z -> a z + b in complex numbers, a = s e^{i theta}), ball-morph between the
-registered ``S(P)`` and ``Q``, and move the result along a *carrier* that undoes the
-registration progressively:
+keys rarely are: an arm turns and bends, a ball moves and grows. We *register* P onto Q with a
+map ``S`` (``z -> A z + b``), ball-morph between the registered ``S(P)`` and ``Q``, and move the
+result along a *carrier* that undoes the registration progressively::
 
-    in-between(t) = C_t(F(t)),  F = ball-morph from S(P) to Q,  C_0 = S^-1,  C_1 = identity.
+    in-between(t) = S_t(S^-1(F(t))),  F = ball-morph from S(P) to Q,  S_0 = identity,  S_1 = S.
 
-* ``'similarity'``: ``C_t = S^-(1-t)``. A similarity has a fixed point ``c = b / (1 - a)``
-  and its steady interpolation ``z -> c + a^s (z - c)`` moves every point on a logarithmic
-  spiral about ``c`` (a circular arc when the scale is 1, a straight line when ``a = 1``).
-* ``'rigid'``: ``S`` is split into a uniform scaling about the registered curve's centre and a
-  rigid motion ``R``; the carrier moves along ``R^-(1-t)`` (circular arcs) and the scale is
-  interpolated geometrically about that centre, so the path of the centre is a circle arc
-  rather than a spiral. The result equals 'similarity' when no scaling is involved.
+**The fit.** ``A`` is a similarity (rotation and uniform scale) fitted by least squares between
+uniform arc-length samples of both curves (complex Procrustes): for loops over every cyclic
+shift at once (FFT cross-correlation), for strokes from end to end, and for a stroke that is
+nearly closed (an outline drawn open) also as a loop, so that a start moved along the outline is
+a shift, not a turn. A stroke's endpoint the two keys share (a shoulder) is a pivot the fit turns
+about. Among fits that are equally good, a smaller turn wins; a worse fit never does. A loop
+whose shape is squashed or stretched (a ball landing) gets an affine ``A`` from the second
+moments of its area, when that explains the shape far better than a similarity.
 
-Strokes are registered by their endpoints (the similarity that maps P's endpoints onto Q's, so
-``S(P)`` and ``Q`` share them); loops by the least-squares similarity between uniform
-arc-length samples, over the cyclic shift and direction that fit best. Then a stroke turned by
-90 degrees keeps its length (linear interpolation shrinks it to 71 % at the middle), and a
-circle that moves stays a circle.
+**The carrier** (``S_t``). ``A = R U`` (a rotation by ``theta`` times a symmetric stretch ``U``)
+is interpolated as ``M_t = R(t theta) ((1 - t) I + t U)``: uniform turning, linear scale (a
+circle of radius 1 shrinking to 0.5 has radius 0.75 halfway), no easing of its own. It turns and
+stretches about a *pivot* ``p`` that moves straight to its image: ``S_t(z) = p_t + M_t (z - p)``.
+The pivot is the fixed point of ``S`` (the shoulder of a swinging arm, the hand at its end
+follows on an arc) when that point lies near the stroke, else the stroke's centroid (a ball
+moving while it grows advances evenly). ``'rigid'`` carries only the turn and the move: the
+scale is left to the ball-morph.
 """
 
 from dataclasses import dataclass
@@ -28,150 +31,354 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import tolerances as tol
+from ..geometry.polyline import signed_area
 from ..geometry.ragged import Ragged
-from ..geometry.similarity import Similarity, as_complex, from_complex, power
-from ..options import check_option
+from ..geometry.similarity import Similarity, as_complex, from_complex
 
-__all__ = [
-    "endpoint_similarity",
-    "fit_similarity",
-    "similarities",
-    "carrier_at",
-    "Carrier",
-    "Motions",
-    "register",
-]
+__all__ = ["Fits", "fit_pairs", "identity_residual", "Motions", "motions", "endpoint_similarity", "fit_similarity"]
 
-#: Loop registration: a fitted rotation costs this times (angle / pi)^2 of the normalised
-#: residual, so shapes that merely change proportions (squash and stretch, apple to pear) are
-#: not turned to fit better; a shape that really turned still is (its unrotated residual is
-#: larger than the penalty).
-ROTATION_PENALTY = 1.0
-
-#: Uniform samples per curve for the least-squares fit of loops.
+#: Uniform samples per curve for the least-squares fits.
 FIT_SAMPLES = 128
 
+#: Fits whose normalised residuals differ by less than this are equally good: the one that
+#: turns least wins (a symmetric shape turned by 90 degrees never turns by round-off).
+EQUAL_FIT = 1e-6
 
-# ------------------------------------------------------------------ vectorised core
+#: A stroke whose endpoints are closer than this fraction of its length is also fitted as a
+#: loop (a head outline drawn open).
+NEARLY_CLOSED = 0.25
+
+#: The affine fit of a loop replaces the similarity when its residual is below this fraction of
+#: the similarity's, and its stretch ratio within ``1 / MAX_STRETCH .. MAX_STRETCH``.
+AFFINE_GAIN = 0.5
+MAX_STRETCH = 4.0
+
+#: The fixed point of a registration is the carrier's pivot when it lies within this many sizes
+#: (bounding-box diagonal of the pair) of the stroke's centroid; beyond twice that, the
+#: centroid is; in between, a blend.
+PIVOT_REACH = 1.5
 
 
-def carrier_at(a, b, kind, centre, t):
-    """The carrier ``C_t`` of registrations ``S`` (arrays; see the module docstring).
+@dataclass
+class Fits:
+    """Registrations of a batch of pairs: ``z -> A z + b`` takes each P onto its Q.
 
-    Parameters
+    Attributes
     ----------
-    a, b : ndarray of complex
-        The registrations.
-    kind : {'similarity', 'rigid'}
-    centre : ndarray of complex
-        Centre of each registered curve (the scaling centre of 'rigid').
-    t : float
+    A : ndarray, shape (C, 2, 2)
+    b : ndarray, shape (C, 2)
+    residual : ndarray, shape (C,)
+        RMS distance left between the fitted samples (0 when registration makes them coincide).
+    """
+
+    A: np.ndarray
+    b: np.ndarray
+    residual: np.ndarray
+
+
+def _matrix(a):
+    """2x2 matrices of complex multiplications ``z -> a z``, shape (C, 2, 2)."""
+    a = np.asarray(a, dtype=complex)
+    return np.stack([np.stack([a.real, -a.imag], -1), np.stack([a.imag, a.real], -1)], -2)
+
+
+def _samples(rg, index, k):
+    """``k`` uniform arc-length samples (on the chords) of curves ``index``, complex, shape (len, k)."""
+    sub = Ragged.from_list([rg.curve(c) for c in index], rg.closed[index])
+    return as_complex(sub.resample(np.full(len(index), k), smooth=False).pts).reshape(len(index), k)
+
+
+def _loop_fits(xp, xq):
+    """Best similarity over every cyclic shift of Q's samples: ``(a, b, residual)`` per row.
+
+    Complex Procrustes: with centred samples, ``a = <p, q_s> / <p, p>`` and the residual is
+    ``|q|^2 - |<p, q_s>|^2 / |p|^2``; ``<p, q_s>`` for every shift ``s`` is one circular
+    cross-correlation.
+    """
+    cp, cq = xp.mean(axis=1), xq.mean(axis=1)
+    p, q = xp - cp[:, None], xq - cq[:, None]
+    norm_p = np.maximum(np.sum(np.abs(p) ** 2, axis=1), 1e-300)
+    norm_q = np.maximum(np.sum(np.abs(q) ** 2, axis=1), 1e-300)
+    corr = np.fft.ifft(np.conj(np.fft.fft(p, axis=1)) * np.fft.fft(q, axis=1), axis=1)
+    fit = 1.0 - np.abs(corr) ** 2 / (norm_p * norm_q)[:, None]
+    # Equally good fits: the smaller turn wins, never a worse fit.
+    best = fit.min(axis=1, keepdims=True)
+    turn = np.where(fit <= best + EQUAL_FIT, np.abs(np.angle(corr)), np.inf)
+    s = np.argmin(turn, axis=1)
+    rows = np.arange(len(xp))
+    a = corr[rows, s] / norm_p
+    k = xp.shape[1]
+    residual = np.sqrt(np.maximum(norm_q - np.abs(corr[rows, s]) ** 2 / norm_p, 0.0) / k)
+    return a, cq - a * cp, residual
+
+
+def _stroke_fits(xp, xq, pin_start, pin_end):
+    """Best similarity of strokes sample to sample (end to end): ``(a, b, residual)`` per row.
+
+    A pinned endpoint (shared by both keys) is the centre the fit turns and scales about.
+    """
+    cp, cq = xp.mean(axis=1), xq.mean(axis=1)
+    cp = np.where(pin_start, xp[:, 0], np.where(pin_end, xp[:, -1], cp))
+    cq = np.where(pin_start, xq[:, 0], np.where(pin_end, xq[:, -1], cq))
+    p, q = xp - cp[:, None], xq - cq[:, None]
+    norm_p = np.sum(np.abs(p) ** 2, axis=1)
+    dot = np.sum(np.conj(p) * q, axis=1)
+    a = np.where(norm_p > 0, dot / np.where(norm_p > 0, norm_p, 1.0), 1.0)
+    residual = np.sqrt(np.mean(np.abs(a[:, None] * p - q) ** 2, axis=1))
+    return a, cq - a * cp, residual
+
+
+def shifted_distance(xp, xq):
+    """RMS distance between loop samples, at the cyclic shift of Q's that brings them closest, shape (L,)."""
+    dot = np.fft.ifft(np.conj(np.fft.fft(xp, axis=1)) * np.fft.fft(xq, axis=1), axis=1).real
+    sq = (np.sum(np.abs(xp) ** 2, axis=1) + np.sum(np.abs(xq) ** 2, axis=1))[:, None] - 2.0 * dot
+    return np.sqrt(np.maximum(sq.min(axis=1), 0.0) / xp.shape[1])
+
+
+def identity_residual(P, Q):
+    """RMS distance between P's and Q's uniform samples as they lie (loops: the best shift), shape (C,)."""
+    k, out = FIT_SAMPLES, np.zeros(len(P))
+    for loop, index in ((True, np.flatnonzero(P.closed)), (False, np.flatnonzero(~P.closed))):
+        if len(index):
+            xp, xq = _samples(P, index, k), _samples(Q, index, k)
+            out[index] = shifted_distance(xp, xq) if loop else np.sqrt(np.mean(np.abs(xp - xq) ** 2, axis=1))
+    return out
+
+
+def _area_moments(rg, index):
+    """Area centroid and second moments of loops ``index``: ``(centre (L, 2), cov (L, 2, 2))``."""
+    out_c, out_m = np.zeros((len(index), 2)), np.zeros((len(index), 2, 2))
+    for k, c in enumerate(index):
+        x, y = rg.curve(c).T
+        xn, yn = np.roll(x, -1), np.roll(y, -1)
+        cross = x * yn - xn * y
+        area = 0.5 * cross.sum()
+        if abs(area) <= tol.ROUNDOFF * (np.ptp(x) * np.ptp(y) + 1e-300):
+            out_m[k] = np.nan
+            continue
+        cx = ((x + xn) * cross).sum() / (6 * area)
+        cy = ((y + yn) * cross).sum() / (6 * area)
+        sxx = ((x * x + x * xn + xn * xn) * cross).sum() / (12 * area) - cx * cx
+        syy = ((y * y + y * yn + yn * yn) * cross).sum() / (12 * area) - cy * cy
+        sxy = ((x * yn + 2 * x * y + 2 * xn * yn + xn * y) * cross).sum() / (24 * area) - cx * cy
+        out_c[k], out_m[k] = (cx, cy), ((sxx, sxy), (sxy, syy))
+    return out_c, out_m
+
+
+def _sqrtm(m):
+    """Symmetric square roots and inverse square roots of 2x2 covariances, shape (L, 2, 2) each."""
+    w, v = np.linalg.eigh(m)
+    w = np.maximum(w, 1e-300)
+    root = np.einsum("lij,lj,lkj->lik", v, np.sqrt(w), v)
+    inv = np.einsum("lij,lj,lkj->lik", v, 1 / np.sqrt(w), v)
+    return root, inv
+
+
+def _affine_loops(P, Q, index, res_sim, k):
+    """Affine registrations of loops whose area moments say they are squashed or stretched.
+
+    ``A = C_Q^(1/2) R C_P^(-1/2)``: whiten both loops by their second moments of area, fit the
+    turn ``R`` between the whitened loops (over every cyclic shift), colour back. Kept where the
+    residual drops below ``AFFINE_GAIN`` of the similarity's and the stretch is moderate.
 
     Returns
     -------
-    ca, cb : ndarray of complex
-        ``C_t(z) = ca z + cb``.
+    use : ndarray of bool, shape (L,)
+    A : ndarray, shape (L, 2, 2)
+    b : ndarray, shape (L, 2)
+    residual : ndarray, shape (L,)
     """
-    s = -(1.0 - float(t))
-    if kind == "similarity":
-        return power(a, b, s)
-    # S = Zc o R: Zc the scaling by |a| about the registered centre, R = Zc^-1 o S rigid;
-    # C_t = R^s o Zc^s (scale about the centre, then move rigidly on circular arcs).
-    scale = np.abs(a)
-    ra = a / scale
-    rb = b / scale + centre - centre / scale
-    ra_s, rb_s = power(ra, rb, s)
-    zoom = scale**s
-    return ra_s * zoom, ra_s * (centre - zoom * centre) + rb_s
+    cp, mp = _area_moments(P, index)
+    cq, mq = _area_moments(Q, index)
+    ok = np.all(np.isfinite(mp), axis=(1, 2)) & np.all(np.isfinite(mq), axis=(1, 2))
+    mp, mq = np.where(ok[:, None, None], mp, np.eye(2)), np.where(ok[:, None, None], mq, np.eye(2))
+    root_q, _ = _sqrtm(mq)
+    _, inv_p = _sqrtm(mp)
+    xp, xq = _samples(P, index, k), _samples(Q, index, k)
+    wp = as_complex(np.einsum("lij,lkj->lki", inv_p, from_complex(xp) - cp[:, None]))
+    wq = as_complex(np.einsum("lij,lkj->lki", np.linalg.inv(root_q), from_complex(xq) - cq[:, None]))
+    turn, _, _ = _loop_fits(wp, wq)
+    rot = _matrix(turn / np.maximum(np.abs(turn), 1e-300))
+    A = root_q @ rot @ inv_p
+    b = cq - np.einsum("lij,lj->li", A, cp)
+    fitted = as_complex(np.einsum("lij,lkj->lki", A, from_complex(xp)) + b[:, None])
+    residual = shifted_distance(fitted, xq)
+    sv = np.linalg.svd(A, compute_uv=False)
+    moderate = (sv[:, 0] <= MAX_STRETCH * np.maximum(sv[:, 1], 1e-300)) & (np.linalg.det(A) > 0)
+    return ok & moderate & (residual < AFFINE_GAIN * res_sim), A, b, residual
 
 
-def similarities(P, Q):
-    """Registrations of every curve of a batch onto its partner.
-
-    Strokes map their endpoints onto their partner's endpoints. Loops get the least-squares
-    similarity between ``FIT_SAMPLES`` uniform samples over every cyclic shift and both
-    directions (FFT cross-correlation). Among the distinct fits (local minima of the residual
-    over the shifts) a rotation costs ``ROTATION_PENALTY`` times (angle / pi)^2 of
-    the normalised residual, and the best unrotated fit (scale and translation only) competes at
-    no cost: a squashed ball or a pear that is merely taller than the apple is not turned by 90
-    degrees to fit better, while a shape that really turned keeps its exact fit.
+def fit_pairs(P, Q, affine=True):
+    """Registrations of every P of a batch onto its Q (see the module docstring).
 
     Parameters
     ----------
     P, Q : Ragged
-        Same number of curves, same closed flags.
+        Same number of curves and closed flags; each Q runs the same way as its P.
+    affine : bool
+        Allow affine fits of squashed or stretched loops.
 
     Returns
     -------
-    a, b : ndarray of complex, shape (C,)
-    residual : ndarray, shape (C,)
-        RMS distance left between ``FIT_SAMPLES`` uniform samples of the registered curve and
-        of its partner (0 when registration makes them coincide).
+    Fits
     """
-    n = len(P)
-    a = np.ones(n, dtype=complex)
-    b = np.zeros(n, dtype=complex)
-    residual = np.full(n, np.inf)
-    zp, zq = as_complex(P.pts), as_complex(Q.pts)
-    opened = np.flatnonzero(~P.closed)
-    if len(opened):
-        fp, lp = P.offsets[:-1][opened], P.offsets[1:][opened] - 1
-        fq, lq = Q.offsets[:-1][opened], Q.offsets[1:][opened] - 1
-        dp, dq = zp[lp] - zp[fp], zq[lq] - zq[fq]
-        ok = (np.abs(dp) > tol.ROUNDOFF * (np.abs(zp[fp]) + 1)) & (np.abs(dq) > tol.ROUNDOFF * (np.abs(zq[fq]) + 1))
-        a[opened] = np.where(ok, dq / np.where(ok, dp, 1), 1.0)
-        b[opened] = zq[fq] - a[opened] * zp[fp]
-        k = FIT_SAMPLES
-        sp = as_complex(P.resample(np.full(n, k)).pts).reshape(n, k)[opened]
-        sq = as_complex(Q.resample(np.full(n, k)).pts).reshape(n, k)[opened]
-        fitted = a[opened][:, None] * sp + b[opened][:, None]
-        residual[opened] = np.sqrt(np.mean(np.abs(fitted - sq) ** 2, axis=1))
-    loops = np.flatnonzero(P.closed)
+    n, k = len(P), FIT_SAMPLES
+    a, b = np.ones(n, dtype=complex), np.zeros(n, dtype=complex)
+    residual = np.zeros(n)
+    loops, opened = np.flatnonzero(P.closed), np.flatnonzero(~P.closed)
     if len(loops):
-        k = FIT_SAMPLES
-        xp = as_complex(P.resample(np.full(n, k)).pts).reshape(n, k)[loops]
-        xq = as_complex(Q.resample(np.full(n, k)).pts).reshape(n, k)[loops]
-        cp, cq = xp.mean(axis=1), xq.mean(axis=1)
-        xp, xq = xp - cp[:, None], xq - cq[:, None]
-        norm_p = np.sum(np.abs(xp) ** 2, axis=1)
-        norm_q = np.sum(np.abs(xq) ** 2, axis=1)
-        safe = norm_p > 0
-        fp = np.conj(np.fft.fft(xp, axis=1))
-        best_cost = np.full(len(loops), np.inf)
-        best_c = np.zeros(len(loops), dtype=complex)
-        rows = np.arange(len(loops))[:, None]
-        for target in (xq, np.concatenate([xq[:, :1], xq[:, :0:-1]], axis=1)):
-            corr = np.fft.ifft(fp * np.fft.fft(target, axis=1), axis=1)  # c(s) for every shift
-            left = norm_q[:, None] - np.abs(corr) ** 2 / np.where(safe, norm_p, 1.0)[:, None]
-            fit = left / np.maximum(norm_q, 1e-300)[:, None]
-            # Rotation is penalised only between distinct fits (local minima over the shifts),
-            # never within one, so a fit that is right is not biased towards less rotation.
-            minimum = (fit <= np.roll(fit, 1, axis=1)) & (fit <= np.roll(fit, -1, axis=1))
-            cost = np.where(minimum, fit + ROTATION_PENALTY * (np.angle(corr) / np.pi) ** 2, np.inf)
-            # The unrotated fit (a real scale) is always a candidate, at no penalty.
-            real = np.maximum(corr.real, 0.0)
-            fit0 = (norm_q[:, None] - real**2 / np.where(safe, norm_p, 1.0)[:, None]) / np.maximum(norm_q, 1e-300)[
-                :, None
-            ]
-            cost = np.concatenate([cost, fit0], axis=1)
-            s = np.argmin(cost, axis=1)
-            chosen = np.where(s < k, corr[rows[:, 0], s % k], real[rows[:, 0], s % k] + 0j)
-            better = cost[rows[:, 0], s] < best_cost
-            best_cost = np.where(better, cost[rows[:, 0], s], best_cost)
-            best_c = np.where(better, chosen, best_c)
-        a[loops] = np.where(safe, best_c / np.where(safe, norm_p, 1.0), 1.0)
-        b[loops] = cq - a[loops] * cp
-        # Least-squares residual of the chosen shift (what is left for the morph to do).
-        residual[loops] = np.sqrt(np.maximum(norm_q - np.abs(best_c) ** 2 / np.where(safe, norm_p, 1.0), 0) / k)
+        a[loops], b[loops], residual[loops] = _loop_fits(_samples(P, loops, k), _samples(Q, loops, k))
+    if len(opened):
+        a[opened], b[opened], residual[opened] = _open_fits(P, Q, opened, k)
+    A, bb = _matrix(a), from_complex(b)
+    if affine and len(loops):
+        use, A_aff, b_aff, res_aff = _affine_loops(P, Q, loops, residual[loops], k)
+        A[loops[use]], bb[loops[use]], residual[loops[use]] = A_aff[use], b_aff[use], res_aff[use]
+    return Fits(A, bb, residual)
+
+
+def _open_fits(P, Q, index, k):
+    """Strokes: end to end (about a shared endpoint when there is one), or as loops when nearly
+    closed and that fits better."""
+    xp, xq = _samples(P, index, k), _samples(Q, index, k)
+    size = np.maximum(np.abs(xp - xp.mean(axis=1, keepdims=True)).max(axis=1), 1e-300)
+    pin_start = np.abs(xp[:, 0] - xq[:, 0]) <= tol.SHARED_ENDPOINT * size
+    pin_end = ~pin_start & (np.abs(xp[:, -1] - xq[:, -1]) <= tol.SHARED_ENDPOINT * size)
+    a, b, residual = _stroke_fits(xp, xq, pin_start, pin_end)
+    gap_p = np.abs(xp[:, -1] - xp[:, 0]) / np.maximum(P.length[index], 1e-300)
+    gap_q = np.abs(xq[:, -1] - xq[:, 0]) / np.maximum(Q.length[index], 1e-300)
+    round_ = (gap_p < NEARLY_CLOSED) & (gap_q < NEARLY_CLOSED) & ~pin_start & ~pin_end
+    if round_.any():
+        la, lb, lr = _loop_fits(xp[round_], xq[round_])
+        better = lr < residual[round_] - EQUAL_FIT * size[round_]
+        rows = np.flatnonzero(round_)[better]
+        a[rows], b[rows], residual[rows] = la[better], lb[better], lr[better]
     return a, b, residual
 
 
-# ------------------------------------------------------------------ one pair
+# ------------------------------------------------------------------ carrier motions
 
 
-def _one(P, Q, closed):
-    a, b, _ = similarities(Ragged.from_list([P], [closed]), Ragged.from_list([Q], [closed]))
-    return Similarity(complex(a[0]), complex(b[0]))
+def _polar(A):
+    """``A = R(theta) U``: turn angles (C,) and symmetric stretches (C, 2, 2)."""
+    u, s, vt = np.linalg.svd(A)
+    rot = u @ vt
+    theta = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
+    stretch = np.einsum("lji,lj,ljk->lik", vt, s, vt)
+    return theta, stretch
+
+
+@dataclass
+class Motions:
+    """The carrier motions of a batch of pairs (see the module docstring).
+
+    Attributes
+    ----------
+    A, b : ndarray, shapes (C, 2, 2), (C, 2)
+        Each pair's registration of P onto Q.
+    theta : ndarray, shape (C,)
+        The turn of ``A`` (in (-pi, pi]).
+    stretch : ndarray, shape (C, 2, 2)
+        Its symmetric stretch (``A = R(theta) stretch``).
+    pivot : ndarray, shape (C, 2)
+        The point of P the carrier turns and stretches about (it moves straight to its image).
+    moving : ndarray of bool, shape (C,)
+        Pairs whose carrier is not the identity.
+    kind : {'similarity', 'rigid'}
+    """
+
+    A: np.ndarray
+    b: np.ndarray
+    theta: np.ndarray
+    stretch: np.ndarray
+    pivot: np.ndarray
+    moving: np.ndarray
+    kind: str = "similarity"
+
+    def partial(self, t):
+        """``S_t(z) = M z + c`` of every pair: ``(M (C, 2, 2), c (C, 2))``."""
+        t = float(t)
+        rot = _matrix(np.exp(1j * t * self.theta))
+        M = rot @ ((1.0 - t) * np.eye(2) + t * self.stretch)
+        target = np.einsum("lij,lj->li", self.A, self.pivot) + self.b
+        pivot_t = (1.0 - t) * self.pivot + t * target
+        return M, pivot_t - np.einsum("lij,lj->li", M, self.pivot)
+
+    def at(self, t):
+        """The carrier ``C_t = S_t o S^-1`` of every pair: ``(M (C, 2, 2), c (C, 2))``."""
+        M, c = self.partial(t)
+        inv = np.linalg.inv(self.A)
+        Mi = M @ inv
+        return Mi, c - np.einsum("lij,lj->li", Mi, self.b)
+
+    def apply(self, t, points, pair_of):
+        """``C_t`` of each point's pair applied to it, shape (K, 2) (unchanged if no pair moves)."""
+        if not self.moving.any():
+            return points
+        M, c = self.at(t)
+        M, c = np.where(self.moving[:, None, None], M, np.eye(2)), np.where(self.moving[:, None], c, 0.0)
+        return np.einsum("kij,kj->ki", M[pair_of], points) + c[pair_of]
+
+    def take(self, rows):
+        """The motions of some pairs (Motions)."""
+        return Motions(
+            self.A[rows],
+            self.b[rows],
+            self.theta[rows],
+            self.stretch[rows],
+            self.pivot[rows],
+            self.moving[rows],
+            self.kind,
+        )
+
+    @classmethod
+    def identity(cls, n, kind="similarity"):
+        eye = np.tile(np.eye(2), (n, 1, 1))
+        return cls(eye, np.zeros((n, 2)), np.zeros(n), eye.copy(), np.zeros((n, 2)), np.zeros(n, bool), kind)
+
+
+def _pivots(P, fits, scale):
+    """The fixed point of each registration where it lies near its stroke, else the centroid."""
+    centre = P.centroids()
+    IA = np.eye(2) - fits.A
+    det = np.linalg.det(IA)
+    safe = np.abs(det) > tol.ROUNDOFF
+    fixed = np.einsum("lij,lj->li", np.linalg.inv(np.where(safe[:, None, None], IA, np.eye(2))), fits.b)
+    far = np.linalg.norm(fixed - centre, axis=1) / np.maximum(scale, 1e-300)
+    w = np.where(safe, np.clip(2.0 - far / PIVOT_REACH, 0.0, 1.0), 0.0)
+    return centre + w[:, None] * (fixed - centre)
+
+
+def motions(P, fits, kind, scale, moving):
+    """The carrier motions of registered pairs (Motions).
+
+    Parameters
+    ----------
+    P : Ragged
+        The first curves (before registration).
+    fits : Fits
+    kind : {'similarity', 'rigid'}
+        'rigid' carries the turn and the move only (the registration is made rigid about the
+        pivot: the ball-morph does the scaling).
+    scale : ndarray, shape (C,)
+        Size of each pair.
+    moving : ndarray of bool, shape (C,)
+        Pairs that get a carrier (the others: the identity).
+    """
+    theta, stretch = _polar(fits.A)
+    pivot = _pivots(P, fits, scale)
+    A, b = fits.A.copy(), fits.b.copy()
+    if kind == "rigid":
+        target = np.einsum("lij,lj->li", fits.A, pivot) + fits.b
+        A = _matrix(np.exp(1j * theta))
+        b = target - np.einsum("lij,lj->li", A, pivot)
+        stretch = np.tile(np.eye(2), (len(theta), 1, 1))
+    eye = np.eye(2)
+    A = np.where(moving[:, None, None], A, eye)
+    b = np.where(moving[:, None], b, 0.0)
+    theta = np.where(moving, theta, 0.0)
+    stretch = np.where(moving[:, None, None], stretch, eye)
+    return Motions(A, b, theta, stretch, pivot, moving.copy(), kind)
 
 
 def endpoint_similarity(P, Q):
@@ -179,97 +386,17 @@ def endpoint_similarity(P, Q):
 
     Degenerate strokes whose endpoints coincide get the translation of their first points.
     """
-    return _one(P, Q, False)
+    zp, zq = as_complex(np.asarray(P, dtype=np.float64)), as_complex(np.asarray(Q, dtype=np.float64))
+    dp, dq = zp[-1] - zp[0], zq[-1] - zq[0]
+    a = dq / dp if abs(dp) > tol.ROUNDOFF * (abs(zp[0]) + 1) and abs(dq) > tol.ROUNDOFF * (abs(zq[0]) + 1) else 1.0
+    return Similarity(complex(a), complex(zq[0] - a * zp[0]))
 
 
 def fit_similarity(P, Q, closed=True):
-    """Registration of a loop onto another (see :func:`similarities`), as a Similarity."""
-    return _one(P, Q, closed)
-
-
-class Carrier:
-    """The carrier motion ``C_t`` that takes ``S(P)`` back to ``P`` at t = 0 and is the identity
-    at t = 1 (see the module docstring).
-
-    Parameters
-    ----------
-    similarity : Similarity
-        The registration ``S`` (P -> registered P).
-    kind : {'similarity', 'rigid'}
-    centre : ndarray, shape (2,)
-        Centre of the registered curve (the scaling centre for 'rigid').
-    """
-
-    def __init__(self, similarity, kind, centre):
-        self.kind = check_option("carrier", kind, ("similarity", "rigid"))
-        self.similarity = similarity
-        self.centre = complex(as_complex(np.asarray(centre, dtype=np.float64)))
-
-    def at(self, t):
-        """The similarity ``C_t`` (Similarity)."""
-        ca, cb = carrier_at(self.similarity.a, self.similarity.b, self.kind, self.centre, t)
-        return Similarity(complex(ca), complex(cb))
-
-    def apply(self, t, points):
-        """``C_t`` applied to points, shape (K, 2)."""
-        return self.at(t)(points)
-
-
-@dataclass
-class Motions:
-    """The carrier motions of a batch of pairs: ``C_t`` per pair, identity where not moving.
-
-    Attributes
-    ----------
-    a, b : ndarray of complex, shape (C,)
-        Each pair's registration ``z -> a z + b`` of P onto Q.
-    moving : ndarray of bool, shape (C,)
-        Pairs whose carrier is not the identity.
-    centre : ndarray of complex, shape (C,)
-        Centre of each Q (the scaling centre of a 'rigid' carrier).
-    kind : {'similarity', 'rigid'}
-    """
-
-    a: np.ndarray
-    b: np.ndarray
-    moving: np.ndarray
-    centre: np.ndarray
-    kind: str
-
-    def apply(self, t, points, pair_of):
-        """``C_t`` of each point's pair applied to it, shape (K, 2) (points unchanged if no pair moves)."""
-        if not self.moving.any():
-            return points
-        ca, cb = carrier_at(self.a, self.b, self.kind, self.centre, t)
-        ca, cb = np.where(self.moving, ca, 1.0), np.where(self.moving, cb, 0.0)
-        return from_complex(ca[pair_of] * as_complex(points) + cb[pair_of])
-
-
-def register(P, Q, carrier, scale):
-    """Register every P of a batch onto its Q (see the module docstring).
-
-    Parameters
-    ----------
-    P, Q : Ragged
-    carrier : {'similarity', 'rigid', 'none'}
-        'none' registers nothing (the identity, with an infinite residual).
-    scale : ndarray, shape (C,)
-        Size of each pair (a registration moving nothing by more than ``IDENTITY`` of it is none).
-
-    Returns
-    -------
-    motions : Motions
-    R : Ragged
-        The registered P.
-    residual : ndarray, shape (C,)
-        See :func:`similarities`.
-    """
-    n = len(P)
-    if carrier == "none":
-        a, b, residual = np.ones(n, dtype=complex), np.zeros(n, dtype=complex), np.full(n, np.inf)
-    else:
-        a, b, residual = similarities(P, Q)
-    R = Ragged(from_complex(a[P.owner] * as_complex(P.pts) + b[P.owner]), P.offsets, P.closed)
-    moving = (carrier != "none") & ~((np.abs(a - 1) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale))
-    kind = carrier if carrier != "none" else "similarity"
-    return Motions(a, b, moving, as_complex(Q.centroids()), kind), R, residual
+    """The least-squares registration of one curve onto another, as a Similarity (a batch of one
+    of :func:`fit_pairs`, without the affine fit). Loops drawn opposite ways (the signs of
+    their areas) are fitted with Q read backwards, as the stroke matching pairs them."""
+    if closed and signed_area(np.asarray(P, float)) * signed_area(np.asarray(Q, float)) < 0:
+        Q = np.asarray(Q)[::-1]
+    fits = fit_pairs(Ragged.from_list([P], [closed]), Ragged.from_list([Q], [closed]), affine=False)
+    return Similarity(complex(fits.A[0, 0, 0] + 1j * fits.A[0, 1, 0]), complex(fits.b[0, 0] + 1j * fits.b[0, 1]))

@@ -26,6 +26,10 @@ ARC_TABLE_SAMPLES = 16
 
 KINDS = ("hat", "linear", "tangent", "circular", "parabolic")
 
+#: A tangent path's contacts within this fraction of half a turn of being opposite on their
+#: disk have two equal arcs: the side is taken from the samples' order instead.
+OPPOSITE = 1e-6
+
 # 3-point Gauss-Legendre nodes and weights on [-1, 1].
 _GAUSS3 = ((-np.sqrt(0.6), 5.0 / 9.0), (0.0, 8.0 / 9.0), (np.sqrt(0.6), 5.0 / 9.0))
 
@@ -200,10 +204,21 @@ class BallPaths(_Endpoints):
             self._phi = np.where(self._chord > 0, self._phi, 0.0)
             self._chord_per_sinc = self._chord / np.sinc(self._phi / np.pi)  # at() needs it every frame
         elif kind == "tangent":
-            a, b = self.p - self.m, self.q - self.m
-            self._beta = np.arctan2(_cross(a, b), np.einsum("ij,ij->i", a, b))
+            self._beta = self._tangent_turns()
         elif kind == "parabolic":
             self._init_parabola()
+
+    def _tangent_turns(self):
+        """Signed angle of each tangent path around its disk: the shorter arc, and where p and q
+        are opposite (both arcs equal: concentric circles) the one leaving p forward along the
+        samples' order, so round-off never picks the side."""
+        a, b = self.p - self.m, self.q - self.m
+        beta = np.arctan2(_cross(a, b), np.einsum("ij,ij->i", a, b))
+        forward = np.gradient(self.p, axis=0) if len(self.p) > 1 else np.zeros_like(self.p)
+        # Turning a (from m to p) by +90 degrees gives the direction of a counter-clockwise start.
+        ccw_forward = _cross(a, forward) >= 0
+        opposite = np.abs(np.abs(beta) - np.pi) <= OPPOSITE * np.pi
+        return np.where(opposite, np.where(ccw_forward, np.pi, -np.pi), beta)
 
     def _speed(self, s):
         """|B'(s)| of the Bezier curves, s of shape (K, ...)."""

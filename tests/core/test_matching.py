@@ -13,13 +13,12 @@ from ballmorph_core.drawing import matching
 from ballmorph_core.drawing.assignment import solve_assignment
 from ballmorph_core.drawing.matching import (
     _assign_within,
-    _loop_shape,
+    _loop_shapes,
     _padded_total,
     match_strokes,
 )
 from ballmorph_core.errors import InvalidCurveError
 from ballmorph_core.geometry.polyline import resample, reverse, signed_area
-from ballmorph_core.morphs.linear import best_cyclic_alignment
 
 
 def face():
@@ -150,9 +149,9 @@ def test_drawing_order_is_kept_only_when_nearly_optimal():
     assert m.method == "assignment"
     assert "optimal assignment" in m.reason and "limit 1.25 times" in m.reason
     assert m.pairs[-2:] == [(6, 7, False), (7, 6, False)]
-    # Redrawn lines where swapping is better by less than MATCH_INDEX_FACTOR (0.022 vs 0.018):
-    # the animator's drawing order wins.
-    b, _ = hatching(0.011, 0.009)
+    # Redrawn lines where swapping is better by less than MATCH_INDEX_FACTOR: the animator's
+    # drawing order wins.
+    b, _ = hatching(0.0105, 0.0095)
     m = match_strokes(a, b, closed, closed)
     assert m.method == "index", m.reason
     assert m.pairs == identity_pairs(8)
@@ -192,7 +191,7 @@ def test_mixed_cyclic_pair_pays_the_penalty():
     loop = circle(1.0, 40)
     m = match_strokes([loop], [loop], [True], [False])
     assert m.pairs == [(0, 0, False)]
-    assert m.costs[0] == pytest.approx(matching.MATCH_CYCLIC_PENALTY, abs=1e-6)
+    assert m.costs[0] == pytest.approx(matching.MATCH_CYCLIC_PENALTY, abs=1e-3)
 
 
 def test_degenerate_strokes_and_empty_keys():
@@ -278,26 +277,70 @@ def test_thresholded_assignment_agrees_with_brute_force(data):
 
 
 @pytest.mark.parametrize("seed", range(4))
-def test_loop_costs_match_explicit_shifts_and_directions(seed):
+def test_loop_shapes_match_explicit_shifts_and_similarities(seed):
+    """The FFT residual is the best similarity fit over every cyclic shift, found one by one."""
     rng = np.random.default_rng(seed)
     m = 12
-    a = rng.normal(size=(3, m, 2))
-    b = rng.normal(size=(4, m, 2))
+    a = rng.normal(size=(3, m)) + 1j * rng.normal(size=(3, m))
+    b = rng.normal(size=(4, m)) + 1j * rng.normal(size=(4, m))
     a -= a.mean(axis=1, keepdims=True)
     b -= b.mean(axis=1, keepdims=True)
-    got = _loop_shape(a, b)
+    got = _loop_shapes(a, b)
     for i in range(3):
         for j in range(4):
-            candidates = [
-                np.mean(np.sum((a[i] - np.roll(q, -s, axis=0)) ** 2, axis=1))
-                for q in (b[j], reverse(b[j], True))
-                for s in range(m)
-            ]
-            assert got[i, j] == pytest.approx(min(candidates), rel=1e-9, abs=1e-12)
-            # The direction reported for loop pairs comes from best_cyclic_alignment, which
-            # minimises the same quantity.
-            shift, rev = best_cyclic_alignment(a[i], b[j])
-            assert int(np.argmin(candidates)) == (m if rev else 0) + shift
+            residuals = []
+            for shift in range(m):
+                q = np.roll(b[j], -shift)
+                k = np.vdot(a[i], q) / np.vdot(a[i], a[i])  # least-squares similarity a -> q
+                residuals.append(np.sum(np.abs(k * a[i] - q) ** 2) / np.sum(np.abs(q) ** 2))
+            assert got[i, j] == pytest.approx(min(residuals), rel=1e-9, abs=1e-12)
+
+
+def test_turned_and_scaled_strokes_pair_whatever_the_angle():
+    """The shape term ignores turn and scale: a drawing whose strokes each turn by up to 170
+    degrees and grow 1.5 times keeps its pairs."""
+    strokes, closed = face()
+    rng = np.random.default_rng(5)
+    turned = []
+    for s in strokes:
+        centre = s.mean(axis=0)
+        angle = rng.uniform(-np.pi * 17 / 18, np.pi * 17 / 18)
+        rot = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+        turned.append(centre + 1.5 * (s - centre) @ rot.T)
+    m = match_strokes(strokes, turned, closed, closed)
+    assert [p[:2] for p in m.pairs] == [p[:2] for p in identity_pairs(len(strokes))]
+    assert max(m.costs) < matching.MATCH_INDEX_MAX_COST + matching.W_TURN
+
+
+def test_flipped_arch_is_not_a_half_turn():
+    """An arch flipped about its chord maps onto itself read backwards by a half turn, exactly:
+    it keeps the drawn direction all the same (its ends stay put, or it moved and flipped)."""
+    x = np.linspace(0.0, 1.0, 40)
+    up, down = np.c_[x, 0.3 * np.sin(np.pi * x)], np.c_[x, -0.3 * np.sin(np.pi * x)]
+    assert match_strokes([up], [down], [False], [False]).pairs == [(0, 0, False)]
+    assert match_strokes([up], [down[::-1]], [False], [False]).pairs == [(0, 0, True)]
+    assert match_strokes([up], [down + [0.0, 2.0]], [False], [False]).pairs == [(0, 0, False)]
+
+
+@pytest.mark.parametrize("angle", [90.0, 150.0, 170.0, -170.0])
+def test_hook_keeps_its_turn_however_far_it_turns(angle):
+    """Read backwards, a hook turned by nearly a half turn needs only a small turn but fits
+    badly: the true turn wins."""
+    t = np.linspace(0.0, 1.0, 40)
+    hook = np.c_[t, 0.2 * np.sin(np.pi * t)]
+    hook = np.r_[hook, hook[-1] + 0.15 * np.c_[np.cos(np.linspace(0, -2.5, 10)) - 1, np.sin(np.linspace(0, -2.5, 10))]]
+    a = np.radians(angle)
+    turned = hook @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]]) + [3.0, 1.0]
+    assert match_strokes([hook], [turned], [False], [False]).pairs == [(0, 0, False)]
+    assert match_strokes([hook], [turned[::-1]], [False], [False]).pairs == [(0, 0, True)]
+
+
+def test_dot_pairs_with_the_short_stroke_grown_out_of_it():
+    dot = np.array([[15.0, 0.0]])
+    dash = np.array([[15.0, 0.0], [15.5, 0.3]])
+    far = np.c_[np.linspace(0, 1, 9), np.zeros(9)] + [0.0, 5.0]
+    m = match_strokes([far, dot], [far, dash], [False, False], [False, False])
+    assert m.pairs == identity_pairs(2)
 
 
 def test_four_hundred_strokes_timing():

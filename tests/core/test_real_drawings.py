@@ -8,10 +8,11 @@ from shapes import circle, distance_to_polyline
 
 import ballmorph_core as bm
 from ballmorph_core.drawing.pipeline import PairMorph
-from ballmorph_core.drawing.registration import Carrier, endpoint_similarity, fit_similarity
+from ballmorph_core.drawing.registration import Fits, endpoint_similarity, fit_similarity, motions
 from ballmorph_core.drawing.splitting import split_pair
 from ballmorph_core.geometry.intersections import crossings, is_simple
 from ballmorph_core.geometry.polyline import curve_length, orient_clockwise
+from ballmorph_core.geometry.ragged import Ragged
 from ballmorph_core.geometry.similarity import Similarity
 
 # ------------------------------------------------------------------ registration
@@ -52,10 +53,16 @@ def test_fit_similarity_recovers_a_loop_transform_whatever_start_and_direction(r
 @pytest.mark.parametrize("kind", ["similarity", "rigid"])
 def test_carrier_undoes_registration_at_start_and_is_identity_at_end(kind):
     s = Similarity(1.5 * np.exp(-0.4j), 1.0 + 2.0j)
-    carrier = Carrier(s, kind, np.array([0.5, 0.5]))
+    A = np.array([[[s.a.real, -s.a.imag], [s.a.imag, s.a.real]]])
+    P = Ragged.from_list([circle(1.0, 40)], [True])
+    moved = motions(P, Fits(A, np.array([[s.b.real, s.b.imag]]), np.zeros(1)), kind, np.ones(1), np.ones(1, bool))
     pts = np.array([[0.0, 1.0], [3.0, -2.0]])
-    np.testing.assert_allclose(carrier.apply(0.0, s(pts)), pts, atol=1e-12)
-    np.testing.assert_allclose(carrier.apply(1.0, pts), pts, atol=1e-12)
+    registered = np.einsum("ij,kj->ki", moved.A[0], pts) + moved.b[0]
+    np.testing.assert_allclose(moved.apply(0.0, registered, np.zeros(2, int)), pts, atol=1e-12)
+    np.testing.assert_allclose(moved.apply(1.0, pts, np.zeros(2, int)), pts, atol=1e-12)
+    # The turn is steady: half-way, half the angle.
+    M, _ = moved.partial(0.5)
+    assert np.isclose(np.arctan2(M[0, 1, 0], M[0, 0, 0]), -0.2)
 
 
 # ------------------------------------------------------------------ issue 5 must-shows
