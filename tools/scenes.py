@@ -54,6 +54,7 @@ __all__ = [
     "Scene",
     "SCENES",
     "XFAIL_TODAY",
+    "BLENDER_PASSES",
     "as_drawing",
     "baseline_inbetween",
     "drawing_size",
@@ -1496,13 +1497,7 @@ SCENES = {scene.name: scene for scene in _all_scenes()}
 #: Scenes today's core fails, with the figures it misses (the tests mark them xfail(strict=True)).
 #: Regenerate with ``python tools/scenes_report.py --xfail-table`` when the core improves.
 XFAIL_TODAY = {
-    "arm-swing": (
-        "shoulder drift / arm length 50.2% (goal ≤ 1%); hand off the arm's end / arm length 53.6% (goal ≤"
-        " 10%); length change, worst frame 17% (goal ≤ 5%)"
-    ),
-    "outline-start-moved": ("off the outline / size 8% (goal ≤ 2%)"),
-    "open-circle-gap": ("max |r - 1| 9.36e-02 (goal ≤ 0.01)"),
-    "static-overlap-loop": ("new self-crossing strokes 6 on 6 of 7 frames, 6 crossings (keys: 0 strokes) (goal ≤ 0)"),
+    "static-overlap-loop": ("new self-crossing strokes 1 on 1 of 7 frames, 1 crossings (keys: 0 strokes) (goal ≤ 0)"),
     "identical-house": (
         "strokes not equal to the key's 7: point counts [50] (key [5]), points off its strokes by 8.3e-02"
         " of size (goal ≤ 0)"
@@ -1522,9 +1517,9 @@ XFAIL_TODAY = {
         "1e-05)"
     ),
     "similarity-rotate": (
-        "off the interpolated similarity / size point counts [49, 50, 53] (key [5, 9, 30, 40]), points "
+        "off the interpolated similarity / size point counts [48, 49, 50] (key [5, 9, 30, 40]), points "
         "off its strokes by 3.4e-02 of size (goal ≤ 1e-05); off the best-fit similarity / size point "
-        "counts [49, 50, 53] (key [5, 9, 30, 40]), points off its strokes by 3.4e-02 of size (goal ≤ "
+        "counts [48, 49, 50] (key [5, 9, 30, 40]), points off its strokes by 3.4e-02 of size (goal ≤ "
         "1e-05)"
     ),
     "similarity-scale": (
@@ -1534,18 +1529,24 @@ XFAIL_TODAY = {
         "1e-05)"
     ),
     "corners-zigzag": (
-        "off straight between corners / size 6.72e-04, corners [24, 26, 27, 28, 29] (keys [7]) (goal "
-        "keys' corners, ≤ 1e-06)"
+        "off straight between corners / size 7.83e-04, corners [27, 28, 29, 30, 31] (keys [7]) (goal "
+        "keys' corners, ≤ 1e-06); points / max(n_a, n_b), worst stroke 1.29 (goal ≤ 1.25)"
     ),
     "corners-house": (
         "off straight between corners / size 2.38e-03, corners [21, 22, 23, 24] (keys [5]) (goal keys' "
         "corners, ≤ 1e-06); points / max(n_a, n_b), worst stroke 10.4 (goal ≤ 1.25)"
     ),
-    "point-counts": ("points / max(n_a, n_b), worst stroke 1.28 (goal ≤ 1.25)"),
     "split-1-to-2": (
         "ink length off the blend, worst 24.4% (goal ≤ ±10%); largest ink jump 1.637 (goal ≤ 0.200 (keys' difference))"
     ),
     "split-2-to-1": (
         "ink length off the blend, worst 24.4% (goal ≤ ±10%); largest ink jump 1.637 (goal ≤ 0.200 (keys' difference))"
     ),
+}
+
+#: Scenes of XFAIL_TODAY whose float32 twin, as Blender stores the keys, meets every goal: the
+#: operator test expects them to pass (and fails if they stop passing).
+BLENDER_PASSES = {
+    "static-overlap-loop": "on float32 keys the dented circle's lens ends are bridged cleanly; on the "
+    "float64 keys the composite ball-morph's bridge at a lens end is the wrong disk (one crossing at t = 1/8)",
 }

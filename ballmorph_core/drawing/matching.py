@@ -29,11 +29,12 @@ alternating (assign, fit ``G`` to the paired centroids) from a few starting gues
 
 Direction
 ---------
-An open stroke of B runs the way that fits with the smaller residual plus
-``DIRECTION_TURN (turn / pi)^2`` (a reading that needs a half turn must fit clearly better);
-between equal ones, the way it was drawn. Read one way
-but not the other, strokes whose ends (nearly) coincide keep that way: the ends stayed put. A loop
-of B runs the other way when its orientation (the sign of its area) differs.
+An open stroke of B runs the way in which more of its ends coincide with its partner's (a
+shoulder stays put); then the way that fits with the smaller residual plus
+``DIRECTION_TURN (turn / pi)^2``, the turn measured from the keys' overall turn ``arg G`` (a
+reading that needs a half turn more than the drawing must fit clearly better); between equal
+ones, the way it was drawn. A loop of B runs the other way when its orientation (the sign of
+its area) differs.
 
 Unmatched strokes
 -----------------
@@ -81,9 +82,9 @@ EQUAL_FIT = 1e-4
 #: Cost of each pair per half turn of the keys' overall motion: between motions that fit
 #: equally (a symmetric drawing), the one that turns less.
 W_TURN = 0.1
-#: An open stroke whose ends are both within this fraction of the strokes' sizes of its
-#: partner's ends (read one way and not the other) keeps that direction whatever the fits say:
-#: its ends stay put and the animator redrew the middle (a flipped arch is not a half turn).
+#: An end within this fraction of the strokes' sizes of its partner's end is shared: the
+#: direction in which more ends are shared wins whatever the fits say (a shoulder stays put, a
+#: flipped arch keeps its ends).
 MATCH_SHARED_ENDS = 0.05
 #: Shape term of a dot paired with a stroke (it grows out of the dot or shrinks into it).
 DOT_SHAPE = 0.5
@@ -115,6 +116,8 @@ class Matching:
         with no points.
     motion : ndarray, shape (2,)
         The translation of the keys' overall motion (key B is about key A moved by it).
+    rotation : complex
+        Its turn and scale: key B is about ``rotation * z + motion`` of key A (complex ``z``).
     """
 
     pairs: list
@@ -124,6 +127,7 @@ class Matching:
     reason: str
     costs: list = field(default_factory=list)
     motion: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    rotation: complex = 1.0 + 0j
 
 
 def _clean(points, name, closed):
@@ -284,16 +288,15 @@ def _open_shapes(a, b):
 
 
 def _shared_ends(a, b, spread):
-    """Whether open strokes share both ends read forward and read backwards, shapes (S_a, S_b).
+    """How many ends open strokes share read forward and read backwards, shapes (S_a, S_b).
 
     ``a``, ``b``: samples, shapes (S_a, m, 2), (S_b, m, 2); ``spread``: sizes, shape (S_a, S_b).
     """
 
-    def gap(i, j):
-        return np.linalg.norm(a[:, None, i] - b[None, :, j], axis=2)
+    def shared(i, j):
+        return (np.linalg.norm(a[:, None, i] - b[None, :, j], axis=2) <= MATCH_SHARED_ENDS * spread).astype(int)
 
-    limit = MATCH_SHARED_ENDS * spread
-    return np.maximum(gap(0, 0), gap(-1, -1)) <= limit, np.maximum(gap(0, -1), gap(-1, 0)) <= limit
+    return shared(0, 0) + shared(-1, -1), shared(0, -1) + shared(-1, 0)
 
 
 def _loop_shapes(a, b):
@@ -323,8 +326,6 @@ class _CostTable:
     ----------
     shape : ndarray, shape (S_a, S_b)
         ``sqrt(e_ij)``, the similarity-free shape difference.
-    reverse : ndarray of bool, shape (S_a, S_b)
-        Whether B's stroke runs opposite to A's.
     """
 
     def __init__(self, key_a, key_b):
@@ -337,11 +338,9 @@ class _CostTable:
         oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
         ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
         e_f, e_r, t_f, t_r = _open_shapes(oa, ob)
-        # The better fit, a turn counting against it; then the drawn direction.
-        cost_f, cost_r = e_f + DIRECTION_TURN * (t_f / np.pi) ** 2, e_r + DIRECTION_TURN * (t_r / np.pi) ** 2
-        self.reverse = cost_r < cost_f - EQUAL_FIT
-        shared_f, shared_r = _shared_ends(key_a.open, key_b.open, self.ra[:, None] + self.rb[None, :])
-        self.reverse = np.where(shared_f & ~shared_r, False, np.where(shared_r & ~shared_f, True, self.reverse))
+        self._fits, self._turns = (e_f, e_r), (t_f, t_r)
+        self._shared = _shared_ends(key_a.open, key_b.open, self.ra[:, None] + self.rb[None, :])
+        self._loops = None
         e = np.minimum(e_f, e_r)
         la, lb = np.flatnonzero(key_a.loop), np.flatnonzero(key_b.loop)
         if la.size and lb.size:
@@ -351,11 +350,26 @@ class _CostTable:
             flip = np.sign(key_a.areas()[la])[:, None] * np.sign(key_b.areas()[lb])[None, :] < 0
             same, other = _loop_shapes(ra, rb), _loop_shapes(ra, _backwards(rb))
             e[np.ix_(la, lb)] = np.where(flip, other, same)
-            self.reverse[np.ix_(la, lb)] = flip
+            self._loops = (la, lb, flip)
         self.shape = np.sqrt(e)
         both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)
         one_dot = (self.ra[:, None] <= 0) != (self.rb[None, :] <= 0)
         self.shape = np.where(both_dots, 0.0, np.where(one_dot, DOT_SHAPE, self.shape))
+
+    def directions(self, turn):
+        """Whether B's stroke runs opposite to A's, given the drawing's turn (radians), shape
+        (S_a, S_b): the direction sharing more ends; then the better fit, a turn away from the
+        drawing's counting against it; then the drawn direction."""
+        (e_f, e_r), (t_f, t_r) = self._fits, self._turns
+        away = [np.angle(np.exp(1j * (t - turn))) / np.pi for t in (t_f, t_r)]
+        cost_f, cost_r = e_f + DIRECTION_TURN * away[0] ** 2, e_r + DIRECTION_TURN * away[1] ** 2
+        reverse = cost_r < cost_f - EQUAL_FIT
+        shared_f, shared_r = self._shared
+        reverse = np.where(shared_f > shared_r, False, np.where(shared_r > shared_f, True, reverse))
+        if self._loops is not None:
+            la, lb, flip = self._loops
+            reverse[np.ix_(la, lb)] = flip
+        return reverse
 
     def costs(self, a, b):
         """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b)."""
@@ -447,14 +461,16 @@ def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
     costs = table.costs(*motion)[rows, cols]
     order = np.argsort(rows, kind="stable")
     rows, cols, costs = rows[order], cols[order], costs[order]
+    reverse = table.directions(float(np.angle(motion[0])))
     return Matching(
-        pairs=[(int(i), int(j), bool(table.reverse[i, j]) if table.valid[i, j] else False) for i, j in zip(rows, cols)],
+        pairs=[(int(i), int(j), bool(reverse[i, j]) if table.valid[i, j] else False) for i, j in zip(rows, cols)],
         unmatched_a=sorted(set(range(key_a.count)) - {int(i) for i in rows}),
         unmatched_b=sorted(set(range(key_b.count)) - {int(j) for j in cols}),
         method=method,
         reason=reason,
         costs=[float(c) for c in costs],
         motion=np.array([motion[1].real, motion[1].imag]),
+        rotation=complex(motion[0]),
     )
 
 

@@ -47,6 +47,7 @@ from ..geometry.polyline import (
     resolve_spacing,
 )
 from ..geometry.ragged import Ragged
+from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
     arc_length_morph,
@@ -154,13 +155,13 @@ class PairPlans:
         self.lengths = np.ones((n, 2))
         self.motions, self.layout = None, None
 
-    def add_morph(self, c, morph, closed, lengths=(1.0, 1.0), order=0, ranges=None):
+    def add_morph(self, c, morph, closed, lengths=(1.0, 1.0), order=0, ranges=None, offset=None):
         """A morph for (a chain of) pair ``c``; ``ranges`` are its pieces' arc lengths on the pair
-        (default: the whole pair, of ``lengths``)."""
+        (default: the whole pair, of ``lengths``); ``offset`` see :class:`~.layout.Segment`."""
         if ranges is None:
             self.closed[c], self.lengths[c] = closed, lengths
             ranges = ((0.0, self.lengths[c, 0]), (0.0, self.lengths[c, 1]))
-        self.segments.append(Segment(c, order, *ranges, morph=morph))
+        self.segments.append(Segment(c, order, *ranges, morph=morph, offset=offset))
 
     def drop(self, pairs, notes_kept):
         """Forget what was planned for ``pairs`` (keeping their first ``notes_kept[c]`` notes)."""
@@ -276,8 +277,9 @@ def map_chains(chains, spacing, eps):
     return _ChainMaps(OneWayMap.concatenate(parts) if parts else OneWayMap.empty(), lengths, reports)
 
 
-def _ball_rows(chains, maps, index, good):
-    """The ball road's samples (BallRows): the chains whose ball-maps hold, and the overlaps."""
+def _ball_rows(chains, maps, index, good, ends):
+    """The ball road's samples (BallRows): the chains whose ball-maps hold, and the overlaps
+    (ranges on the pairs' whole curves, offsets undoing the end gaps' displacement)."""
     rows = maps.samples.take(good[maps.samples.chain])
     statics = np.flatnonzero(chains.static)
     overlap = Ragged.from_list([chains.setups[k].P for k in statics], False)
@@ -290,23 +292,60 @@ def _ball_rows(chains, maps, index, good):
     p, m, q = (np.concatenate([getattr(rows, f), overlap.pts]) for f in ("src", "m", "dst"))
     chain, kept = chain[order], np.flatnonzero(good | chains.static)
     first = np.searchsorted(chains.pair, chains.pair[kept])
+    local = chains.pair[chain]
+    u_p, offset, _ = _on_whole(ends, local, chains.range_p[chain], u_p[order])
+    owner = chains.pair[kept]
     return BallRows(
-        pair=index[chains.pair[kept]],
+        pair=index[owner],
         order=kept - first,
         sizes=np.bincount(chain, minlength=len(chains))[kept],
-        range_p=chains.range_p[kept],
-        range_q=chains.range_q[kept],
+        range_p=ends.on_p(owner[:, None], chains.range_p[kept]),
+        range_q=ends.on_q(owner[:, None], chains.range_q[kept]),
         static=chains.static[kept],
-        u_p=u_p[order],
+        u_p=u_p,
         u_q=u_q[order],
         p=p[order],
         m=m[order],
         q=q[order],
-        offset=np.zeros_like(p),
+        offset=offset,
     )
 
 
-def _fall_back(plans, chains, maps, events, index, kind, spacing):
+def _on_whole(ends, pair, range_p, u_p):
+    """Samples at fractions ``u_p`` of chains at ``range_p`` on the common parts, placed on the
+    whole registered curves: their fractions of the chains' ranges there, the offsets undoing
+    the displacement, and those ranges.
+
+    Parameters
+    ----------
+    ends : Ends
+    pair : ndarray of int, shape (K,)
+    range_p : ndarray, shape (K, 2)
+        Each sample's chain's range on its common part.
+    u_p : ndarray, shape (K,)
+
+    Returns
+    -------
+    u_p, offset, range_p : ndarrays, shapes (K,), (K, 2), (K, 2)
+    """
+    s = range_p[:, 0] + u_p * (range_p[:, 1] - range_p[:, 0])
+    on_whole = ends.on_p(pair[:, None], np.c_[range_p, s])
+    span = on_whole[:, 1] - on_whole[:, 0]
+    u = np.divide(on_whole[:, 2] - on_whole[:, 0], span, out=u_p.astype(np.float64), where=np.abs(span) > 0)
+    return u, ends.offsets(pair, s), on_whole[:, :2]
+
+
+def _add_piece(plans, ends, index, c, morph, closed, order, ranges):
+    """A morph of chain ``order`` of (local) pair ``c`` whose pieces lie at ``ranges`` along
+    the common parts: placed on the whole curves, its samples' displacement undone."""
+    rp, rq = np.asarray(ranges[0], dtype=np.float64), np.asarray(ranges[1], dtype=np.float64)
+    k = len(morph.u_p)
+    morph.u_p, offset, range_p = _on_whole(ends, np.full(k, c), np.tile(rp, (k, 1)), morph.u_p)
+    ranges = (tuple(range_p[0]) if k else tuple(rp), tuple(ends.on_q(c, rq)))
+    plans.add_morph(int(index[c]), morph, closed, order=int(order), ranges=ranges, offset=offset)
+
+
+def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
     """Step 7 for chains that are not b-compatible: composite, then linear (the notes say which).
 
     Returns the chains whose ball-maps hold, shape (H,) of bool.
@@ -321,9 +360,7 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing):
             setup.P, setup.Q, setup.closed, kind, spacing[c], where, maps.reports[k].describe()
         )
         plans.notes[index[c]].append(note)
-        plans.add_morph(
-            int(index[c]), morph, setup.closed, order=int(order), ranges=(chains.range_p[k], chains.range_q[k])
-        )
+        _add_piece(plans, ends, index, c, morph, setup.closed, order, (chains.range_p[k], chains.range_q[k]))
     return good
 
 
@@ -342,10 +379,11 @@ def _handled_directly(P, Q, scale):
     return (~closed & first & last) | nested
 
 
-def register(P, Q, carrier, scale):
+def register(P, Q, carrier, scale, drawing=None):
     """Step 2: each pair's registration and carrier (see :mod:`.registration`).
 
-    Pairs the ball-morph follows as drawn (and every pair with carrier 'none') get none.
+    Pairs the ball-morph follows as drawn (and every pair with carrier 'none') get none;
+    ``drawing`` (a DrawingMotion) is the keys' overall motion, the prior of symmetric shapes.
 
     Returns
     -------
@@ -359,69 +397,90 @@ def register(P, Q, carrier, scale):
     if carrier == "none":
         motion = Motions.identity(n)
     else:
-        fits = fit_pairs(P, Q)
+        fits = fit_pairs(P, Q, turn=0.0 if drawing is None else drawing.turn)
         still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
             np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
         )
-        motion = motions(P, fits, carrier, scale, ~_handled_directly(P, Q, scale) & ~still)
+        motion = motions(P, fits, carrier, scale, ~_handled_directly(P, Q, scale) & ~still, drawing)
     pts = np.einsum("kij,kj->ki", motion.A[P.owner], P.pts) + motion.b[P.owner]
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
     return motion, R, identity_residual(R, Q)
 
 
-def _ball_road(plans, pairs, index, kind, carrier, spacing):
+def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     """Steps 2-7 for the pairs ``index`` of ``pairs`` (validated); returns their Motions."""
     closed = np.array([pairs[c].closed for c in index], dtype=bool)
     # Curves drawn far more densely than they will be sampled are resampled first, each at its
     # own default spacing (the keys may differ in size a lot).
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
-    motions, R, residual = register(P, Q, carrier, pair_scales(P, Q))
+    motions, R, residual = register(P, Q, carrier, pair_scales(P, Q), drawing)
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
     h = default_spacings(R, Q) if spacing is None else np.full(len(index), float(spacing))
     coincident = residual <= tol.OVERLAP * scale
-    events = find_events(R, Q, scale, h / 2, ~coincident)
+    ends = settle_ends(R, Q, scale, ~closed & ~coincident & (carrier != "none"))
+    Rc, Qc = ends.common_p, ends.common_q
+    residual = identity_residual(Rc, Qc)  # of the common parts
+    coincident |= residual <= tol.OVERLAP * scale
+    events = find_events(Rc, Qc, scale, h / 2, ~coincident)
     near = (residual <= NEAR * scale) & motions.moving
-    roads = choose_roads(R, Q, events, coincident, near, carrier, scale)
-    lengths = np.c_[R.length, Q.length]
+    roads = choose_roads(Rc, Qc, events, coincident, near, carrier, scale)
+    plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
+    whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
     for c in np.flatnonzero(roads.kind == "linear"):
-        morph, note = linear_fallback(R.curve(c), Q.curve(c), bool(closed[c]), h[c], roads.reason[c])
+        morph, note = linear_fallback(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c], roads.reason[c])
         plans.notes[index[c]].append(note)
-        plans.add_morph(int(index[c]), morph, bool(closed[c]), lengths[c])
+        _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
     for c in np.flatnonzero(roads.kind == "near"):
-        plans.add_morph(
-            int(index[c]), arc_length_morph(R.curve(c), Q.curve(c), bool(closed[c]), h[c]), bool(closed[c]), lengths[c]
-        )
+        morph = arc_length_morph(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c])
+        _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
     lensed = roads.kind == "lenses"
     whole = np.flatnonzero((roads.kind == "whole") | (roads.kind == "carrier"))
-    chains = cut_chains(R, Q, events, lensed, whole, coincident, scale)
-    mapped = np.flatnonzero((roads.kind != "linear") & (roads.kind != "near"))
-    plans.closed[index[mapped]], plans.lengths[index[mapped]] = closed[mapped], lengths[mapped]
-    plans.joined[index[mapped]] = closed[mapped] & lensed[mapped]
+    chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
+    plans.joined[index] = closed & lensed
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
-    good = _fall_back(plans, chains, maps, events, index, kind, h)
-    plans.ball.append(_ball_rows(chains, maps, index, good))
+    good = _fall_back(plans, chains, maps, events, index, kind, h, ends)
+    plans.ball.append(_ball_rows(chains, maps, index, good, ends))
+    _add_overhangs(plans, index, R, Q, ends, h)
     pieces = np.bincount(chains.pair, minlength=len(index))
     for c in np.flatnonzero(lensed & (pieces > 1)):
         plans.notes[index[c]].append(f"split at {pieces[c]} crossing/overlap pieces")
     return motions
 
 
-def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing):
+def _add_overhangs(plans, index, R, Q, ends, spacing):
+    """The parts of open strokes beyond their common part (see :mod:`.ends`): first and last
+    chains of their pairs, sliding into the common part's ends or growing out of them."""
+    for c in range(len(index)):
+        for which, order in ((0, -1), (1, np.iinfo(np.int32).max)):
+            start_or_end = (0.0, R.length[c]), (0.0, Q.length[c])
+            for curve, keep, grow in ((R, ends.keep_p, False), (Q, ends.keep_q, True)):
+                edge = start_or_end[int(grow)][which]
+                attach = keep[c, which]
+                if abs(attach - edge) <= 0.0:
+                    continue
+                s0, s1 = sorted((edge, attach))
+                morph = overhang_morph(curve.curve(c), s0, s1, attach, ends.gap[c, which], grow, spacing[c])
+                other = ends.keep_q[c, which] if not grow else ends.keep_p[c, which]
+                ranges = ((s0, s1), (other, other)) if not grow else ((other, other), (s0, s1))
+                plans.add_morph(int(index[c]), morph, False, order=int(order), ranges=ranges)
+
+
+def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing=None):
     """The ball road for every ready pair at once; should it fail (a bug), pair by pair, so one
     pair never stops the others: a failing pair takes linear interpolation and says why."""
     index = np.asarray(ready)
     kept = {c: len(plans.notes[c]) for c in ready}
     try:
-        return _ball_road(plans, pairs, index, kind, carrier, spacing)
+        return _ball_road(plans, pairs, index, kind, carrier, spacing, drawing)
     except Exception as exc:  # reported below, pair by pair
         batch_error = f"{type(exc).__name__}: {exc}"
     plans.drop(set(ready), kept)
     parts = []
     for c in ready:
         try:
-            parts.append(_ball_road(plans, pairs, np.array([c]), kind, carrier, spacing))
+            parts.append(_ball_road(plans, pairs, np.array([c]), kind, carrier, spacing, drawing))
         except Exception as exc:
             plans.drop({c}, kept)
             pair = pairs[c]
@@ -459,7 +518,7 @@ def _comparison_road(plans, pairs, ready, method, spacing):
         plans.add_morph(c, morph, loop, (Ps.length[k], Qs.length[k]))
 
 
-def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None):
+def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None, drawing=None):
     """Plan every stroke pair of a drawing (see the module docstring).
 
     Parameters
@@ -470,6 +529,8 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     carrier : {'similarity', 'rigid', 'none'}
     spacing : float, optional
         Geodesic sample spacing for every pair (default: each pair's own).
+    drawing : DrawingMotion, optional
+        The keys' overall motion (from the stroke matching): symmetric shapes turn with it.
 
     Returns
     -------
@@ -485,7 +546,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         return plans.finish()
     kind = method[: -len("-ball")]
     if ready:
-        motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing)
+        motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing)
         plans.motions = _spread_motions(motions, np.asarray(ready), len(pairs))
     return plans.finish(kind)
 

@@ -20,6 +20,7 @@ from .keys import ProjectedKey
 from .layout import PairFrames
 from .matching import match_strokes
 from .pipeline import PairCurves, plan_pairs
+from .registration import DrawingMotion
 from .strokes import InbetweenResult, Message, PairReport, StrokeSet
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
@@ -110,13 +111,14 @@ class InbetweenPlan:
         self.plane = plane = fit_plane(np.concatenate([key_a.positions, key_b.positions]))
         self.ka, self.kb = ka, kb = ProjectedKey(key_a, plane), ProjectedKey(key_b, plane)
         self.messages = []  # the plan's own, before the per-pair reports
-        matched = self._match(key_a, key_b, matching)
+        matched, drawing = self._match(key_a, key_b, matching)
         self.strokes = [(ka.stroke(i), kb.stroke(j, flip), flip) for i, j, flip in matched]
-        self.pairs = plan_pairs([_curves(a, b) for a, b, _ in self.strokes], method, carrier, spacing)
+        self.pairs = plan_pairs([_curves(a, b) for a, b, _ in self.strokes], method, carrier, spacing, drawing)
         self.planarity = _planarity_messages(key_a, key_b, plane)
 
     def _match(self, key_a, key_b, matching):
-        """Pairs (i, j, flip) of strokes with points; strokes without a partner are held."""
+        """Pairs (i, j, flip) of strokes with points (strokes without a partner are held), and
+        the keys' overall motion (DrawingMotion)."""
         ka, kb = self.ka, self.kb
         # Strokes without points have nothing to morph or show: leave them out, and say so.
         live_a, live_b = np.flatnonzero(key_a.sizes > 0), np.flatnonzero(key_b.sizes > 0)
@@ -134,7 +136,8 @@ class InbetweenPlan:
         self.held += [Held(kb, int(live_b[j]), False) for j in pairing.unmatched_b]
         if pairing.method != "index" or self.held:
             self.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
-        return [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
+        drawing = DrawingMotion(pairing.rotation, complex(*pairing.motion))
+        return [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs], drawing
 
     def evaluate(self, times):
         """The in-betweens at ``times``.

@@ -32,10 +32,20 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..geometry.polyline import signed_area
+from ..geometry.projection import nearest_within
 from ..geometry.ragged import Ragged
 from ..geometry.similarity import Similarity, as_complex, from_complex
 
-__all__ = ["Fits", "fit_pairs", "identity_residual", "Motions", "motions", "endpoint_similarity", "fit_similarity"]
+__all__ = [
+    "Fits",
+    "DrawingMotion",
+    "fit_pairs",
+    "identity_residual",
+    "Motions",
+    "motions",
+    "endpoint_similarity",
+    "fit_similarity",
+]
 
 #: Uniform samples per curve for the least-squares fits.
 FIT_SAMPLES = 128
@@ -43,6 +53,11 @@ FIT_SAMPLES = 128
 #: Fits whose normalised residuals differ by less than this are equally good: the one that
 #: turns least wins (a symmetric shape turned by 90 degrees never turns by round-off).
 EQUAL_FIT = 1e-6
+
+#: Distinct fits (local minima over the loop's start) whose normalised residuals are within
+#: this of the best are equally good: a circle, an ellipse turned by half a turn. The one
+#: closest to the drawing's turn wins (a hand at the end of a swinging arm turns with it).
+EQUAL_TURNS = 1e-3
 
 #: A stroke whose endpoints are closer than this fraction of its length is also fitted as a
 #: loop (a head outline drawn open).
@@ -52,6 +67,20 @@ NEARLY_CLOSED = 0.25
 #: the similarity's, and its stretch ratio within ``1 / MAX_STRETCH .. MAX_STRETCH``.
 AFFINE_GAIN = 0.5
 MAX_STRETCH = 4.0
+
+#: Strokes whose end-to-end fit leaves more than this fraction of their size are also fitted
+#: sliding along each other; that fit wins when its residual (over the overlap, which must
+#: cover ``SLIDE_OVERLAP`` of both strokes) is below ``SLIDE_GAIN`` of the end-to-end one.
+SLIDE_FROM = 0.01
+SLIDE_OVERLAP = 0.6
+SLIDE_GAIN = 0.25
+#: Iterations of the sliding fit, and how far (in sizes) a sample looks for the other stroke.
+SLIDE_ITERATIONS = 12
+SLIDE_REACH = 0.3
+
+#: A pair turns with the drawing when their turns agree within this (radians); a drawing
+#: turning less does not count as turning.
+TURN_AGREE = np.radians(10.0)
 
 #: The fixed point of a registration is the carrier's pivot when it lies within this many sizes
 #: (bounding-box diagonal of the pair) of the stroke's centroid; beyond twice that, the
@@ -88,12 +117,14 @@ def _samples(rg, index, k):
     return as_complex(sub.resample(np.full(len(index), k), smooth=False).pts).reshape(len(index), k)
 
 
-def _loop_fits(xp, xq):
+def _loop_fits(xp, xq, turn=0.0):
     """Best similarity over every cyclic shift of Q's samples: ``(a, b, residual)`` per row.
 
     Complex Procrustes: with centred samples, ``a = <p, q_s> / <p, p>`` and the residual is
     ``|q|^2 - |<p, q_s>|^2 / |p|^2``; ``<p, q_s>`` for every shift ``s`` is one circular
-    cross-correlation.
+    cross-correlation. Among fits equally good (a symmetric shape: its residual's local minima
+    within ``EQUAL_TURNS`` of the best; any shift within ``EQUAL_FIT``), the one turning closest
+    to ``turn`` wins (radians, scalar or shape (L,): the drawing's own turn, else 0).
     """
     cp, cq = xp.mean(axis=1), xq.mean(axis=1)
     p, q = xp - cp[:, None], xq - cq[:, None]
@@ -101,10 +132,11 @@ def _loop_fits(xp, xq):
     norm_q = np.maximum(np.sum(np.abs(q) ** 2, axis=1), 1e-300)
     corr = np.fft.ifft(np.conj(np.fft.fft(p, axis=1)) * np.fft.fft(q, axis=1), axis=1)
     fit = 1.0 - np.abs(corr) ** 2 / (norm_p * norm_q)[:, None]
-    # Equally good fits: the smaller turn wins, never a worse fit.
     best = fit.min(axis=1, keepdims=True)
-    turn = np.where(fit <= best + EQUAL_FIT, np.abs(np.angle(corr)), np.inf)
-    s = np.argmin(turn, axis=1)
+    minimum = (fit <= np.roll(fit, 1, axis=1)) & (fit <= np.roll(fit, -1, axis=1))
+    equal = (fit <= best + EQUAL_FIT) | (minimum & (fit <= best + EQUAL_TURNS))
+    off = np.abs(np.angle(corr * np.exp(-1j * np.reshape(turn, (-1, 1)))))
+    s = np.argmin(np.where(equal, off, np.inf), axis=1)
     rows = np.arange(len(xp))
     a = corr[rows, s] / norm_p
     k = xp.shape[1]
@@ -197,8 +229,8 @@ def _affine_loops(P, Q, index, res_sim, k):
     xp, xq = _samples(P, index, k), _samples(Q, index, k)
     wp = as_complex(np.einsum("lij,lkj->lki", inv_p, from_complex(xp) - cp[:, None]))
     wq = as_complex(np.einsum("lij,lkj->lki", np.linalg.inv(root_q), from_complex(xq) - cq[:, None]))
-    turn, _, _ = _loop_fits(wp, wq)
-    rot = _matrix(turn / np.maximum(np.abs(turn), 1e-300))
+    a, _, _ = _loop_fits(wp, wq)
+    rot = _matrix(a / np.maximum(np.abs(a), 1e-300))
     A = root_q @ rot @ inv_p
     b = cq - np.einsum("lij,lj->li", A, cp)
     fitted = as_complex(np.einsum("lij,lkj->lki", A, from_complex(xp)) + b[:, None])
@@ -208,7 +240,7 @@ def _affine_loops(P, Q, index, res_sim, k):
     return ok & moderate & (residual < AFFINE_GAIN * res_sim), A, b, residual
 
 
-def fit_pairs(P, Q, affine=True):
+def fit_pairs(P, Q, affine=True, turn=0.0):
     """Registrations of every P of a batch onto its Q (see the module docstring).
 
     Parameters
@@ -217,6 +249,8 @@ def fit_pairs(P, Q, affine=True):
         Same number of curves and closed flags; each Q runs the same way as its P.
     affine : bool
         Allow affine fits of squashed or stretched loops.
+    turn : float
+        The drawing's own turn (radians): symmetric loops turn closest to it.
 
     Returns
     -------
@@ -227,9 +261,9 @@ def fit_pairs(P, Q, affine=True):
     residual = np.zeros(n)
     loops, opened = np.flatnonzero(P.closed), np.flatnonzero(~P.closed)
     if len(loops):
-        a[loops], b[loops], residual[loops] = _loop_fits(_samples(P, loops, k), _samples(Q, loops, k))
+        a[loops], b[loops], residual[loops] = _loop_fits(_samples(P, loops, k), _samples(Q, loops, k), turn)
     if len(opened):
-        a[opened], b[opened], residual[opened] = _open_fits(P, Q, opened, k)
+        a[opened], b[opened], residual[opened] = _open_fits(P, Q, opened, k, turn)
     A, bb = _matrix(a), from_complex(b)
     if affine and len(loops):
         use, A_aff, b_aff, res_aff = _affine_loops(P, Q, loops, residual[loops], k)
@@ -237,9 +271,86 @@ def fit_pairs(P, Q, affine=True):
     return Fits(A, bb, residual)
 
 
-def _open_fits(P, Q, index, k):
-    """Strokes: end to end (about a shared endpoint when there is one), or as loops when nearly
-    closed and that fits better."""
+def _weighted_similarity(xp, xq, w):
+    """Least-squares similarity of samples ``xp -> xq`` with weights ``w`` (all shape (L, k)):
+    ``(a, b)`` complex, shape (L,) each (the identity where fewer than two samples weigh)."""
+    total = np.maximum(w.sum(axis=1), 1e-300)
+    cp, cq = (w * xp).sum(axis=1) / total, (w * xq).sum(axis=1) / total
+    p, q = xp - cp[:, None], xq - cq[:, None]
+    norm = (w * np.abs(p) ** 2).sum(axis=1)
+    ok = (norm > 0) & ((w > 0).sum(axis=1) >= 2)
+    a = np.where(ok, (w * np.conj(p) * q).sum(axis=1) / np.where(ok, norm, 1.0), 1.0)
+    return a, np.where(ok, cq - a * cp, 0.0)
+
+
+def _finite_median(d):
+    """Median of each row's finite values, shape (L,) (0 for a row with none)."""
+    finite = np.isfinite(d)
+    ranked = np.sort(np.where(finite, d, np.inf), axis=1)
+    count = finite.sum(axis=1)
+    middle = ranked[np.arange(len(d)), np.maximum(count - 1, 0) // 2]
+    return np.where(count > 0, middle, 0.0)
+
+
+def _sliding_fits(xp, Q, index, starts, size):
+    """Strokes that lie partly along each other (an outline started elsewhere, a line drawn
+    longer, an open circle whose gap changed): the similarity taking P's samples onto Q where
+    they overlap, by trimmed iterative closest points.
+
+    Samples of P that land on Q's ends (P's overhang) or far from Q are left out of each fit.
+
+    Parameters
+    ----------
+    xp : ndarray of complex, shape (L, k)
+        P's uniform samples.
+    Q : Ragged
+    index : ndarray of int, shape (L,)
+        The pairs (curves of Q).
+    starts : list of (ndarray, ndarray)
+        Starting similarities ``(a, b)``, complex, shape (L,) each.
+    size : ndarray, shape (L,)
+
+    Returns
+    -------
+    a, b : ndarray of complex, shape (L,)
+    residual : ndarray, shape (L,)
+        RMS distance of the overlapping samples (inf where the overlap is too short).
+    """
+    L, k = xp.shape
+    owner = np.repeat(index, k)
+    best = (np.ones(L, complex), np.zeros(L, complex), np.full(L, np.inf))
+    end_eps = tol.SHARED_ENDPOINT * np.repeat(size, k)
+    length_q = np.repeat(Q.length[index], k)
+    for a, b in starts:
+        for _ in range(SLIDE_ITERATIONS):
+            z = (a[:, None] * xp + b[:, None]).ravel()
+            dist, edge, frac = nearest_within(from_complex(z), owner, Q, SLIDE_REACH * np.repeat(size, k))
+            s_q = Q.s[edge] + frac * Q.length_of_edge[edge]
+            inner = np.isfinite(dist) & (s_q > end_eps) & (s_q < length_q - end_eps)
+            d = np.where(inner, dist, np.inf).reshape(L, k)
+            limit = np.maximum(3.0 * _finite_median(d), 1e-3 * size)
+            w = (d <= limit[:, None]).astype(np.float64)
+            target = as_complex(Q.pts[edge] + frac[:, None] * Q.edge[edge]).reshape(L, k)
+            a, b = _weighted_similarity(xp, target, w)
+        covered_p = w.mean(axis=1)
+        s_kept = np.where(w > 0, s_q.reshape(L, k), np.nan)
+        span_q = (np.nanmax(s_kept, axis=1, initial=-np.inf) - np.nanmin(s_kept, axis=1, initial=np.inf)) / np.maximum(
+            Q.length[index], 1e-300
+        )
+        residual = np.sqrt((w * np.where(np.isfinite(d), d, 0.0) ** 2).sum(axis=1) / np.maximum(w.sum(axis=1), 1))
+        residual = np.where((covered_p >= SLIDE_OVERLAP) & (span_q >= SLIDE_OVERLAP), residual, np.inf)
+        # Equally good fits (a circle slides along itself): the one turning less.
+        both = np.isfinite(residual) & np.isfinite(best[2])
+        gap = np.subtract(residual, best[2], out=np.zeros(L), where=both)
+        tie = both & (np.abs(gap) <= EQUAL_FIT * size)
+        better = np.where(tie, np.abs(np.angle(a)) < np.abs(np.angle(best[0])), residual < best[2])
+        best = tuple(np.where(better, new, old) for new, old in zip((a, b, residual), best))
+    return best
+
+
+def _open_fits(P, Q, index, k, turn):
+    """Strokes: end to end (about a shared endpoint when there is one), as loops when nearly
+    closed, or sliding along each other, whichever fits clearly better."""
     xp, xq = _samples(P, index, k), _samples(Q, index, k)
     size = np.maximum(np.abs(xp - xp.mean(axis=1, keepdims=True)).max(axis=1), 1e-300)
     pin_start = np.abs(xp[:, 0] - xq[:, 0]) <= tol.SHARED_ENDPOINT * size
@@ -249,10 +360,18 @@ def _open_fits(P, Q, index, k):
     gap_q = np.abs(xq[:, -1] - xq[:, 0]) / np.maximum(Q.length[index], 1e-300)
     round_ = (gap_p < NEARLY_CLOSED) & (gap_q < NEARLY_CLOSED) & ~pin_start & ~pin_end
     if round_.any():
-        la, lb, lr = _loop_fits(xp[round_], xq[round_])
+        la, lb, lr = _loop_fits(xp[round_], xq[round_], turn)
         better = lr < residual[round_] - EQUAL_FIT * size[round_]
         rows = np.flatnonzero(round_)[better]
         a[rows], b[rows], residual[rows] = la[better], lb[better], lr[better]
+    loose = residual > SLIDE_FROM * size
+    if loose.any():
+        rows = np.flatnonzero(loose)
+        starts = [(np.ones(len(rows), complex), np.zeros(len(rows), complex)), (a[rows], b[rows])]
+        sa, sb, sr = _sliding_fits(xp[rows], Q, index[rows], starts, size[rows])
+        better = sr < SLIDE_GAIN * residual[rows]
+        rows = rows[better]
+        a[rows], b[rows], residual[rows] = sa[better], sb[better], sr[better]
     return a, b, residual
 
 
@@ -337,6 +456,38 @@ class Motions:
         return cls(eye, np.zeros((n, 2)), np.zeros(n), eye.copy(), np.zeros((n, 2)), np.zeros(n, bool), kind)
 
 
+@dataclass
+class DrawingMotion:
+    """The keys' overall motion ``z -> a z + b`` (from the stroke matching), as a prior.
+
+    Symmetric loops turn as the drawing does, and a stroke turning with the drawing may turn
+    about a joint far from itself (a hand about the shoulder of its arm).
+
+    Attributes
+    ----------
+    a, b : complex
+    """
+
+    a: complex = 1.0 + 0j
+    b: complex = 0j
+
+    @property
+    def turn(self):
+        """The drawing's turn, radians."""
+        return float(np.angle(self.a))
+
+
+def _reach_scales(P, fits, scale, drawing):
+    """The size each pair's pivot reach is measured in, shape (C,): the pair's own, or the
+    drawing's for pairs turning with a drawing that turns."""
+    if drawing is None or abs(drawing.turn) <= TURN_AGREE or not len(P):
+        return scale
+    theta, _ = _polar(fits.A)
+    agree = np.abs(np.angle(np.exp(1j * (theta - drawing.turn)))) <= TURN_AGREE
+    size = float(np.linalg.norm(P.pts.max(axis=0) - P.pts.min(axis=0)))
+    return np.where(agree, np.maximum(scale, size), scale)
+
+
 def _pivots(P, fits, scale):
     """The fixed point of each registration where it lies near its stroke, else the centroid."""
     centre = P.centroids()
@@ -349,7 +500,7 @@ def _pivots(P, fits, scale):
     return centre + w[:, None] * (fixed - centre)
 
 
-def motions(P, fits, kind, scale, moving):
+def motions(P, fits, kind, scale, moving, drawing=None):
     """The carrier motions of registered pairs (Motions).
 
     Parameters
@@ -364,9 +515,11 @@ def motions(P, fits, kind, scale, moving):
         Size of each pair.
     moving : ndarray of bool, shape (C,)
         Pairs that get a carrier (the others: the identity).
+    drawing : DrawingMotion, optional
+        The keys' overall motion: a pair turning with it may turn about a farther pivot.
     """
     theta, stretch = _polar(fits.A)
-    pivot = _pivots(P, fits, scale)
+    pivot = _pivots(P, fits, _reach_scales(P, fits, scale, drawing))
     A, b = fits.A.copy(), fits.b.copy()
     if kind == "rigid":
         target = np.einsum("lij,lj->li", fits.A, pivot) + fits.b

@@ -106,9 +106,10 @@ def _overlaps(R, Q, scale, spacing, wanted):
             rows.append((pair, 0.0, R.length[pair], q_c[0], q_c[0] + Q.length[pair]))
             continue
         for a, b in _runs(near_c, closed):
-            rows.append(
-                (pair, s_c[a % n], s_c[b % n] + (R.length[pair] if closed and b >= n else 0.0), q_c[a % n], q_c[b % n])
-            )
+            q0, q1 = q_c[a % n], q_c[b % n]
+            # On loops an overlap may run past either curve's start: its end is one lap on.
+            q1 += Q.length[pair] if closed and q1 < q0 else 0.0
+            rows.append((pair, s_c[a % n], s_c[b % n] + (R.length[pair] if closed and b >= n else 0.0), q0, q1))
     return np.array(rows, dtype=np.float64).reshape(-1, 5)
 
 
@@ -238,6 +239,9 @@ def _gaps(R, Q, b, end_eps):
     pair, sp0, sq0 = b.pair[k], b.s_p1[k], b.s_q1[k]
     sp1, sq1 = b.s_p0[nxt[k]], b.s_q0[nxt[k]]
     loop, eps = closed[k], end_eps[pair]
+    # A gap after an overlap that ran past a loop's start starts on the first lap.
+    sp0 = np.where(loop & (sp0 >= R.length[pair]), sp0 - R.length[pair], sp0)
+    sq0 = np.where(loop & (sq0 >= Q.length[pair]), sq0 - Q.length[pair], sq0)
     # The next event, one lap on if it lies behind (or is this one: the whole loop).
     sp1 = np.where(loop & (sp1 <= sp0 + eps), sp1 + R.length[pair], sp1)
     sq1 = np.where(loop & (sq1 <= sq0 + eps), sq1 + Q.length[pair], sq1)

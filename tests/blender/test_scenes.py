@@ -26,7 +26,7 @@ FIRST, LAST = 1, 9
 def _params():
     for name, scene in scenes.SCENES.items():
         if scene.blender:
-            reason = scenes.XFAIL_TODAY.get(name)
+            reason = None if name in scenes.BLENDER_PASSES else scenes.XFAIL_TODAY.get(name)
             marks = [pytest.mark.xfail(strict=True, raises=AssertionError, reason=reason)] if reason else []
             yield pytest.param(scene, id=name, marks=marks)
 

@@ -48,7 +48,8 @@ def distance_to_polyline(points, curve, closed):
     a = a[: len(b)]
     ab = b - a
     ap = points[:, None, :] - a[None, :, :]
-    t = np.clip(np.einsum("kij,ij->ki", ap, ab) / np.einsum("ij,ij->i", ab, ab), 0, 1)
+    # A repeated vertex makes a zero-length segment: its closest point is the vertex itself.
+    t = np.clip(np.einsum("kij,ij->ki", ap, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0, 1)
     closest = a[None] + t[..., None] * ab[None]
     return np.linalg.norm(points[:, None, :] - closest, axis=2).min(axis=1)
 

@@ -1,0 +1,233 @@
+"""Open strokes whose registered ends do not meet: overhangs and end gaps.
+
+After registration an open stroke P and its partner Q rarely share their endpoints: the animator
+drew one a little longer, started an outline elsewhere, opened a circle's gap. A ball-map needs
+strokes that share both ends, so each end is settled first:
+
+* an *overhang*: where one curve's end lies along the other (a longer stroke, an outline started
+  further on), the other curve's part beyond it does not morph into anything: it slides along
+  itself into (or grows out of) that end, so an outline stays on itself and a widening gap opens
+  along the circle;
+* an *end gap*: what is left between the two ends is closed by displacing the registered P's
+  common part (by the two gaps, blended along it), and the in-betweens undo that displacement
+  as ``1 - t``, so at ``t = 0`` they are P and at ``t = 1`` exactly Q.
+
+The common parts (P displaced, Q) then share both ends and go through the crossings and the
+ball-map as any stroke pair.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import tolerances as tol
+from ..geometry.projection import nearest_within
+from ..geometry.ragged import Ragged
+from ..morphs.base import PathMorph
+
+__all__ = ["ALONG", "Ends", "settle_ends", "overhang_morph"]
+
+#: An end lies along the other curve when it is within this fraction of the pair's size of it.
+ALONG = 0.05
+
+
+@dataclass
+class Ends:
+    """How each pair's registered curves meet at their ends, and their common parts.
+
+    Attributes
+    ----------
+    keep_p, keep_q : ndarray, shape (C, 2)
+        Arc-length range of R (the registered P) and of Q in their common part (the whole curves
+        for pairs not settled).
+    gap : ndarray, shape (C, 2, 2)
+        The end gaps ``(Q's first - R's first, Q's last - R's last)`` of the common parts.
+    common_p, common_q : Ragged
+        The common parts, R's displaced by the gaps so both share their ends.
+    u : ndarray, shape (N,)
+        Fraction along R's common part (before the displacement) of each vertex of ``common_p``.
+    """
+
+    keep_p: np.ndarray
+    keep_q: np.ndarray
+    gap: np.ndarray
+    common_p: Ragged
+    common_q: Ragged
+    u: np.ndarray
+
+    @property
+    def settled(self):
+        """Pairs whose curves were trimmed or displaced, shape (C,) of bool."""
+        whole_p = (self.keep_p[:, 0] == 0) & (self.keep_p[:, 1] == self.common_p.length)
+        return np.any(self.gap != 0, axis=(1, 2)) | ~whole_p | (self.keep_q[:, 0] > 0)
+
+    def _fraction(self, pair, s):
+        """Fraction along R's common part (before the displacement) at arc lengths ``s`` of
+        ``common_p``, shape (K,)."""
+        edge, frac = self.common_p.locate(pair, s)
+        nxt = np.maximum(self.common_p.nxt[edge], 0)
+        return self.u[edge] + frac * (self.u[nxt] - self.u[edge])
+
+    def on_p(self, pair, s):
+        """Arc lengths on R of arc lengths ``s`` on the common parts of ``pair`` (same shapes)."""
+        pair, s = np.broadcast_arrays(np.asarray(pair, dtype=np.int64), np.asarray(s, dtype=np.float64))
+        u = self._fraction(pair.ravel(), s.ravel()).reshape(s.shape)
+        return self.keep_p[pair, 0] + u * (self.keep_p[pair, 1] - self.keep_p[pair, 0])
+
+    def on_q(self, pair, s):
+        """Arc lengths on Q of arc lengths ``s`` on the common parts of ``pair``."""
+        return self.keep_q[pair, 0] + np.asarray(s)
+
+    def offsets(self, pair, s):
+        """What undoes the displacement at arc lengths ``s`` along the common parts, shape (K, 2).
+
+        Added as ``(1 - t)`` times this to the in-between samples there, they start on R.
+
+        Parameters
+        ----------
+        pair : ndarray of int, shape (K,)
+        s : ndarray, shape (K,)
+            Arc lengths along ``common_p``.
+        """
+        pair = np.asarray(pair, dtype=np.int64)
+        if not len(pair):
+            return np.zeros((0, 2))
+        u = self._fraction(pair, np.asarray(s, dtype=np.float64))
+        return -((1 - u)[:, None] * self.gap[pair, 0] + u[:, None] * self.gap[pair, 1])
+
+
+def _ends_onto(A, B, which, reach):
+    """Where the first (``which=0``) or last ends of A lie along B: arc length on B, distance."""
+    ends = A.pts[A.offsets[:-1]] if which == 0 else A.pts[A.offsets[1:] - 1]
+    dist, edge, frac = nearest_within(ends, np.arange(len(A)), B, reach)
+    return B.s[edge] + frac * B.length_of_edge[edge], dist
+
+
+def _along(s_on_other, dist, length_other, end_tol, which):
+    """Whether an end lies along the other curve's interior, and how deep (a fraction of its length)."""
+    depth = s_on_other if which == 0 else length_other - s_on_other
+    return np.isfinite(dist) & (depth > end_tol), depth / np.maximum(length_other, 1e-300)
+
+
+def _trims(R, Q, scale, opened):
+    """The common parts' arc-length ranges on R and Q, shapes (C, 2) each."""
+    n = len(R)
+    keep_p, keep_q = np.c_[np.zeros(n), R.length], np.c_[np.zeros(n), Q.length]
+    end_tol, reach = tol.SHARED_ENDPOINT * scale, ALONG * scale
+    for which in (0, 1):
+        s_q, d_q = _ends_onto(R, Q, which, reach)  # R's end along Q: Q overhangs
+        s_r, d_r = _ends_onto(Q, R, which, reach)  # Q's end along R: R overhangs
+        q_over, q_depth = _along(s_q, d_q, Q.length, end_tol, which)
+        r_over, r_depth = _along(s_r, d_r, R.length, end_tol, which)
+        # Both ends along the other (the strokes overlap there): the shallower trim.
+        trim_q = opened & q_over & (~r_over | (q_depth <= r_depth))
+        trim_r = opened & r_over & ~trim_q
+        keep_q[trim_q, which] = s_q[trim_q]
+        keep_p[trim_r, which] = s_r[trim_r]
+    # A trim that leaves no common part would morph nothing: keep those pairs whole.
+    empty = (keep_p[:, 1] - keep_p[:, 0] <= end_tol) | (keep_q[:, 1] - keep_q[:, 0] <= end_tol)
+    keep_p[empty], keep_q[empty] = np.c_[np.zeros(n), R.length][empty], np.c_[np.zeros(n), Q.length][empty]
+    return keep_p, keep_q
+
+
+def settle_ends(R, Q, scale, opened):
+    """The common parts and end gaps of every open pair (see the module docstring).
+
+    Parameters
+    ----------
+    R, Q : Ragged
+        The registered first curves and the second curves.
+    scale : ndarray, shape (C,)
+        Size of each pair.
+    opened : ndarray of bool, shape (C,)
+        The pairs to settle (open strokes on the ball road); the others stay whole.
+
+    Returns
+    -------
+    Ends
+    """
+    n = len(R)
+    keep_p, keep_q = _trims(R, Q, scale, opened)
+    idx = np.arange(n)
+    part_p, part_q = R.pieces(idx, keep_p[:, 0], keep_p[:, 1]), Q.pieces(idx, keep_q[:, 0], keep_q[:, 1])
+    first = part_q.pts[part_q.offsets[:-1]] - part_p.pts[part_p.offsets[:-1]]
+    last = part_q.pts[part_q.offsets[1:] - 1] - part_p.pts[part_p.offsets[1:] - 1]
+    gap = np.where(opened[:, None, None], np.stack([first, last], axis=1), 0.0)
+    # Ends already shared need no displacement.
+    gap = np.where(np.linalg.norm(gap, axis=2)[..., None] <= tol.SHARED_ENDPOINT * scale[:, None, None], 0.0, gap)
+    u = part_p.s / np.maximum(part_p.length, 1e-300)[part_p.owner]
+    shift = (1 - u)[:, None] * gap[part_p.owner, 0] + u[:, None] * gap[part_p.owner, 1]
+    common_p = Ragged(part_p.pts + shift, part_p.offsets, R.closed)
+    common_q = Ragged(part_q.pts, part_q.offsets, Q.closed)
+    whole = ~opened
+    if whole.any():  # loops (and pairs not settled) stay exactly as they are
+        common_p, common_q = _merge(common_p, R, whole), _merge(common_q, Q, whole)
+        u = common_p.s / np.maximum(common_p.length, 1e-300)[common_p.owner]
+    return Ends(keep_p, keep_q, gap, common_p, common_q, u)
+
+
+def _merge(parts, whole, keep):
+    """``parts`` with the curves ``keep`` replaced by those of ``whole`` (Ragged)."""
+    curves = [whole.curve(c) if keep[c] else parts.curve(c) for c in range(len(whole))]
+    return Ragged.from_list(curves, whole.closed)
+
+
+class _SlidingPaths:
+    """Points sliding along a curve at constant speed into (or out of) one point of it, all
+    carried by ``t`` times a vector (the displacement of the end they are attached to)."""
+
+    def __init__(self, curve, s, attach, towards, grow):
+        self._rg = Ragged.from_list([curve], [False])
+        self._s, self._attach, self._grow = s, float(attach), bool(grow)
+        self._towards = np.asarray(towards, dtype=np.float64)
+
+    def __len__(self):
+        return len(self._s)
+
+    def at(self, t):
+        t = float(t)
+        time = 1.0 - t if self._grow else t  # growing runs the shrinking backwards in time
+        along = self._s + time * (self._attach - self._s)
+        points = self._rg.point_at(np.zeros(len(along), np.int64), along)
+        return points + (t - 1.0 if self._grow else t) * self._towards
+
+    @property
+    def start(self):
+        return self.at(0.0)
+
+    @property
+    def end(self):
+        return self.at(1.0)
+
+    def lengths(self):
+        return np.abs(self._attach - self._s)
+
+
+def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
+    """The part of an open curve between arc lengths ``s0`` and ``s1`` sliding along itself
+    into (``grow=False``) or out of (``grow=True``) the point at arc length ``attach``.
+
+    Parameters
+    ----------
+    curve : ndarray, shape (N, 2)
+        The registered P for a shrinking overhang, Q for a growing one.
+    s0, s1 : float
+        The overhang's arc-length range.
+    attach : float
+        Where it joins the common part (``s0`` or ``s1``).
+    towards : ndarray, shape (2,)
+        The end gap there (the common part's end moves by ``t`` times it).
+    grow : bool
+    spacing : float
+        Sample spacing.
+
+    Returns
+    -------
+    PathMorph
+        ``'overhang'``: samples in order along the curve; ``u_p``/``u_q`` are fractions along
+        the overhang.
+    """
+    count = max(int(np.ceil((s1 - s0) / max(spacing, 1e-300))) + 1, 2)
+    s = np.linspace(s0, s1, count)
+    u = np.linspace(0.0, 1.0, count)
+    return PathMorph("overhang", False, _SlidingPaths(curve, s, attach, towards, grow), u, u.copy())

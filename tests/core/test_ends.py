@@ -1,0 +1,79 @@
+"""Open strokes whose registered ends do not meet (drawing/ends.py) and the sliding fit that
+finds strokes lying along each other (drawing/registration.py)."""
+
+import numpy as np
+import pytest
+
+from ballmorph_core.drawing.ends import settle_ends
+from ballmorph_core.drawing.pipeline import PairMorph
+from ballmorph_core.drawing.registration import fit_pairs
+from ballmorph_core.geometry.ragged import Ragged
+
+
+def arc(start, stop, n=90, radius=1.0):
+    """An open arc of the circle of ``radius`` about the origin, degrees, shape (n, 2)."""
+    t = np.radians(np.linspace(start, stop, n))
+    return radius * np.c_[np.cos(t), np.sin(t)]
+
+
+def batch(*curves):
+    return Ragged.from_list(list(curves), [False] * len(curves))
+
+
+def test_a_longer_stroke_overhangs_and_the_common_parts_share_their_ends():
+    P, Q = batch(arc(0, 180)), batch(arc(0, 240))
+    ends = settle_ends(P, Q, np.array([2.0]), np.array([True]))
+    np.testing.assert_allclose(ends.keep_p[0], [0.0, P.length[0]], atol=1e-12)
+    np.testing.assert_allclose(ends.keep_q[0], [0.0, np.pi], atol=2e-3)  # Q past 180 degrees overhangs
+    rc, qc = ends.common_p.curve(0), ends.common_q.curve(0)
+    np.testing.assert_allclose(rc[[0, -1]], qc[[0, -1]], atol=1e-12)
+
+
+def test_pairs_not_settled_stay_exactly_as_they_are():
+    P, Q = batch(arc(0, 180), arc(0, 90)), batch(arc(0, 240), arc(10, 80))
+    ends = settle_ends(P, Q, np.array([2.0, 2.0]), np.array([False, True]))
+    np.testing.assert_array_equal(ends.common_p.curve(0), P.curve(0))
+    np.testing.assert_array_equal(ends.common_q.curve(0), Q.curve(0))
+    assert not np.any(ends.gap[0])
+
+
+@pytest.mark.parametrize("stop", [240.0, 120.0])
+def test_a_stroke_drawn_longer_or_shorter_stays_on_its_circle(stop):
+    """The overhang slides along the circle: every in-between lies on it, and the free end
+    moves steadily from one key's end to the other's."""
+    P, Q = arc(0, 180), arc(0, stop)
+    morph = PairMorph(P, Q, False)
+    end_angles = []
+    for t in np.linspace(0.0, 1.0, 9):
+        frame = morph(t)
+        assert np.abs(np.linalg.norm(frame, axis=1) - 1.0).max() < 2e-3
+        end_angles.append(np.degrees(np.arctan2(frame[-1, 1], frame[-1, 0])) % 360)
+    np.testing.assert_allclose(end_angles, np.linspace(180.0, stop, 9), atol=0.5)
+
+
+def test_end_gaps_are_undone_exactly_at_both_keys():
+    """Strokes whose registered ends stay apart: the displaced common part is undone as 1 - t,
+    so the first frame ends where P ends and the last where Q ends."""
+    x = np.linspace(0.0, 1.0, 60)
+    P = np.c_[x, 0.3 * np.sin(np.pi * x)]
+    Q = np.c_[1.1 * x + 0.05, -0.2 * np.sin(np.pi * x) + 0.1 * x]
+    morph = PairMorph(P, Q, False)
+    np.testing.assert_allclose(morph(0.0)[[0, -1]], P[[0, -1]], atol=1e-9)
+    np.testing.assert_allclose(morph(1.0)[[0, -1]], Q[[0, -1]], atol=1e-9)
+
+
+def test_an_outline_started_elsewhere_registers_as_itself():
+    """An open outline whose start moved 100 degrees along it: the end-to-end fit would turn it
+    by about 100 degrees; the sliding fit finds that it did not move."""
+    P, Q = batch(arc(0, 330, 110) * [1.0, 0.8]), batch(arc(100, 430, 110) * [1.0, 0.8])  # an oval head
+    fits = fit_pairs(P, Q)
+    np.testing.assert_allclose(fits.A[0], np.eye(2), atol=5e-3)
+    np.testing.assert_allclose(fits.b[0], 0.0, atol=5e-3)
+
+
+def test_a_straight_line_drawn_longer_is_scaled_not_slid():
+    """A line fits end to end exactly (scaled): sliding must not win on a self-similar shape."""
+    x = np.linspace(0.0, 1.0, 30)
+    P, Q = batch(np.c_[x, 0.0 * x]), batch(np.c_[1.5 * x + 0.2, 0.0 * x])
+    fits = fit_pairs(P, Q)
+    np.testing.assert_allclose(fits.A[0], 1.5 * np.eye(2), atol=1e-9)
