@@ -1498,36 +1498,6 @@ SCENES = {scene.name: scene for scene in _all_scenes()}
 #: Regenerate with ``python tools/scenes_report.py --xfail-table`` when the core improves.
 XFAIL_TODAY = {
     "static-overlap-loop": ("new self-crossing strokes 1 on 1 of 7 frames, 1 crossings (keys: 0 strokes) (goal ≤ 0)"),
-    "identical-house": (
-        "strokes not equal to the key's 7: point counts [50] (key [5]), points off its strokes by 8.3e-02"
-        " of size (goal ≤ 0)"
-    ),
-    "identical-hatch": (
-        "strokes not equal to the key's 7: point counts [49] (key [9]), points off its strokes by 1.4e-02"
-        " of size (goal ≤ 0)"
-    ),
-    "identical-loop": (
-        "strokes not equal to the key's 7: point counts [56] (key [60]), points off its strokes by "
-        "1.7e-03 of size (goal ≤ 0)"
-    ),
-    "similarity-translate": (
-        "off the interpolated similarity / size point counts [48, 49, 50] (key [5, 9, 30, 40]), points "
-        "off its strokes by 2.5e-02 of size (goal ≤ 1e-05); off the best-fit similarity / size point "
-        "counts [48, 49, 50] (key [5, 9, 30, 40]), points off its strokes by 2.5e-02 of size (goal ≤ "
-        "1e-05)"
-    ),
-    "similarity-rotate": (
-        "off the interpolated similarity / size point counts [48, 49, 50] (key [5, 9, 30, 40]), points "
-        "off its strokes by 3.4e-02 of size (goal ≤ 1e-05); off the best-fit similarity / size point "
-        "counts [48, 49, 50] (key [5, 9, 30, 40]), points off its strokes by 3.4e-02 of size (goal ≤ "
-        "1e-05)"
-    ),
-    "similarity-scale": (
-        "off the interpolated similarity / size point counts [48, 49, 50] (key [5, 9, 30, 40]), points "
-        "off its strokes by 2.4e-02 of size (goal ≤ 1e-05); off the best-fit similarity / size point "
-        "counts [48, 49, 50] (key [5, 9, 30, 40]), points off its strokes by 2.4e-02 of size (goal ≤ "
-        "1e-05)"
-    ),
     "corners-zigzag": (
         "off straight between corners / size 7.83e-04, corners [27, 28, 29, 30, 31] (keys [7]) (goal "
         "keys' corners, ≤ 1e-06); points / max(n_a, n_b), worst stroke 1.29 (goal ≤ 1.25)"

@@ -47,7 +47,11 @@ from ..geometry.polyline import (
     resolve_spacing,
 )
 from ..geometry.ragged import Ragged
+from ..geometry.similarity import from_complex
+from ..morphs.base import PathMorph
+from ..morphs.paths import LinearPaths
 from .ends import overhang_morph, settle_ends
+from .exact import exact_fit
 from .fallbacks import (
     BALL_METHODS,
     arc_length_morph,
@@ -58,7 +62,7 @@ from .fallbacks import (
     unsplittable,
 )
 from .layout import BallRows, Layout, PairFrames, Segment
-from .registration import Motions, fit_pairs, identity_residual, motions
+from .registration import Fits, Motions, fit_pairs, identity_residual, motions, similarity_matrices
 from .splitting import cut_chains, find_events
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
@@ -495,13 +499,12 @@ def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing=Non
     return Motions(*(np.concatenate([getattr(m, name) for m in parts]) for name in names), parts[-1].kind)
 
 
-def _spread_motions(motion, index, n):
-    """A batch's motions indexed by every pair of the drawing (the identity elsewhere)."""
-    out = Motions.identity(n, motion.kind)
+def _spread_motions(out, motion, index):
+    """A batch's motions written into the drawing's (``out``, Motions) at pairs ``index``."""
     for f in fields(Motions):
         if f.name != "kind":
             getattr(out, f.name)[index] = getattr(motion, f.name)
-    return out
+    out.kind = motion.kind
 
 
 def _comparison_road(plans, pairs, ready, method, spacing):
@@ -545,10 +548,46 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         _comparison_road(plans, pairs, ready, method, spacing)
         return plans.finish()
     kind = method[: -len("-ball")]
+    plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
+    ready = _own_points_road(plans, pairs, ready, carrier, drawing)
     if ready:
         motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing)
-        plans.motions = _spread_motions(motions, np.asarray(ready), len(pairs))
+        _spread_motions(plans.motions, motions, np.asarray(ready))
     return plans.finish(kind)
+
+
+def _own_points_road(plans, pairs, ready, carrier, drawing):
+    """Pairs whose points match one for one under a similarity (see :mod:`.exact`): the key's
+    own points, moved by the carrier. Returns the other ready pairs."""
+    rest, found = [], []
+    turn = 0.0 if drawing is None else drawing.turn
+    for c in ready:
+        pair = pairs[c]
+        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn)
+        if fit is None:
+            rest.append(c)
+        else:
+            found.append((c, fit))
+    if not found:
+        return rest
+    index = np.array([c for c, _ in found])
+    P = Ragged.from_list([pairs[c].xy_a for c in index], [pairs[c].closed for c in index])
+    a = np.array([fit.a for _, fit in found])
+    b = np.array([fit.b for _, fit in found])
+    Q = Ragged.from_list([pairs[c].xy_b for c in index], P.closed)
+    scale = pair_scales(P, Q)
+    still = (np.abs(a - 1.0) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale)
+    fits = Fits(similarity_matrices(a), from_complex(b), np.zeros(len(index)))
+    kind = "rigid" if carrier == "rigid" else "similarity"
+    motion = motions(P, fits, kind, scale, ~still & (carrier != "none"), drawing)
+    _spread_motions(plans.motions, motion, index)
+    for k, (c, fit) in enumerate(found):
+        pair = pairs[c]
+        moved = pair.xy_a @ motion.A[k].T + motion.b[k] if motion.moving[k] else pair.xy_a
+        order = (np.arange(len(pair.xy_b)) + fit.shift) % len(pair.xy_b)
+        morph = PathMorph("own points", pair.closed, LinearPaths(moved, pair.xy_b[order]), pair.u_a, pair.u_b[order])
+        plans.add_morph(c, morph, pair.closed, pair.lengths)
+    return rest
 
 
 class PairMorph:
@@ -574,7 +613,7 @@ class PairMorph:
 
     def __init__(self, P, Q, closed, method="circular-ball", carrier="similarity", spacing=None):
         P, Q = np.asarray(P, dtype=np.float64), np.asarray(Q, dtype=np.float64)
-        u_p, u_q = (Ragged.from_list([c], [False]).s / max(_length(c, False), 1e-300) for c in (P, Q))
+        u_p, u_q = (Ragged.from_list([c], [closed]).s / max(_length(c, closed), 1e-300) for c in (P, Q))
         self.plans = plan_pairs([PairCurves(P, u_p, closed, Q, u_q, closed)], method, carrier, spacing)
         self.used, self.notes = self.plans.used[0], self.plans.notes[0]
         parts = self.plans.frames([0.0])

@@ -39,6 +39,7 @@ from ..geometry.similarity import Similarity, as_complex, from_complex
 __all__ = [
     "Fits",
     "DrawingMotion",
+    "similarity_matrices",
     "fit_pairs",
     "identity_residual",
     "Motions",
@@ -105,7 +106,7 @@ class Fits:
     residual: np.ndarray
 
 
-def _matrix(a):
+def similarity_matrices(a):
     """2x2 matrices of complex multiplications ``z -> a z``, shape (C, 2, 2)."""
     a = np.asarray(a, dtype=complex)
     return np.stack([np.stack([a.real, -a.imag], -1), np.stack([a.imag, a.real], -1)], -2)
@@ -230,7 +231,7 @@ def _affine_loops(P, Q, index, res_sim, k):
     wp = as_complex(np.einsum("lij,lkj->lki", inv_p, from_complex(xp) - cp[:, None]))
     wq = as_complex(np.einsum("lij,lkj->lki", np.linalg.inv(root_q), from_complex(xq) - cq[:, None]))
     a, _, _ = _loop_fits(wp, wq)
-    rot = _matrix(a / np.maximum(np.abs(a), 1e-300))
+    rot = similarity_matrices(a / np.maximum(np.abs(a), 1e-300))
     A = root_q @ rot @ inv_p
     b = cq - np.einsum("lij,lj->li", A, cp)
     fitted = as_complex(np.einsum("lij,lkj->lki", A, from_complex(xp)) + b[:, None])
@@ -264,7 +265,7 @@ def fit_pairs(P, Q, affine=True, turn=0.0):
         a[loops], b[loops], residual[loops] = _loop_fits(_samples(P, loops, k), _samples(Q, loops, k), turn)
     if len(opened):
         a[opened], b[opened], residual[opened] = _open_fits(P, Q, opened, k, turn)
-    A, bb = _matrix(a), from_complex(b)
+    A, bb = similarity_matrices(a), from_complex(b)
     if affine and len(loops):
         use, A_aff, b_aff, res_aff = _affine_loops(P, Q, loops, residual[loops], k)
         A[loops[use]], bb[loops[use]], residual[loops[use]] = A_aff[use], b_aff[use], res_aff[use]
@@ -417,7 +418,7 @@ class Motions:
     def partial(self, t):
         """``S_t(z) = M z + c`` of every pair: ``(M (C, 2, 2), c (C, 2))``."""
         t = float(t)
-        rot = _matrix(np.exp(1j * t * self.theta))
+        rot = similarity_matrices(np.exp(1j * t * self.theta))
         M = rot @ ((1.0 - t) * np.eye(2) + t * self.stretch)
         target = np.einsum("lij,lj->li", self.A, self.pivot) + self.b
         pivot_t = (1.0 - t) * self.pivot + t * target
@@ -523,7 +524,7 @@ def motions(P, fits, kind, scale, moving, drawing=None):
     A, b = fits.A.copy(), fits.b.copy()
     if kind == "rigid":
         target = np.einsum("lij,lj->li", fits.A, pivot) + fits.b
-        A = _matrix(np.exp(1j * theta))
+        A = similarity_matrices(np.exp(1j * theta))
         b = target - np.einsum("lij,lj->li", A, pivot)
         stretch = np.tile(np.eye(2), (len(theta), 1, 1))
     eye = np.eye(2)
