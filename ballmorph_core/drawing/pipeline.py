@@ -62,6 +62,7 @@ from .fallbacks import (
     unsplittable,
 )
 from .layout import BallRows, Layout, PairFrames, Segment
+from .polylines import corners, polyline_morph
 from .registration import Fits, Motions, fit_pairs, identity_residual, motions, similarity_matrices
 from .splitting import cut_chains, find_events
 
@@ -550,10 +551,48 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
     ready = _own_points_road(plans, pairs, ready, carrier, drawing)
+    ready = _polyline_road(plans, pairs, ready, carrier, drawing)
     if ready:
         motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing)
         _spread_motions(plans.motions, motions, np.asarray(ready))
     return plans.finish(kind)
+
+
+def _polyline_road(plans, pairs, ready, carrier, drawing):
+    """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
+    straight, on the carrier. Returns the other ready pairs."""
+    found, rest = [], []
+    for c in ready:
+        pair = pairs[c]
+        ca, cb = corners(pair.P, pair.closed), corners(pair.Q, pair.closed)
+        if ca is None or cb is None or len(ca.index) != len(cb.index):
+            rest.append(c)
+        else:
+            found.append((c, ca, cb))
+    if not found:
+        return rest
+    index = np.array([c for c, _, _ in found])
+    P = Ragged.from_list([pairs[c].P for c in index], [pairs[c].closed for c in index])
+    Q = Ragged.from_list([pairs[c].Q for c in index], P.closed)
+    scale = pair_scales(P, Q)
+    kind = "rigid" if carrier == "rigid" else "similarity"
+    if carrier == "none":
+        motion = Motions.identity(len(index), kind)
+    else:
+        fits = fit_pairs(P, Q, turn=0.0 if drawing is None else drawing.turn)
+        still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
+            np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
+        )
+        motion = motions(P, fits, kind, scale, ~still, drawing)
+    _spread_motions(plans.motions, motion, index)
+    for k, (c, ca, cb) in enumerate(found):
+        pair = pairs[c]
+
+        def register_a(pts, k=k):
+            return pts @ motion.A[k].T + motion.b[k] if motion.moving[k] else pts
+
+        plans.add_morph(c, polyline_morph(pair.P, ca, pair.Q, cb, pair.closed, register_a), pair.closed, pair.lengths)
+    return rest
 
 
 def _own_points_road(plans, pairs, ready, carrier, drawing):

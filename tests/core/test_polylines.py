@@ -1,0 +1,76 @@
+"""Polylines morph corner to corner with straight edges (drawing/polylines.py)."""
+
+import numpy as np
+from shapes import circle
+
+import ballmorph_core as bm
+from ballmorph_core.drawing.polylines import corners
+
+HOUSE = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.5, 1.5), (0.0, 1.0)])
+HOUSE_B = np.array([(0.0, 0.0), (1.0, 0.0), (1.05, 1.0), (0.6, 1.65), (0.0, 1.0)])
+
+
+def edge_points(corner_points, per_edge, closed):
+    """A polyline through corners with ``per_edge - 1`` points inside each edge."""
+    ends = np.roll(corner_points, -1, axis=0) if closed else corner_points[1:]
+    f = np.arange(per_edge)[:, None] / per_edge
+    pts = [a + f * (b - a) for a, b in zip(corner_points[: len(ends)], ends)]
+    return np.concatenate(pts + ([] if closed else [corner_points[-1:]]))
+
+
+def off_straight(xy, closed, corner_index):
+    """Largest distance of a vertex from the segment between the corners around it."""
+    n, worst = len(xy), 0.0
+    ring = list(corner_index) + ([corner_index[0] + n] if closed else [])
+    for a, b in zip(ring[:-1], ring[1:]):
+        p, q = xy[a % n], xy[b % n]
+        d = (q - p) / np.linalg.norm(q - p)
+        for i in range(a + 1, b):
+            r = xy[i % n] - p
+            worst = max(worst, abs(r[0] * d[1] - r[1] * d[0]))
+    return worst
+
+
+def test_polylines_and_curves_are_told_apart():
+    assert corners(HOUSE, True).index.tolist() == [0, 1, 2, 3, 4]
+    zigzag = edge_points(np.array([(0, 0), (1, 1), (2, 0), (3, 1)], float), 5, False)
+    assert corners(zigzag, False).index.tolist() == [0, 5, 10, 15]
+    octagon = circle(1.0, 8)
+    assert corners(octagon, True) is not None  # few vertices: drawn as an octagon
+    assert corners(circle(1.0, 30), True) is None  # every vertex turns a little: a curve
+    t = np.linspace(0, 1, 50)
+    assert corners(np.c_[t, 0.2 * np.sin(3 * t)], False) is None  # a hand-drawn curve
+
+
+def test_a_polyline_morph_keeps_edges_straight_and_corners_sharp():
+    a = edge_points(HOUSE, 4, True)
+    b = edge_points(HOUSE_B, 4, True)
+    result = bm.inbetween(
+        bm.StrokeSet.from_strokes([a], [True]), bm.StrokeSet.from_strokes([b], [True]), np.linspace(0, 1, 9)
+    )
+    assert result.pairs[0].method.startswith("polyline")
+    for frame in result.frames:
+        xy = frame.positions[:, [0, 2]]
+        assert len(xy) == len(a)
+        assert off_straight(xy, True, np.arange(0, len(a), 4)) < 1e-12
+    np.testing.assert_allclose(result.frames[0].positions[:, [0, 2]], a, atol=1e-12)
+    np.testing.assert_allclose(result.frames[-1].positions[:, [0, 2]], b, atol=1e-12)
+
+
+def test_polyline_loops_pair_corners_whatever_corner_they_start_at():
+    a, b = HOUSE, np.roll(HOUSE_B, 2, axis=0)
+    result = bm.inbetween(
+        bm.StrokeSet.from_strokes([a], [True]), bm.StrokeSet.from_strokes([b], [True]), [0.0, 0.5, 1.0]
+    )
+    mid = result.frames[1].positions[:, [0, 2]]
+    np.testing.assert_allclose(mid, 0.5 * (HOUSE + HOUSE_B), atol=0.05)  # each corner halfway to its own
+    end = result.frames[2].positions[:, [0, 2]]
+    np.testing.assert_allclose(np.sort(end, axis=0), np.sort(HOUSE_B, axis=0), atol=1e-12)
+
+
+def test_polylines_with_other_corner_counts_take_the_ball_road():
+    square = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)])
+    result = bm.inbetween(
+        bm.StrokeSet.from_strokes([HOUSE], [True]), bm.StrokeSet.from_strokes([square], [True]), [0.5]
+    )
+    assert not result.pairs[0].method.startswith("polyline")
