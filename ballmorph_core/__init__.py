@@ -12,14 +12,17 @@ The subpackages go from the bottom up: ``geometry`` (polylines, nothing from the
 from .ballmap import CompatibilityReport, Correspondence, ball_map, classify
 from .drawing import (
     FALLBACK_METHOD,
+    FAVOR_ODDS,
     InbetweenPlan,
     InbetweenResult,
     Message,
     PairReport,
     StrokeSet,
+    apply_favor,
     ease,
     frame_times,
     inbetween,
+    parse_timing_chart,
     plan_inbetween,
 )
 from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
@@ -36,8 +39,11 @@ __all__ = [
     "FALLBACK_METHOD",
     "EASING_TYPES",
     "EASING_MODES",
+    "FAVOR_ODDS",
     "ease",
+    "apply_favor",
     "frame_times",
+    "parse_timing_chart",
     "InbetweenPlan",
     "InbetweenResult",
     "Message",
