@@ -12,6 +12,7 @@ The subpackages go from the bottom up: ``geometry`` (polylines, nothing from the
 from .ballmap import CompatibilityReport, Correspondence, ball_map, classify
 from .drawing import (
     FALLBACK_METHOD,
+    FALLBACK_MORPHS,
     FAVOR_ODDS,
     InbetweenPlan,
     InbetweenResult,
@@ -22,6 +23,8 @@ from .drawing import (
     ease,
     frame_times,
     inbetween,
+    ink_lengths,
+    length_deviation,
     parse_timing_chart,
     plan_inbetween,
 )
@@ -37,6 +40,7 @@ __all__ = [
     "MATCHINGS",
     "UNMATCHED",
     "FALLBACK_METHOD",
+    "FALLBACK_MORPHS",
     "EASING_TYPES",
     "EASING_MODES",
     "FAVOR_ODDS",
@@ -50,6 +54,8 @@ __all__ = [
     "PairReport",
     "StrokeSet",
     "inbetween",
+    "ink_lengths",
+    "length_deviation",
     "plan_inbetween",
     "BallPaths",
     "Morph",
