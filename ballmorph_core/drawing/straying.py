@@ -84,19 +84,23 @@ def length_deviation(key_a, key_b, result, times):
     times = np.clip(np.asarray(times, dtype=np.float64).reshape(-1), 0.0, 1.0)
     out = np.full((len(result.pairs), len(times)), np.nan)
     length_a, length_b = ink_lengths(key_a), ink_lengths(key_b)
-    rows = {
-        (pair.stroke_a, pair.stroke_b): p
-        for p, pair in enumerate(result.pairs)
-        if pair.stroke_a is not None and pair.stroke_b is not None
-    }
+    rows = [p for p, pair in enumerate(result.pairs) if pair.stroke_a is not None and pair.stroke_b is not None]
     if not rows:
         return out
+    # A pair is found in each frame by its key strokes (a, b), coded as one number.
+    width = len(length_b) + 1
+    codes = np.array([result.pairs[p].stroke_a * width + result.pairs[p].stroke_b for p in rows], dtype=np.int64)
+    order = np.argsort(codes)
+    codes, rows = codes[order], np.asarray(rows)[order]
     for ti, (t, frame) in enumerate(zip(times, result.frames)):
-        lengths = ink_lengths(frame)
-        for (a, b), length in zip(map(tuple, frame.origin.tolist()), lengths):
-            p = rows.get((a, b))
-            if p is None:
-                continue
-            blend = (1 - t) * length_a[a] + t * length_b[b]
-            out[p, ti] = length / blend - 1 if blend > 0 else (0.0 if length == 0 else np.inf)
+        a, b = frame.origin[:, 0], frame.origin[:, 1]
+        code = np.where((a >= 0) & (b >= 0), a * width + b, -1)
+        at = np.minimum(np.searchsorted(codes, code), len(codes) - 1)
+        found = codes[at] == code
+        lengths = ink_lengths(frame)[found]
+        a, b = a[found], b[found]
+        blend = (1 - t) * length_a[a] + t * length_b[b]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            off = np.where(blend > 0, lengths / blend - 1, np.where(lengths == 0, 0.0, np.inf))
+        out[rows[at[found]], ti] = off
     return out

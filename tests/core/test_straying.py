@@ -81,3 +81,12 @@ def test_a_stroke_grown_from_nothing_is_infinitely_off_its_blend():
 
 def test_the_fallback_morphs_are_the_cores_own():
     assert bm.FALLBACK_METHOD in bm.FALLBACK_MORPHS and "composite-ball" in bm.METHODS
+
+
+def test_each_pair_is_measured_on_its_own_stroke_whatever_the_drawing_order():
+    a = key(circle(1.0, 80), circle(0.3, 40, centre=(5, 0)), cyclic=[True, True])
+    b = key(circle(0.4, 40, centre=(5, 0)), circle(1.2, 80), cyclic=[True, True])
+    times = np.array([0.3, 0.6])
+    result = bm.inbetween(a, b, times, carrier="none")
+    assert sorted((p.stroke_a, p.stroke_b) for p in result.pairs) == [(0, 1), (1, 0)]
+    assert np.abs(bm.length_deviation(a, b, result, times)).max() < 1e-2
