@@ -119,27 +119,10 @@ def parser():
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
     group = parser.add_argument_group("in-between options (the operator's)")
     for option in options.OPTIONS:
-        flag = "--" + option.name.replace("_", "-")
         default = _DEFAULTS.get(option.name, option.default)
-        if option.kind == "ENUM":
-            group.add_argument(
-                flag,
-                dest=option.name,
-                choices=option.values,
-                default=default,
-                help=f"{option.description} (default: {default})",
-            )
-        elif option.kind == "INT":
-            group.add_argument(
-                flag,
-                dest=option.name,
-                type=_at_least(option.min),
-                default=default,
-                metavar="N",
-                help=f"{option.description} (default: {default})",
-            )
-        else:
-            group.add_argument(flag, dest=option.name, action="store_true", help=option.description)
+        group.add_argument(
+            "--" + option.name.replace("_", "-"), dest=option.name, **_ARGUMENTS[option.kind](option, default)
+        )
     return parser
 
 
@@ -154,6 +137,34 @@ def _at_least(low):
         return number
 
     return whole_number
+
+
+def _between(low, high):
+    def number_between(text):
+        try:
+            number = float(text)
+        except ValueError:
+            number = None
+        if number is None or not low <= number <= high:
+            raise argparse.ArgumentTypeError(f"expected a number from {low:g} to {high:g}, got {text!r}")
+        return number
+
+    return number_between
+
+
+def _helped(option, default, **kwargs):
+    shown = default if default != "" else "''"
+    return {"default": default, "help": f"{option.description} (default: {shown})", **kwargs}
+
+
+#: The argparse arguments of each kind of option: ``(option, default) -> add_argument keywords``.
+_ARGUMENTS = {
+    "ENUM": lambda option, default: _helped(option, default, choices=option.values),
+    "INT": lambda option, default: _helped(option, default, type=_at_least(option.min), metavar="N"),
+    "FLOAT": lambda option, default: _helped(option, default, type=_between(option.min, option.max), metavar="X"),
+    "BOOLEAN": lambda option, default: {"action": "store_true", "help": option.description},
+    "STRING": lambda option, default: _helped(option, default, metavar="TEXT"),
+}
 
 
 def _say(text):

@@ -17,23 +17,14 @@ drawings and layers, not the data-block's custom properties), so after undoing a
 frames it replaced must still be recognised. Undo in Object or Draw Mode restores both.
 """
 
-import zlib
-
 from . import grease_pencil
+from .id_keys import id_key
 
 __all__ = ["is_generated", "mark", "save", "restore"]
 
 PROPERTY = "ballmorph_inbetween"
-_MAX_KEY = 63  # Blender's ID property names hold at most 63 bytes
 # Fingerprints kept per frame number: how many re-runs an edit-mode undo can go back through.
 _HISTORY = 8
-
-
-def _layer_key(layer):
-    name = layer.name
-    if len(name.encode()) <= _MAX_KEY:
-        return name
-    return f"~{zlib.crc32(name.encode()):08x}"
 
 
 def _records(grease_pencil_data, layer, create=False):
@@ -44,7 +35,7 @@ def _records(grease_pencil_data, layer, create=False):
             return None
         grease_pencil_data[PROPERTY] = {}
         root = grease_pencil_data[PROPERTY]
-    key = _layer_key(layer)
+    key = id_key(layer.name)
     if key not in root:
         if not create:
             return None

@@ -1,4 +1,7 @@
-"""Compute the in-betweens of one key interval: read both keys, ease, call the core.
+"""Compute the in-betweens of one key interval: read both keys, time them, call the core.
+
+The times: the frames' fractions eased, or the interval's timing chart as it is; then favored.
+After the morph, the stroke pairs that stray from their keys are found (:func:`.reports.strays`).
 
 Nothing is written here: the service (:mod:`.service`) computes every interval first and writes
 only when all of them are ready (see :mod:`.writer`).
@@ -8,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..ballmorph_core import StrokeSet, ease
+from ..ballmorph_core import StrokeSet, apply_favor, ease, length_deviation
 from . import grease_pencil, reports
 from .plans import PLANS
 
@@ -33,6 +36,8 @@ class Morphed:
         For the animator (level INFO or WARNING).
     method : str
         The core method that made the frames.
+    strays : list of reports.Stray
+        The stroke pairs that stray from their keys, worst first.
     """
 
     layer: object
@@ -40,6 +45,7 @@ class Morphed:
     frames: list
     messages: list = field(default_factory=list)
     method: str = ""
+    strays: list = field(default_factory=list)
 
 
 def _frame(layer, number):
@@ -115,7 +121,11 @@ def morph_interval(layer, interval, values, method):
     messages, held = [], None
     if values["selected_only"]:
         key_a, key_b, held = _selection(key_a, key_b, messages)
-    times = ease(interval.fractions, values["easing_type"], values["easing"])
+    if interval.chart is None:
+        times = ease(interval.fractions, values["easing_type"], values["easing"])
+    else:  # a chart gives the morph's own fractions: not eased
+        times = interval.chart_times
+    times = apply_favor(times, values["favor"])
     # The times only enter at the evaluation: a redo with another frame count or easing reuses
     # the plan (matching, ball-maps, carriers) of the same keys and options.
     plan = PLANS.plan(
@@ -128,5 +138,8 @@ def morph_interval(layer, interval, values, method):
     )
     result = plan.evaluate(times)
     messages.extend((message.level, message.text) for message in result.messages)
+    deviation = length_deviation(key_a, key_b, result, times)
+    strays = reports.strays(result.pairs, method, deviation, times, interval.targets)
     frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
-    return Morphed(layer, interval, [_to_layer_space(frame, to_layer) for frame in frames], messages, method)
+    frames = [_to_layer_space(frame, to_layer) for frame in frames]
+    return Morphed(layer, interval, frames, messages, method, strays)

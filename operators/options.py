@@ -130,10 +130,11 @@ _EASING_MODES = (
 
 @dataclass(frozen=True)
 class Option:
-    """One option: its kind ('ENUM', 'INT', 'BOOLEAN'), label, description and default.
+    """One option: its kind ('ENUM', 'INT', 'FLOAT', 'BOOLEAN', 'STRING'), label, description and default.
 
     ``default`` is a value (for an enum: an item's lowercase value, not its Blender id);
-    ``items`` are the enum's :class:`Item`s.
+    ``items`` are the enum's :class:`Item`s; ``min`` and ``max`` bound a number (``max`` None:
+    unbounded), ``soft_max`` is where an integer's slider stops.
     """
 
     name: str
@@ -142,7 +143,8 @@ class Option:
     description: str
     default: object
     items: tuple = ()
-    min: int = 0
+    min: float = 0
+    max: float = None
     soft_max: int = 0
 
     @property
@@ -190,8 +192,27 @@ OPTIONS = (
         min=0,
         soft_max=48,
     ),
+    Option(
+        "timing_chart",
+        "STRING",
+        "Timing Chart",
+        "Fractions of the morph in (0, 1), ascending, such as '0.1 0.3 0.6 0.9': one in-between per fraction, "
+        "spread evenly between the keys, not eased (empty: In-betweens and Easing; a chart is kept with its "
+        "keys, and a later run with an empty chart uses it again)",
+        "",
+    ),
     Option("easing_type", "ENUM", "Easing", "Interpolation easing (Blender's easing types)", "linear", _EASING_TYPES),
     Option("easing", "ENUM", "Ease", "Which ends of the motion the easing affects", "ease-in", _EASING_MODES),
+    Option(
+        "favor",
+        "FLOAT",
+        "Favor",
+        "Pull every in-between toward the first key (negative) or the second (positive), after easing; "
+        "1 puts the middle in-between three quarters of the way",
+        0.0,
+        min=-1.0,
+        max=1.0,
+    ),
     Option(
         "layers",
         "ENUM",
@@ -311,13 +332,20 @@ def property_annotations(flags=None, getter=None, setter=None):
             kwargs["set"] = setter(option)
         else:
             kwargs["default"] = option.blender(option.default)
-        if option.kind == "ENUM":
-            annotations[option.name] = bpy.props.EnumProperty(items=_enum_items(option), **kwargs)
-        elif option.kind == "INT":
-            annotations[option.name] = bpy.props.IntProperty(min=option.min, soft_max=option.soft_max, **kwargs)
-        else:
-            annotations[option.name] = bpy.props.BoolProperty(**kwargs)
+        annotations[option.name] = _PROPERTIES[option.kind](option, kwargs)
     return annotations
+
+
+#: A Blender property for each kind of option: ``(option, common keyword arguments) -> property``.
+_PROPERTIES = {
+    "ENUM": lambda option, kwargs: bpy.props.EnumProperty(items=_enum_items(option), **kwargs),
+    "INT": lambda option, kwargs: bpy.props.IntProperty(min=option.min, soft_max=option.soft_max, **kwargs),
+    "FLOAT": lambda option, kwargs: bpy.props.FloatProperty(
+        min=option.min, max=option.max, step=10, precision=2, subtype="FACTOR", **kwargs
+    ),
+    "BOOLEAN": lambda option, kwargs: bpy.props.BoolProperty(**kwargs),
+    "STRING": lambda option, kwargs: bpy.props.StringProperty(**kwargs),
+}
 
 
 def draw_options(layout, data, compact=False):
@@ -326,12 +354,19 @@ def draw_options(layout, data, compact=False):
     layout.use_property_decorate = False
     col = layout.column()
     col.prop(data, "method")
-    col.prop(data, "frame_count")
-    col = layout.column()
-    col.prop(data, "easing_type")
+    charted = bool(data.timing_chart.strip())  # a chart sets the frames and the times itself
     sub = col.column()
+    sub.active = not charted
+    sub.prop(data, "frame_count")
+    col.prop(data, "timing_chart")
+    col = layout.column()
+    sub = col.column()
+    sub.active = not charted
+    sub.prop(data, "easing_type")
+    sub = sub.column()
     sub.active = data.easing_type != "LINEAR"
     sub.prop(data, "easing")
+    col.prop(data, "favor", slider=True)
     col = layout.column()
     col.prop(data, "layers")
     col.prop(data, "selected_only")

@@ -15,6 +15,10 @@ since). Two rules choose the pairs:
 
 A rule is any ``rule(layer) -> (pairs, problems)``: ``pairs`` a list of ``(frame_a, frame_b)``,
 ``problems`` report texts for what it could not pair (see :mod:`.reports`).
+
+An interval with a timing chart (:class:`Chart`) gets one in-between per fraction of the chart,
+on frames spread evenly between its keys, at that fraction of the morph; the others get the
+frame count's frames, eased.
 """
 
 from dataclasses import dataclass, field
@@ -24,7 +28,7 @@ import numpy as np
 from ..ballmorph_core import frame_times
 from . import reports
 
-__all__ = ["LayerKeys", "Interval", "selected_or_current", "every_pair", "intervals"]
+__all__ = ["LayerKeys", "Chart", "Interval", "interval_name", "selected_or_current", "every_pair", "intervals"]
 
 
 @dataclass(frozen=True)
@@ -49,6 +53,45 @@ class LayerKeys:
     made: tuple = ()
 
 
+@dataclass(frozen=True)
+class Chart:
+    """The timing chart of one interval.
+
+    Attributes
+    ----------
+    fractions : tuple of float
+        Morph fractions in (0, 1), ascending (:func:`ballmorph_core.parse_timing_chart`), no
+        more of them than frames between the interval's keys.
+    kept : bool
+        The chart was kept from an earlier run on the same keys (this run's option was empty).
+    """
+
+    fractions: tuple
+    kept: bool = False
+
+    @property
+    def text(self):
+        """The chart as the option spells it (and as it is kept): ``'0.1 0.5 0.9'``.
+
+        Examples
+        --------
+        >>> Chart((0.1, 0.5, 0.9)).text
+        '0.1 0.5 0.9'
+        """
+        return " ".join(repr(fraction) for fraction in self.fractions)
+
+
+def interval_name(layer, frame_a, frame_b):
+    """``'Ink 1→9'``: how reports name the interval between two keys of a layer.
+
+    Examples
+    --------
+    >>> interval_name("Ink", 1, 9)
+    'Ink 1→9'
+    """
+    return f"{layer} {frame_a}\u2192{frame_b}"
+
+
 @dataclass
 class Interval:
     """Two keys on one layer and the frames between them.
@@ -69,6 +112,10 @@ class Interval:
         Keys between the two (frames the animator drew): never touched.
     skipped : list of int
         Requested in-between frames not written because they are occupied.
+    chart : Chart or None
+        The timing chart that times this interval (None: the frame count and easing do).
+    chart_times : ndarray, shape (T,), or None
+        With a chart: each target's morph fraction from the chart (not to be eased).
     """
 
     layer: str
@@ -79,11 +126,13 @@ class Interval:
     replace: list = field(default_factory=list)
     occupied: list = field(default_factory=list)
     skipped: list = field(default_factory=list)
+    chart: Chart = None
+    chart_times: np.ndarray = None
 
     @property
     def name(self):
         """``'Ink 1→9'``: how reports name the interval."""
-        return f"{self.layer} {self.frame_a}\u2192{self.frame_b}"
+        return interval_name(self.layer, self.frame_a, self.frame_b)
 
 
 def _with_room(layer, pairs):
@@ -162,7 +211,7 @@ def every_pair(layer):
     return pairs, []
 
 
-def intervals(layer, pairs, frame_count):
+def intervals(layer, pairs, frame_count, charts=None):
     """The frames to write between each pair of keys.
 
     Parameters
@@ -173,6 +222,9 @@ def intervals(layer, pairs, frame_count):
     frame_count : int
         In-betweens per interval: 0 fills every frame between the keys; N spreads N evenly
         (at most one per frame).
+    charts : dict, optional
+        ``{(frame_a, frame_b): Chart}``: the pairs timed by a chart get one in-between per
+        fraction instead (frames spread evenly as for that frame count), whatever ``frame_count``.
 
     Returns
     -------
@@ -180,14 +232,30 @@ def intervals(layer, pairs, frame_count):
         One per pair. A frame chosen for an in-between that holds a key is skipped (listed in
         ``skipped``); the add-on's earlier in-betweens between the keys are to be replaced.
 
+    Raises
+    ------
+    ValueError
+        When a chart has more fractions than frames between its keys (the caller checks
+        charts with :func:`ballmorph_core.parse_timing_chart` first).
+
     Examples
     --------
     >>> [i.targets.tolist() for i in intervals(LayerKeys("Ink", keys=(1, 9)), [(1, 9)], 3)]
     [[3, 5, 7]]
+    >>> [charted] = intervals(LayerKeys("Ink", keys=(1, 9)), [(1, 9)], 0, {(1, 9): Chart((0.1, 0.5, 0.9))})
+    >>> charted.targets.tolist(), charted.chart_times.tolist()
+    ([3, 5, 7], [0.1, 0.5, 0.9])
     """
+    charts = charts or {}
     out = []
     for a, b in pairs:
-        frames, fractions = frame_times(a, b, frame_count)
+        chart = charts.get((a, b))
+        frames, fractions = frame_times(a, b, frame_count if chart is None else len(chart.fractions))
+        times = None
+        if chart is not None:
+            if len(frames) != len(chart.fractions):
+                raise ValueError(f"{interval_name(layer.name, a, b)}: {len(chart.fractions)} fractions do not fit")
+            times = np.asarray(chart.fractions, dtype=np.float64)
         between = [n for n in layer.keys if a < n < b]
         keep = ~np.isin(frames, between)
         out.append(
@@ -200,6 +268,8 @@ def intervals(layer, pairs, frame_count):
                 replace=sorted(n for n in layer.made if a < n < b),
                 occupied=between,
                 skipped=[int(n) for n in frames[~keep]],
+                chart=chart,
+                chart_times=None if times is None else times[keep],
             )
         )
     return out

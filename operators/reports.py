@@ -4,7 +4,17 @@ No bpy here (plain CPython imports it: ``tests/addon``). A report is a ``(level,
 the levels are Blender's report types (:data:`INFO`, :data:`WARNING`, :data:`ERROR`), which the
 operator passes to ``self.report`` and the command line prints. Texts say what happened and,
 when something was not done, what to do about it.
+
+It also decides which stroke pairs deserve a warning after a run (:func:`strays`): those whose
+in-betweens stray from what the keys suggest, each with the frame where a breakdown key would
+help most.
 """
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..ballmorph_core import FALLBACK_MORPHS
 
 __all__ = [
     "INFO",
@@ -33,6 +43,12 @@ __all__ = [
     "write_failed",
     "summary",
     "is_warning",
+    "bad_chart",
+    "chart_does_not_fit",
+    "kept_chart_ignored",
+    "Stray",
+    "strays",
+    "stray_reports",
 ]
 
 INFO, WARNING, ERROR = "INFO", "WARNING", "ERROR"
@@ -40,6 +56,11 @@ LEVELS = (INFO, WARNING, ERROR)
 
 # Messages listed per interval before "and N more" (the Info editor keeps them all).
 MESSAGES_PER_REPORT = 6
+#: A pair whose in-between's ink length is off the keys' blend of lengths by more than this
+#: fraction strays (0.2: 20% longer or shorter).
+LENGTH_STRAY = 0.2
+#: Straying pairs reported one line each per interval; the others share one line.
+STRAYS_LISTED = 3
 _NAME = "Ball-morph In-between"
 
 
@@ -88,6 +109,24 @@ def no_object(active_name=None, active_type=None):
         f"The active object '{active_name}' is a {object_kind(active_type)}, not a Grease Pencil object: "
         f"make a Grease Pencil object active and run {_NAME} again"
     )
+
+
+def bad_chart(problem):
+    """A ``timing_chart`` option that is not a chart (``problem``: the core's words for what is wrong)."""
+    return (
+        f"{problem}: nothing was written; write fractions between 0 and 1 in rising order, such as "
+        "'0.1 0.3 0.6 0.9', or leave the chart empty"
+    )
+
+
+def chart_does_not_fit(interval_name, problem):
+    """The chart has more fractions than frames between an interval's keys: the run is refused."""
+    return f"{interval_name}: {problem}: nothing was written; give fewer fractions, or keys farther apart"
+
+
+def kept_chart_ignored(interval_name, text, problem):
+    """A chart kept with an interval cannot be read (edited by hand): the interval is timed as without."""
+    return f"{interval_name}: the timing chart kept here ('{text}') was ignored ({problem}): type the chart again"
 
 
 def method_unavailable(method_label):
@@ -200,7 +239,7 @@ def morph_failed(interval_name, failed):
 # -- after the run ---------------------------------------------------------------------------------
 
 
-def interval_reports(interval, method_label, messages):
+def interval_reports(interval, method_label, messages, found_strays=()):
     """Reports for one written interval: what was written, what was left alone, what the morph said.
 
     Parameters
@@ -211,6 +250,8 @@ def interval_reports(interval, method_label, messages):
     messages : sequence of (level, text)
         The morph's own messages (the core's ERROR ones concern single strokes: the run went on,
         so they become warnings).
+    found_strays : sequence of Stray
+        The pairs that stray (:func:`strays`), worst first: reported last (:func:`stray_reports`).
 
     Returns
     -------
@@ -218,13 +259,18 @@ def interval_reports(interval, method_label, messages):
     """
     name = interval.name
     replaced = f", replacing {len(interval.replace)} earlier" if interval.replace else ""
+    chart = interval.chart
+    charted = f", timing chart {chart.text}" if chart is not None and not chart.kept else ""
     reports = [
         (
             INFO,
             f"{name}: {len(interval.targets)} in-between(s) on frame(s) {frames_text(interval.targets)} "
-            f"({method_label}{replaced})",
+            f"({method_label}{charted}{replaced})",
         )
     ]
+    if chart is not None and chart.kept:
+        kept = f"timed by the chart {chart.text} kept from an earlier run on these keys (type a chart to change it)"
+        reports.append((INFO, f"{name}: {kept}"))
     if interval.skipped:
         reports.append((WARNING, f"{name}: frame(s) {frames_text(interval.skipped)} already drawn: left untouched"))
     elif interval.occupied:
@@ -235,7 +281,7 @@ def interval_reports(interval, method_label, messages):
             more = len(texts) - MESSAGES_PER_REPORT
             shown = "; ".join(texts[:MESSAGES_PER_REPORT]) + (f"; and {more} more" if more > 0 else "")
             reports.append((level, f"{name}: {shown}"))
-    return reports
+    return reports + stray_reports(name, found_strays)
 
 
 def nothing_to_do(problems):
@@ -253,3 +299,158 @@ def summary(frames, layers, warnings):
     if warnings:
         return WARNING, f"{text}, {warnings} warning(s): see the Info editor"
     return INFO, text
+
+
+# -- pairs that stray from their keys --------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Stray:
+    """A stroke pair whose in-betweens stray from what its keys suggest.
+
+    Attributes
+    ----------
+    what : str
+        The pair as the animator reads it: ``'stroke 0 -> 1'``, ``'stroke 2 of the first key'``.
+    why : str
+        ``'ink 34% longer than the keys' blend'``, ``'made with linear-interpolation (a fallback)'``, ...
+    frame : int
+        The in-between where it strays most: where a breakdown key would help.
+    """
+
+    what: str
+    why: str
+    frame: int
+
+
+def _fallbacks_used(used, method):
+    """The fallback morphs in a pair's ``used`` ('circular-ball+linear-interpolation on a rigid carrier')."""
+    morphs = used.split(" on a ")[0].split("+")
+    return [m for m in morphs if m in FALLBACK_MORPHS and m != method]
+
+
+def _middle(times):
+    """Index of the in-between nearest the middle of the morph (the later one of a tie: where
+    strokes without a partner switch)."""
+    return int(np.lexsort((-times, np.abs(times - 0.5)))[0])
+
+
+def _length_why(deviation):
+    way = "longer" if deviation > 0 else "shorter"
+    amount = "far" if not np.isfinite(deviation) else f"{abs(deviation):.0%}"
+    return f"ink {amount} {way} than the keys' blend of lengths"
+
+
+def _stray(pair, method, deviation, times):
+    """``(Stray fields without the frame number, frame index, rank)`` for one pair, or None."""
+    whys, worst = [], _middle(times)
+    if pair.stroke_a is None or pair.stroke_b is None:
+        key, other, index = (
+            ("first", "second", pair.stroke_a) if pair.stroke_b is None else ("second", "first", pair.stroke_b)
+        )
+        return f"stroke {index} of the {key} key", f"no partner in the {other} key", worst, (0, 0.0)
+    size = np.abs(np.nan_to_num(deviation, nan=0.0, posinf=np.inf))
+    if size.max(initial=0.0) > 0:
+        worst = int(np.argmax(size))
+    fallbacks = _fallbacks_used(pair.method, method)
+    if fallbacks:
+        whys.append(f"made with {' and '.join(fallbacks)} (a fallback)")
+    if size[worst] > LENGTH_STRAY:
+        whys.append(_length_why(deviation[worst]))
+    if not whys:
+        return None
+    return f"stroke {pair.stroke_a} -> {pair.stroke_b}", "; ".join(whys), worst, (0 if fallbacks else 1, -size[worst])
+
+
+def strays(pairs, method, deviation, times, frames):
+    """The stroke pairs whose in-betweens stray from what their keys suggest, worst first.
+
+    A pair strays when its in-betweens' ink length is off the keys' linear blend of lengths by
+    more than :data:`LENGTH_STRAY`, when it was made with a fallback morph
+    (:data:`ballmorph_core.FALLBACK_MORPHS`, other than the one asked for), or when a stroke has
+    no partner. Its worst frame is the in-between whose length is farthest from the blend; for
+    a stroke without a partner (or a pair whose length stays on the blend) the in-between
+    nearest the middle of the morph, where such a stroke switches.
+
+    Parameters
+    ----------
+    pairs : sequence of ballmorph_core.PairReport
+        What happened to each pair (the core's ``result.pairs``): P of them.
+    method : str
+        The morph asked for (a core value: ``'circular-ball'``).
+    deviation : array_like, shape (P, T)
+        Each pair's ink length off the blend at each in-between
+        (:func:`ballmorph_core.length_deviation`; NaN where there is none).
+    times : array_like, shape (T,)
+        The morph time of each in-between.
+    frames : array_like of int, shape (T,)
+        The frame number of each in-between.
+
+    Returns
+    -------
+    list of Stray
+        Pairs that fell back or lost their partner first, then the others by how far they stray.
+
+    Examples
+    --------
+    >>> from ballmorph_core import PairReport
+    >>> pairs = [PairReport(0, 0, "circular-ball"), PairReport(1, 1, "circular-ball+linear-interpolation")]
+    >>> deviation = [[0.05, -0.3, 0.1], [0.0, 0.02, 0.0]]
+    >>> for s in strays(pairs, "circular-ball", deviation, [0.25, 0.5, 0.75], [3, 5, 7]):
+    ...     print(s.what, "|", s.why, "|", s.frame)
+    stroke 1 -> 1 | made with linear-interpolation (a fallback) | 5
+    stroke 0 -> 0 | ink 30% shorter than the keys' blend of lengths | 5
+    """
+    times = np.clip(np.asarray(times, dtype=np.float64).reshape(-1), 0.0, 1.0)
+    frames = np.asarray(frames).reshape(-1)
+    deviation = np.asarray(deviation, dtype=np.float64).reshape(len(pairs), len(times))
+    if not len(times):
+        return []
+    found = []
+    for pair, row in zip(pairs, deviation):
+        stray = _stray(pair, method, row, times)
+        if stray is not None:
+            what, why, worst, rank = stray
+            found.append((rank, Stray(what, why, int(frames[worst]))))
+    return [stray for _, stray in sorted(found, key=lambda item: item[0])]
+
+
+def stray_reports(interval_name, found_strays):
+    """The warnings for the pairs that stray in an interval: a few one by one, the rest in one line.
+
+    Parameters
+    ----------
+    interval_name : str
+    found_strays : sequence of Stray
+        Worst first (:func:`strays`).
+
+    Returns
+    -------
+    list of (level, text)
+        At most :data:`STRAYS_LISTED` + 1 reports.
+
+    Examples
+    --------
+    >>> stray_reports("Ink 1→9", [Stray("stroke 0 -> 0", "ink 30% shorter than the keys' blend of lengths", 5)])
+    [('WARNING', "Ink 1→9: stroke 0 -> 0 strays from its keys (ink 30% shorter than the keys' blend of lengths), \
+most on frame 5: draw a breakdown key on frame 5")]
+    """
+    listed, rest = list(found_strays[:STRAYS_LISTED]), list(found_strays[STRAYS_LISTED:])
+    reports = [
+        (
+            WARNING,
+            f"{interval_name}: {s.what} strays from its keys ({s.why}), most on frame {s.frame}: "
+            f"draw a breakdown key on frame {s.frame}",
+        )
+        for s in listed
+    ]
+    if rest:
+        where = frames_text(sorted({s.frame for s in rest}))
+        reports.append(
+            (
+                WARNING,
+                f"{interval_name}: {len(rest)} more stroke pair(s) stray from their keys, most on frame(s) {where}: "
+                "breakdown keys there would help",
+            )
+        )
+    return reports

@@ -5,11 +5,13 @@ layers:
 
 1. finds the key intervals of each layer with a *pairing rule* (:mod:`.pairing`: the operator's
    selected keys or current frame, or every key pair for ``blender -c ballmorph``), skipping
-   locked and hidden layers;
+   locked and hidden layers, and the timing chart of each (:mod:`.charts`: the option's, else
+   the one kept from an earlier run on the same keys);
 2. computes every interval with the core (:mod:`.morph`), writing nothing yet; an interval whose
    morph fails unexpectedly is redone whole with the core's fallback morph, and one that still
    fails is left out, never the others;
-3. writes all frames at once, all or nothing (:mod:`.writer`);
+3. writes all frames at once, all or nothing (:mod:`.writer`), and keeps each written
+   interval's timing chart with it;
 4. returns what happened per layer (:class:`ObjectResult`): the reports the operator passes to
    ``self.report`` and the command line prints, and the intervals written.
 
@@ -19,8 +21,8 @@ reports itself, so both callers say the same things.
 
 from dataclasses import dataclass, field
 
-from ..ballmorph_core import FALLBACK_METHOD, BallMorphError
-from . import keys, morph, options, pairing, reports, writer
+from ..ballmorph_core import FALLBACK_METHOD, BallMorphError, apply_favor, parse_timing_chart
+from . import charts, keys, morph, options, pairing, reports, writer
 from .plans import PLANS
 
 __all__ = ["LayerResult", "ObjectResult", "Progress", "check_options", "inbetween_object"]
@@ -104,9 +106,18 @@ class Progress:
 
 
 def check_options(values):
-    """Why these option values cannot run at all ('' when they can)."""
+    """Why these option values cannot run at all ('' when they can): an unavailable morph, a
+    favor out of range, a timing chart that is not one."""
     if not options.method_available(values["method"]):
         return reports.method_unavailable(options.label("method", values["method"]))
+    try:
+        apply_favor([], values["favor"])
+    except ValueError as exc:
+        return str(exc)
+    try:
+        parse_timing_chart(values["timing_chart"])
+    except ValueError as exc:
+        return reports.bad_chart(str(exc))
     return ""
 
 
@@ -151,7 +162,13 @@ def inbetween_object(obj, values, rule, progress=None):
         found = keys.layer_keys(data, layer)
         pairs, problems = rule(found)
         layer_result.reports.extend((problem_level, text) for text in problems)
-        found_intervals = pairing.intervals(found, pairs, values["frame_count"])
+        try:
+            layer_charts, notes = charts.charts_for(data, layer.name, pairs, values["timing_chart"])
+        except ValueError as exc:  # the chart does not fit an interval: refuse the run, write nothing
+            result.error = str(exc)
+            return result
+        layer_result.reports.extend(notes)
+        found_intervals = pairing.intervals(found, pairs, values["frame_count"], layer_charts)
         work.extend((layer, layer_result, interval) for interval in found_intervals)
 
     outcomes = _compute(work, values, progress)
@@ -166,10 +183,10 @@ def inbetween_object(obj, values, rule, progress=None):
         if item is None:
             layer_result.reports.append(problem)
             continue
+        charts.keep(data, interval)
         layer_result.written.append((interval, item.method))
-        layer_result.reports.extend(
-            reports.interval_reports(interval, options.label("method", item.method), item.messages)
-        )
+        label = options.label("method", item.method)
+        layer_result.reports.extend(reports.interval_reports(interval, label, item.messages, item.strays))
     return result
 
 

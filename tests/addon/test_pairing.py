@@ -160,3 +160,33 @@ def test_one_interval_per_pair_named_after_layer_and_keys():
     ]
     assert [i.name for i in found] == ["Ink 1\u21925", "Ink 5\u21929"]
     assert pairing.intervals(ink((1, 5)), [], 0) == []
+
+
+# -- timing charts --------------------------------------------------------------------------------
+
+
+def test_a_chart_gives_one_in_between_per_fraction_whatever_the_frame_count():
+    chart = pairing.Chart((0.1, 0.5, 0.9))
+    (charted, plain) = pairing.intervals(ink((1, 9, 17)), [(1, 9), (9, 17)], 1, {(1, 9): chart})
+    assert charted.targets.tolist() == [3, 5, 7] and charted.chart is chart
+    assert charted.chart_times.tolist() == [0.1, 0.5, 0.9]
+    np.testing.assert_allclose(charted.fractions, [0.25, 0.5, 0.75])  # where the frames are
+    assert plain.targets.tolist() == [13] and plain.chart is None and plain.chart_times is None
+
+
+def test_a_charted_frame_that_is_drawn_is_skipped_with_its_fraction():
+    (charted,) = pairing.intervals(
+        ink((1, 5, 9), selected=(1, 9)), [(1, 9)], 0, {(1, 9): pairing.Chart((0.1, 0.5, 0.9))}
+    )
+    assert (charted.targets.tolist(), charted.skipped) == ([3, 7], [5])
+    assert charted.chart_times.tolist() == [0.1, 0.9]
+
+
+def test_a_chart_with_more_fractions_than_frames_between_the_keys_is_an_error():
+    with pytest.raises(ValueError, match="Ink 1\u21924: 3 fractions do not fit"):
+        pairing.intervals(ink((1, 4)), [(1, 4)], 0, {(1, 4): pairing.Chart((0.2, 0.5, 0.8))})
+
+
+def test_a_chart_spells_itself_as_the_option_does():
+    assert pairing.Chart((0.1, 0.25, 0.9)).text == "0.1 0.25 0.9"
+    assert pairing.Chart((1 / 3,)).text == repr(1 / 3)  # kept exactly

@@ -6,6 +6,7 @@ from bpy_free import load
 
 reports = load("operators.reports")
 pairing = load("operators.pairing")
+core = load("ballmorph_core")
 
 
 @pytest.mark.parametrize(
@@ -146,3 +147,129 @@ def test_nothing_to_do_joins_every_reason():
         "Nothing to in-between: layer 'Ink' is locked; layer 'Paint' has 1 keyframe(s)"
     )
     assert reports.write_failed(MemoryError("full")) == "Writing the in-betweens failed, nothing was changed: full"
+
+
+# -- timing charts --------------------------------------------------------------------------------
+
+
+def test_a_chart_is_named_in_what_was_written_and_a_kept_one_says_so():
+    chart = pairing.Chart((0.1, 0.5, 0.9))
+    (found,) = pairing.intervals(pairing.LayerKeys("Ink", (1, 9)), [(1, 9)], 0, {(1, 9): chart})
+    assert reports.interval_reports(found, "Circular Ball-morph", []) == [
+        ("INFO", "Ink 1\u21929: 3 in-between(s) on frame(s) 3, 5, 7 (Circular Ball-morph, timing chart 0.1 0.5 0.9)")
+    ]
+    (kept,) = pairing.intervals(pairing.LayerKeys("Ink", (1, 9)), [(1, 9)], 0, {(1, 9): pairing.Chart((0.5,), True)})
+    assert reports.interval_reports(kept, "Circular Ball-morph", []) == [
+        ("INFO", "Ink 1\u21929: 1 in-between(s) on frame(s) 5 (Circular Ball-morph)"),
+        (
+            "INFO",
+            "Ink 1\u21929: timed by the chart 0.5 kept from an earlier run on these keys (type a chart to change it)",
+        ),
+    ]
+
+
+def test_a_malformed_chart_says_what_is_wrong_and_what_a_chart_looks_like():
+    assert reports.bad_chart("timing_chart: 'x' is not a number") == (
+        "timing_chart: 'x' is not a number: nothing was written; write fractions between 0 and 1 in rising order, "
+        "such as '0.1 0.3 0.6 0.9', or leave the chart empty"
+    )
+
+
+# -- pairs that stray from their keys --------------------------------------------------------------
+
+TIMES, FRAMES = np.array([0.25, 0.5, 0.75]), np.array([3, 5, 7])
+
+
+def pair(a, b, method="circular-ball"):
+    return core.PairReport(a, b, method)
+
+
+@pytest.mark.parametrize(
+    ("row", "stray"),
+    [
+        ([0.1, 0.2, 0.15], None),  # within 20% everywhere (20% itself is not beyond)
+        ([0.1, -0.21, 0.05], ("ink 21% shorter than the keys' blend of lengths", 5)),
+        ([0.3, 0.1, 0.05], ("ink 30% longer than the keys' blend of lengths", 3)),
+        ([0.0, 0.1, np.inf], ("ink far longer than the keys' blend of lengths", 7)),
+        ([np.nan, np.nan, 0.5], ("ink 50% longer than the keys' blend of lengths", 7)),
+    ],
+    ids=["on-the-blend", "shorter", "longer", "from-nothing", "missing-frames"],
+)
+def test_a_pair_strays_when_its_length_is_off_the_blend_by_more_than_a_fifth(row, stray):
+    found = reports.strays([pair(0, 1)], "circular-ball", [row], TIMES, FRAMES)
+    assert found == ([] if stray is None else [reports.Stray("stroke 0 -> 1", *stray)])
+    assert reports.LENGTH_STRAY == 0.2
+
+
+@pytest.mark.parametrize(
+    ("used", "asked", "why"),
+    [
+        ("circular-ball+linear-interpolation on a similarity carrier", "circular-ball", "linear-interpolation"),
+        ("composite-ball+static", "circular-ball", "composite-ball"),
+        ("straight point motion", "linear-ball", "straight point motion"),
+        ("composite-ball+linear-interpolation", "parabolic-ball", "composite-ball and linear-interpolation"),
+        ("linear-interpolation", "linear-interpolation", None),  # asked for: no fallback
+        ("arc-length on a rigid carrier", "circular-ball", None),
+        ("circular-ball+static on a similarity carrier", "circular-ball", None),
+    ],
+)
+def test_a_pair_strays_when_it_fell_back_and_its_worst_frame_is_the_middle_when_its_length_is_fine(used, asked, why):
+    found = reports.strays([pair(2, 2, used)], asked, [[0.0, 0.0, 0.0]], TIMES, FRAMES)
+    assert found == ([] if why is None else [reports.Stray("stroke 2 -> 2", f"made with {why} (a fallback)", 5)])
+
+
+def test_a_fallback_that_also_strays_in_length_says_both_at_its_worst_frame():
+    found = reports.strays([pair(0, 0, "linear-interpolation")], "circular-ball", [[-0.2, -0.1, -0.3]], TIMES, FRAMES)
+    assert found == [
+        reports.Stray(
+            "stroke 0 -> 0",
+            "made with linear-interpolation (a fallback); ink 30% shorter than the keys' blend of lengths",
+            7,
+        )
+    ]
+
+
+@pytest.mark.parametrize(
+    ("times", "frames", "middle"),
+    [([0.25, 0.5, 0.75], [3, 5, 7], 5), ([0.2, 0.4, 0.6, 0.8], [2, 3, 4, 5], 4), ([0.1, 0.2], [2, 3], 3)],
+)
+def test_a_stroke_without_a_partner_strays_where_it_switches(times, frames, middle):
+    pairs = [pair(3, None, "disappear"), pair(None, 1, "appear")]
+    found = reports.strays(pairs, "circular-ball", np.full((2, len(times)), np.nan), times, frames)
+    assert found == [
+        reports.Stray("stroke 3 of the first key", "no partner in the second key", middle),
+        reports.Stray("stroke 1 of the second key", "no partner in the first key", middle),
+    ]
+
+
+def test_strays_come_worst_first_fallbacks_and_lost_partners_before_lengths():
+    pairs = [pair(0, 0), pair(1, 1), pair(2, 2, "linear-interpolation"), pair(3, 3), pair(None, 4, "appear")]
+    rows = [[0.25, 0, 0], [0, 0.6, 0], [0, 0, 0], [0.01, 0, 0], [np.nan] * 3]
+    found = reports.strays(pairs, "circular-ball", rows, TIMES, FRAMES)
+    assert [s.what for s in found] == ["stroke 2 -> 2", "stroke 4 of the second key", "stroke 1 -> 1", "stroke 0 -> 0"]
+    assert reports.strays(pairs, "circular-ball", np.zeros((5, 0)), [], []) == []
+
+
+def test_stray_reports_list_a_few_and_sum_up_the_rest():
+    found = [
+        reports.Stray(f"stroke {i} -> {i}", "ink 30% shorter than the keys' blend of lengths", 3 + i % 3)
+        for i in range(7)
+    ]
+    got = reports.stray_reports("Ink 1\u21929", found)
+    assert len(got) == reports.STRAYS_LISTED + 1 and all(level == "WARNING" for level, _ in got)
+    assert got[0][1] == (
+        "Ink 1\u21929: stroke 0 -> 0 strays from its keys (ink 30% shorter than the keys' blend of lengths), "
+        "most on frame 3: draw a breakdown key on frame 3"
+    )
+    assert got[-1][1] == (
+        "Ink 1\u21929: 4 more stroke pair(s) stray from their keys, most on frame(s) 3\u20135: "
+        "breakdown keys there would help"
+    )
+    assert reports.stray_reports("Ink 1\u21929", found[:3]) == got[:3]
+    assert reports.stray_reports("Ink 1\u21929", []) == []
+
+
+def test_what_was_written_ends_with_the_strays():
+    found = [reports.Stray("stroke 0 -> 0", "no partner", 5)]
+    got = reports.interval_reports(interval(), "Circular Ball-morph", [("INFO", "note")], found)
+    assert got[-1] == reports.stray_reports("Ink 1\u21929", found)[0] and got[-2] == ("INFO", "Ink 1\u21929: note")

@@ -241,8 +241,10 @@ def test_options_from_the_operators_table(saved, tmp_path, capfd):
     assert summary["options"] == {
         "method": "circular-ball",
         "frame_count": 0,
+        "timing_chart": "",
         "easing_type": "quad",
         "easing": "ease-in-out",
+        "favor": 0.0,
         "layers": "all",
         "selected_only": False,
         "carrier": "rigid",
@@ -253,6 +255,35 @@ def test_options_from_the_operators_table(saved, tmp_path, capfd):
     assert help_text[0] == 0
     for flag in ("--method", "--frame-count", "--layers", "--selected-only", "--carrier", "--easing-type"):
         assert flag in help_text[1]
+    assert "--favor X" in help_text[1] and "--timing-chart TEXT" in help_text[1]
+
+
+def test_favor_and_a_timing_chart_and_the_chart_kept_for_the_next_run(saved, tmp_path, capfd):
+    out = tmp_path / "o.blend"
+    code, summary, _ = run_json(capfd, saved, "--output", out, "--object", "Drawing", "--timing-chart", "0.2,0.8")
+    assert code == 0 and summary["options"]["timing_chart"] == "0.2,0.8"
+    assert [i["frames"] for i in summary["objects"][0]["layers"][0]["intervals"]] == [[2, 4], [6, 8]]
+    code, summary, _ = run_json(capfd, out, "--object", "Drawing", "--favor", "-0.5")
+    assert code == 0 and summary["options"]["favor"] == -0.5
+    assert [i["frames"] for i in summary["objects"][0]["layers"][0]["intervals"]] == [[2, 4], [6, 8]]
+    said = [r["text"] for r in summary["objects"][0]["layers"][0]["reports"]]
+    assert "Ink 1\u21925: timed by the chart 0.2 0.8 kept from an earlier run on these keys" in " ".join(said)
+    bpy.ops.wm.open_mainfile(filepath=str(out))
+    assert bpy.data.objects["Drawing"].data["ballmorph_timing_charts"].to_dict() == {
+        "Ink:1-5": "0.2 0.8",
+        "Ink:5-9": "0.2 0.8",
+    }
+
+
+def test_a_timing_chart_too_long_for_an_interval_writes_nothing_for_that_object(saved, tmp_path, capfd):
+    # Other's Ink keys are on frames 1 and 4: two frames between them, for three fractions.
+    out = tmp_path / "o.blend"
+    code, summary, _ = run_json(capfd, saved, "--output", out, "--timing-chart", "0.25 0.5 0.75")
+    assert code == 1
+    other = next(o for o in summary["objects"] if o["name"] == "Other")
+    assert other["frames_written"] == 0
+    assert "Ink 1\u21924: timing_chart: 3 fractions but only 2 frame(s) between the keys" in other["error"]
+    assert next(o for o in summary["objects"] if o["name"] == "Drawing")["frames_written"] == 6
 
 
 # -- bad arguments, unreadable files, nothing to do ------------------------------------------------
@@ -269,6 +300,10 @@ def test_options_from_the_operators_table(saved, tmp_path, capfd):
         (["{in}", "--frame-count", "-1"], "expected a whole number of at least 0, got '-1'"),
         (["{in}", "--frame-count", "two"], "expected a whole number of at least 0, got 'two'"),
         (["{in}", "--layers", "some"], "argument --layers: invalid choice: 'some'"),
+        (["{in}", "--favor", "2"], "argument --favor: expected a number from -1 to 1, got '2'"),
+        (["{in}", "--favor", "nan"], "argument --favor: expected a number from -1 to 1, got 'nan'"),
+        (["{in}", "--timing-chart", "0.5 0.2"], "timing_chart: 0.2 comes after 0.5 (the fractions must rise)"),
+        (["{in}", "--timing-chart", "soon"], "timing_chart: 'soon' is not a number"),
         (["{dir}/missing.blend"], "cannot read {dir}/missing.blend: no such file"),
         (["{dir}/notes.blend"], 'cannot read {dir}/notes.blend: File format is not supported in file "'),
         (["{in}", "--object", "Nobody"], "has no object of that name (its Grease Pencil objects: 'Drawing', 'Other')"),
@@ -285,6 +320,10 @@ def test_options_from_the_operators_table(saved, tmp_path, capfd):
         "negative-count",
         "not-a-number",
         "bad-layers",
+        "favor-out-of-range",
+        "favor-nan",
+        "chart-descending",
+        "chart-not-a-number",
         "missing-file",
         "not-a-blend",
         "no-such-object",

@@ -49,8 +49,10 @@ def test_values_of_reads_any_holder_of_the_options(addon):
     assert values == {
         "method": "parabolic-ball",
         "frame_count": 0,
+        "timing_chart": "",
         "easing_type": "linear",
         "easing": "ease-in-out",
+        "favor": 0.0,
         "layers": "all",
         "selected_only": False,
         "carrier": "similarity",
