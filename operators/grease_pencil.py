@@ -35,6 +35,26 @@ _ATTRIBUTES = {
 _FOREACH_KEY = {"FLOAT": "value", "BOOLEAN": "value", "INT": "value", "INT8": "value"}
 _DTYPE = {"FLOAT": np.float32, "BOOLEAN": bool, "INT": np.int32, "INT8": np.int32}
 
+# Every other attribute is carried: data type -> (foreach key, shape of one element, numpy dtype).
+# Verified on 4.5.15 and 5.0.1 (attributes.new of each type on both domains of a drawing).
+_EXTRA_TYPES = {
+    "FLOAT": ("value", (), np.float32),
+    "FLOAT2": ("vector", (2,), np.float32),
+    "FLOAT_VECTOR": ("vector", (3,), np.float32),
+    "FLOAT_COLOR": ("color", (4,), np.float32),
+    "BYTE_COLOR": ("color", (4,), np.float32),
+    "QUATERNION": ("value", (4,), np.float32),
+    "FLOAT4X4": ("value", (4, 4), np.float32),
+    "INT": ("value", (), np.int32),
+    "INT8": ("value", (), np.int32),
+    "INT16_2D": ("value", (2,), np.int32),
+    "INT32_2D": ("value", (2,), np.int32),
+    "BOOLEAN": ("value", (), bool),
+}
+# Attributes that define a curve's shape from its control points: an in-between's points are
+# samples, so these are not carried (and its curve type is POLY or CATMULL_ROM, see below).
+_SHAPE_ONLY = {"handle_left", "handle_right", "handle_type_left", "handle_type_right", "nurbs_weight"}
+
 
 def data_collection():
     """``bpy.data``'s Grease Pencil (v3) collection: renamed between Blender 4.5 and 5.0."""
@@ -92,6 +112,31 @@ def _selected_strokes(attributes, offsets):
     return selected_before[offsets[1:]] > selected_before[offsets[:-1]]
 
 
+def _read_extras(attributes, n_points, n_strokes):
+    """Every attribute not read into a StrokeSet field: (point dict, curve dict, types)."""
+    points, curves, types = {}, {}, {}
+    for attribute in attributes:
+        name, kind = attribute.name, attribute.data_type
+        if name in _ATTRIBUTES or name.startswith(".") or name in _SHAPE_ONLY or kind not in _EXTRA_TYPES:
+            continue  # the fields, Blender's internal ones (selection), shape-only, strings
+        if attribute.domain not in ("POINT", "CURVE"):
+            continue
+        key, shape, dtype = _EXTRA_TYPES[kind]
+        size = n_points if attribute.domain == "POINT" else n_strokes
+        buffer = np.empty(size * int(np.prod(shape, dtype=np.int64)), dtype=dtype)
+        attribute.data.foreach_get(key, buffer)
+        values = buffer.reshape(size, *shape)
+        if values.ndim > 2:
+            values = values.reshape(size, -1)
+        if dtype is np.float32:  # floats are interpolated in float64, integers kept as integers
+            values = values.astype(np.float64)
+        elif dtype is not bool:
+            values = values.astype(np.int64)
+        (points if attribute.domain == "POINT" else curves)[name] = values
+        types[name] = kind
+    return points, curves, types
+
+
 def read_strokes(drawing, matrix=None):
     """The strokes of a drawing.
 
@@ -114,6 +159,7 @@ def read_strokes(drawing, matrix=None):
     attributes = drawing.attributes
     n_points, n_strokes = int(offsets[-1]), len(offsets) - 1
     positions = _read(attributes, "position", n_points).astype(np.float64)
+    points, curves, types = _read_extras(attributes, n_points, n_strokes)
     return StrokeSet(
         _transform(positions, matrix),
         offsets,
@@ -123,6 +169,9 @@ def read_strokes(drawing, matrix=None):
         _read(attributes, "opacity", n_points),
         _read(attributes, "vertex_color", n_points),
         _selected_strokes(attributes, offsets),
+        point_attributes=points,
+        curve_attributes=curves,
+        attribute_types=types,
     )
 
 
@@ -167,7 +216,37 @@ def write_strokes(drawing, strokes, matrix=None):
         _write(attributes, "vertex_color", strokes.vertex_color)
     _write(attributes, "cyclic", strokes.cyclic)
     _write(attributes, "material_index", strokes.material_index)
+    for domain, extras in (("POINT", strokes.point_attributes), ("CURVE", strokes.curve_attributes)):
+        for name, values in extras.items():
+            _write_extra(attributes, name, domain, strokes.attribute_types.get(name), values)
     drawing.tag_positions_changed()
+
+
+def _write_extra(attributes, name, domain, kind, values):
+    """Write one carried attribute with its own data type (guessed from the values if unknown)."""
+    values = np.asarray(values)
+    if name == "curve_type":
+        # Resampled points are no Bezier or NURBS control points: those strokes become POLY.
+        values = np.where(np.isin(values, (2, 3)), 0, values)
+    if kind not in _EXTRA_TYPES:
+        kind = _guess_type(values)
+    key, shape, dtype = _EXTRA_TYPES[kind]
+    attribute = attributes.get(name)
+    if attribute is None or attribute.domain != domain or attribute.data_type != kind:
+        if attribute is not None:
+            attributes.remove(attribute)
+        attribute = attributes.new(name, kind, domain)
+    attribute.data.foreach_set(key, np.ascontiguousarray(values, dtype=dtype).reshape(-1))
+
+
+def _guess_type(values):
+    """Blender's data type for an attribute array the core made up (no type recorded)."""
+    width = values.shape[1] if values.ndim > 1 else 1
+    if values.dtype == bool:
+        return "BOOLEAN"
+    if np.issubdtype(values.dtype, np.integer):
+        return {1: "INT", 2: "INT32_2D"}.get(width, "INT")
+    return {1: "FLOAT", 2: "FLOAT2", 3: "FLOAT_VECTOR", 4: "FLOAT_COLOR", 16: "FLOAT4X4"}.get(width, "FLOAT")
 
 
 def fingerprint(drawing):

@@ -55,17 +55,7 @@ def _frame(layer, number):
 def _to_layer_space(strokes, matrix_inverse):
     if matrix_inverse is None:
         return strokes
-    positions = strokes.positions @ matrix_inverse[:3, :3].T + matrix_inverse[:3, 3]
-    return StrokeSet(
-        positions,
-        strokes.offsets,
-        strokes.cyclic,
-        strokes.material_index,
-        strokes.radius,
-        strokes.opacity,
-        strokes.vertex_color,
-        strokes.selected,
-    )
+    return strokes.replace_positions(strokes.positions @ matrix_inverse[:3, :3].T + matrix_inverse[:3, 3])
 
 
 def _selection(key_a, key_b, messages):

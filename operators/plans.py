@@ -22,11 +22,21 @@ from ..ballmorph_core import StrokeSet, plan_inbetween
 __all__ = ["PlanCache", "PLANS"]
 
 
+def _same_array(x, y):
+    return x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y)
+
+
 def _same_key(a, b):
-    """Whether two StrokeSets hold equal arrays (dtype, shape and values) in every field."""
+    """Whether two StrokeSets hold equal arrays (dtype, shape and values) in every field, extra
+    attributes included."""
     for f in fields(StrokeSet):
         x, y = getattr(a, f.name), getattr(b, f.name)
-        if x.dtype != y.dtype or x.shape != y.shape or not np.array_equal(x, y):
+        if isinstance(x, dict):
+            if x.keys() != y.keys() or not all(
+                x[k] == y[k] if isinstance(x[k], str) else _same_array(x[k], y[k]) for k in x
+            ):
+                return False
+        elif not _same_array(x, y):
             return False
     return True
 

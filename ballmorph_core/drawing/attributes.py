@@ -1,13 +1,24 @@
 """The in-between drawings: every pair's samples lifted back to 3D, with the attributes of the
-points they come from mixed in time, plus the strokes without a partner."""
+points they come from mixed in time, plus the strokes without a partner.
 
-from dataclasses import dataclass
+Every attribute of the keys is carried. Floating-point ones (radius, opacity, vertex colour,
+the offset from the drawing plane, and every extra float, vector or colour attribute) are read
+on both keys where each sample comes from and goes to, and mixed as ``(1 - t) a + t b``;
+the others (integers, booleans: a material, a flag, a user's ID) are the value of the point, or
+stroke, of the key nearer in time (the first key before ``t = 0.5``). An extra attribute only one
+key has is 0 on the other (Blender's value for a missing attribute).
+"""
+
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .strokes import StrokeSet
 
-__all__ = ["Held", "assemble_frames"]
+__all__ = ["Held", "Extras", "assemble_frames"]
+
+#: Columns of ProjectedKey.values before the extra floats: plane offset, radius, opacity, RGBA.
+_BASE = 7
 
 
 @dataclass
@@ -27,54 +38,136 @@ class Held:
     from_a: bool
 
 
+@dataclass
+class Extras:
+    """The extra attributes of two keys, aligned.
+
+    Attributes
+    ----------
+    point, curve : dict of str to (shape, dtype)
+        Every extra attribute either key has: its per-element shape and dtype.
+    types : dict of str to str
+        The caller's type names, passed on.
+    """
+
+    point: dict = field(default_factory=dict)
+    curve: dict = field(default_factory=dict)
+    types: dict = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, *keys):
+        """The union of the keys' extra attributes (the first key's shape and type win)."""
+        out = cls()
+        for key in keys:
+            for target, arrays in ((out.point, key.point_attributes), (out.curve, key.curve_attributes)):
+                for name, array in arrays.items():
+                    target.setdefault(name, (array.shape[1:], array.dtype))
+            for name, kind in key.attribute_types.items():
+                out.types.setdefault(name, kind)
+        return out
+
+    def arrays(self, key, domain):
+        """A key's extra attributes of ``domain`` ('point' or 'curve'), zeros where it has none."""
+        size = len(key.positions) if domain == "point" else len(key)
+        own = key.point_attributes if domain == "point" else key.curve_attributes
+        names = self.point if domain == "point" else self.curve
+        return {
+            name: own[name] if name in own else np.zeros((size, *shape), dtype)
+            for name, (shape, dtype) in names.items()
+        }
+
+    def floats(self, domain):
+        """Names of the interpolated attributes of ``domain``, in order."""
+        names = self.point if domain == "point" else self.curve
+        return [name for name, (_, dtype) in names.items() if np.issubdtype(dtype, np.floating)]
+
+    def point_columns(self, key):
+        """A key's interpolated point attributes as columns, shape (N, F) (ProjectedKey's extra values)."""
+        arrays = self.arrays(key, "point")
+        cols = [arrays[name].reshape(len(key.positions), -1).astype(np.float64) for name in self.floats("point")]
+        return np.concatenate(cols, axis=1) if cols else np.zeros((len(key.positions), 0))
+
+    def from_columns(self, columns):
+        """Interpolated point attributes back from columns (N, F): dict of arrays."""
+        out, start = {}, 0
+        for name in self.floats("point"):
+            shape, dtype = self.point[name]
+            width = int(np.prod(shape)) if shape else 1
+            out[name] = columns[:, start : start + width].reshape(-1, *shape).astype(dtype)
+            start += width
+        return out
+
+
 def _pair_values(parts, strokes_a, strokes_b, ka, kb):
-    """Per sample: the values (plane offset, radius, opacity, colour) on both keys, shape (K, 7) each."""
+    """Per sample: the values (plane offset, radius, opacity, colour, extras) on both keys."""
     sizes = np.diff(parts.offsets)
+    width = ka.values.shape[1]
     if not sizes.sum():
-        return np.zeros((0, 7)), np.zeros((0, 7))
+        return np.zeros((0, width)), np.zeros((0, width))
     va = ka.sample(np.repeat(strokes_a, sizes), parts.u_a)
     vb = kb.sample(np.repeat(strokes_b, sizes), parts.u_b)
     return va, vb
 
 
-def _held_strokes(held, t, unmatched):
-    """The held strokes shown at time ``t`` as (points, values, size, cyclic, material, origin)."""
+def _held_strokes(held, t, unmatched, extras):
+    """The held strokes shown at time ``t``, each as the StrokeSet of its one stroke."""
     out = []
     for h in held:
         if unmatched != "hold" and (t >= 0.5 if h.from_a else t < 0.5):
             continue
-        s = h.key.strokes
-        sl = s.points(h.index)
-        origin = (h.index, -1) if h.from_a else (-1, h.index)
+        s, i = h.key.strokes, h.index
+        sl = s.points(i)
+        values = h.key.values[sl]
+        points = extras.from_columns(values[:, _BASE:])
+        own = extras.arrays(s, "point")
+        points.update({name: own[name][sl] for name in extras.point if name not in points})
+        curves = {name: array[i : i + 1] for name, array in extras.arrays(s, "curve").items()}
         out.append(
-            (
-                s.positions[sl],
-                h.key.values[sl, 1:],
-                sl.stop - sl.start,
-                s.cyclic[h.index],
-                s.material_index[h.index],
-                origin,
+            StrokeSet(
+                positions=s.positions[sl],
+                offsets=[0, sl.stop - sl.start],
+                cyclic=s.cyclic[i : i + 1],
+                material_index=s.material_index[i : i + 1],
+                radius=values[:, 1],
+                opacity=values[:, 2],
+                vertex_color=values[:, 3:_BASE],
+                origin=[(i, -1) if h.from_a else (-1, i)],
+                point_attributes=points,
+                curve_attributes=curves,
+                attribute_types=extras.types,
             )
         )
     return out
 
 
-def _with_held(drawing, shown):
-    """A frame's StrokeSet with the held strokes appended."""
-    if not shown:
-        return drawing
-    values = np.concatenate([np.c_[drawing.radius, drawing.opacity, drawing.vertex_color], *[v for _, v, *_ in shown]])
-    sizes = np.r_[drawing.sizes, [size for _, _, size, *_ in shown]].astype(np.int64)
-    return StrokeSet(
-        positions=np.concatenate([drawing.positions, *[p for p, *_ in shown]]),
-        offsets=np.concatenate([[0], np.cumsum(sizes)]),
-        cyclic=np.r_[drawing.cyclic, [c for *_, c, _, _ in shown]],
-        material_index=np.r_[drawing.material_index, [m for *_, m, _ in shown]],
-        radius=values[:, 0],
-        opacity=values[:, 1],
-        vertex_color=values[:, 2:6],
-        origin=np.concatenate([drawing.origin, np.array([o for *_, o in shown], dtype=np.int64).reshape(-1, 2)]),
-    )
+class _Discrete:
+    """The attributes taken from the nearer key: per point (at the nearest point of each sample)
+    and per stroke, for both keys."""
+
+    def __init__(self, parts, plan, index_a, index_b, extras):
+        sizes = np.diff(parts.offsets)
+        floats_p, floats_c = set(extras.floats("point")), set(extras.floats("curve"))
+        self.point = {}
+        if any(name not in floats_p for name in extras.point):
+            near_a = plan.ka.nearest(np.repeat(index_a, sizes), parts.u_a)
+            near_b = plan.kb.nearest(np.repeat(index_b, sizes), parts.u_b)
+            arrays_a = extras.arrays(plan.ka.strokes, "point")
+            arrays_b = extras.arrays(plan.kb.strokes, "point")
+            self.point = {
+                name: (arrays_a[name][near_a], arrays_b[name][near_b]) for name in extras.point if name not in floats_p
+            }
+        arrays_a, arrays_b = extras.arrays(plan.ka.strokes, "curve"), extras.arrays(plan.kb.strokes, "curve")
+        self.curve = {name: (arrays_a[name][index_a], arrays_b[name][index_b]) for name in extras.curve}
+        self.curve_floats = floats_c
+
+    def at(self, t):
+        """(point attributes, curve attributes) of the discrete values and curve floats at ``t``."""
+        points = {name: a if t < 0.5 else b for name, (a, b) in self.point.items()}
+        curves = {
+            name: ((1 - t) * a + t * b).astype(a.dtype) if name in self.curve_floats else (a if t < 0.5 else b)
+            for name, (a, b) in self.curve.items()
+        }
+        return points, curves
 
 
 def assemble_frames(parts, plan, times):
@@ -86,7 +179,7 @@ def assemble_frames(parts, plan, times):
         Every pair's samples at ``times`` (the second strokes' fractions along them as drawn).
     plan : InbetweenPlan
         Its ``strokes`` (each pair's two KeyStrokes), projected keys ``ka`` and ``kb``, ``held``
-        strokes, drawing ``plane`` and ``unmatched`` choice.
+        strokes, drawing ``plane``, ``unmatched`` choice and aligned ``extras``.
     times : ndarray, shape (T,)
 
     Returns
@@ -94,16 +187,17 @@ def assemble_frames(parts, plan, times):
     list of StrokeSet
     """
     strokes_a, strokes_b = [a for a, _, _ in plan.strokes], [b for _, b, _ in plan.strokes]
-    ka, kb, held, plane, unmatched = plan.ka, plan.kb, plan.held, plan.plane, plan.unmatched
+    ka, kb, held, plane, unmatched, extras = plan.ka, plan.kb, plan.held, plan.plane, plan.unmatched, plan.extras
     index_a = np.array([a.index for a in strokes_a], dtype=np.int64)
     index_b = np.array([b.index for b in strokes_b], dtype=np.int64)
     va, vb = _pair_values(parts, index_a, index_b, ka, kb)
+    discrete = _Discrete(parts, plan, index_a, index_b, extras)
     mat_a = np.array([a.material for a in strokes_a], dtype=np.int64)
     mat_b = np.array([b.material for b in strokes_b], dtype=np.int64)
     origin = np.c_[index_a, index_b].astype(np.int64).reshape(-1, 2)
     # Attributes the two keys agree on (often radius, opacity, colour and the offset from the
     # plane) are shared by every frame, not mixed: a redo of a big drawing is mostly this loop.
-    differ = np.any(va != vb, axis=0)  # (7,)
+    differ = np.any(va != vb, axis=0)
     va_d, vb_d = va[:, differ], vb[:, differ]
     depth = va[:, 0] if np.any(va[:, 0]) else None
     out = []
@@ -113,6 +207,8 @@ def assemble_frames(parts, plan, times):
             mix = va.copy()
             mix[:, differ] = (1 - t) * va_d + t * vb_d
             depth = mix[:, 0] if differ[0] else depth
+        points, curves = discrete.at(t)
+        points.update(extras.from_columns(mix[:, _BASE:]))
         drawing = StrokeSet(
             positions=plane.to_3d(parts.frames[ti], depth),
             offsets=parts.offsets,
@@ -120,8 +216,11 @@ def assemble_frames(parts, plan, times):
             material_index=mat_a if t < 0.5 else mat_b,
             radius=mix[:, 1],
             opacity=mix[:, 2],
-            vertex_color=mix[:, 3:7],
+            vertex_color=mix[:, 3:_BASE],
             origin=origin,
+            point_attributes=points,
+            curve_attributes=curves,
+            attribute_types=extras.types,
         )
-        out.append(_with_held(drawing, _held_strokes(held, t, unmatched)))
+        out.append(StrokeSet.concatenate([drawing, *_held_strokes(held, t, unmatched, extras)]))
     return out

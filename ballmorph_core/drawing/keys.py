@@ -41,20 +41,23 @@ class ProjectedKey:
     ----------
     strokes : StrokeSet
     plane : Plane
+    extra_values : ndarray, shape (N, F), optional
+        More per-point values to read along the strokes (the interpolated extra attributes).
 
     Attributes
     ----------
     rg : Ragged
         The strokes' 2D points (arc lengths and fractions come from it).
-    values : ndarray, shape (N, 7)
-        Per point: offset from the plane, radius, opacity, vertex colour (RGBA).
+    values : ndarray, shape (N, 7 + F)
+        Per point: offset from the plane, radius, opacity, vertex colour (RGBA), the extra values.
     """
 
-    def __init__(self, strokes, plane):
+    def __init__(self, strokes, plane, extra_values=None):
         xy, depth = plane.to_2d(strokes.positions)
         self.rg = Ragged(xy, strokes.offsets, strokes.cyclic)
         self.strokes = strokes
-        self.values = np.column_stack([depth, strokes.radius, strokes.opacity, strokes.vertex_color])
+        extra = np.zeros((len(xy), 0)) if extra_values is None else np.asarray(extra_values, dtype=np.float64)
+        self.values = np.column_stack([depth, strokes.radius, strokes.opacity, strokes.vertex_color, extra])
         length = self.rg.length[self.rg.owner]
         local = np.arange(len(xy)) - strokes.offsets[:-1][self.rg.owner]
         n = self.rg.n[self.rg.owner]
@@ -69,6 +72,7 @@ class ProjectedKey:
         order = np.argsort(x, kind="stable")
         self._x = x[order]
         self._v = np.concatenate([self.values, self.values[closing]])[order]
+        self._point = np.concatenate([np.arange(len(xy)), closing])[order]
         self._last = None  # (stroke, u, values): a plan evaluated again asks for the same
 
     def stroke(self, i, flip=False):
@@ -80,6 +84,15 @@ class ProjectedKey:
             order = reversal_order(len(xy), closed)
             xy, u = xy[order], reversed_fractions(u[order], closed)
         return KeyStroke(i, xy, u, closed, int(self.strokes.material_index[i]))
+
+    def nearest(self, stroke, u):
+        """The point nearest (in arc length) to fractions ``u`` of given strokes, shape (K,) of int
+        (indices into the key's points)."""
+        x = np.clip(u, 0.0, 1.0) + 2.0 * np.asarray(stroke)
+        right = np.clip(np.searchsorted(self._x, x), 0, len(self._x) - 1)
+        left = np.maximum(right - 1, 0)
+        pick = np.where(np.abs(self._x[left] - x) <= np.abs(self._x[right] - x), left, right)
+        return self._point[pick]
 
     def sample(self, stroke, u):
         """Per-point values at fractions ``u`` of given strokes (vectorised), shape (K, 7)."""

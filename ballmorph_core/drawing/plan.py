@@ -14,7 +14,7 @@ from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
 from ..geometry.polyline import reversed_fractions
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
-from .attributes import Held, assemble_frames
+from .attributes import Extras, Held, assemble_frames
 from .fallbacks import FALLBACK_METHOD, point_motion
 from .keys import ProjectedKey
 from .layout import PairFrames
@@ -109,7 +109,10 @@ class InbetweenPlan:
     def __init__(self, key_a, key_b, method, carrier, matching, unmatched, spacing):
         self.method, self.unmatched = method, unmatched
         self.plane = plane = fit_plane(np.concatenate([key_a.positions, key_b.positions]))
-        self.ka, self.kb = ka, kb = ProjectedKey(key_a, plane), ProjectedKey(key_b, plane)
+        self.extras = extras = Extras.of(key_a, key_b)
+        ka = ProjectedKey(key_a, plane, extras.point_columns(key_a))
+        kb = ProjectedKey(key_b, plane, extras.point_columns(key_b))
+        self.ka, self.kb = ka, kb
         self.messages = []  # the plan's own, before the per-pair reports
         matched, drawing = self._match(key_a, key_b, matching)
         self.strokes = [(ka.stroke(i), kb.stroke(j, flip), flip) for i, j, flip in matched]

@@ -32,6 +32,12 @@ class StrokeSet:
     origin : ndarray of int, shape (S, 2)
         For an in-between: the strokes of the first and second key it comes from (-1 for
         none), so the caller can carry attributes the core does not interpolate.
+    point_attributes, curve_attributes : dict of str to ndarray
+        Every other attribute, by name: shape (N,) or (N, w) per point, (S,) or (S, w) per
+        stroke. In-betweens interpolate floating-point ones along the correspondence and take
+        the others (integers, booleans) from the key nearer in time.
+    attribute_types : dict of str to str
+        The caller's type of each extra attribute (Blender's data type), passed on unchanged.
     """
 
     positions: np.ndarray
@@ -43,6 +49,9 @@ class StrokeSet:
     vertex_color: np.ndarray
     selected: np.ndarray = None
     origin: np.ndarray = None
+    point_attributes: dict = None
+    curve_attributes: dict = None
+    attribute_types: dict = None
 
     def __post_init__(self):
         self.positions = np.asarray(self.positions, dtype=np.float64).reshape(-1, 3)
@@ -63,6 +72,9 @@ class StrokeSet:
             if self.origin is None
             else np.asarray(self.origin, dtype=np.int64).reshape(-1, 2)
         )
+        self.point_attributes = _extras(self.point_attributes, n, "point")
+        self.curve_attributes = _extras(self.curve_attributes, s, "curve")
+        self.attribute_types = dict(self.attribute_types or {})
         for name, arr, size in (
             ("cyclic", self.cyclic, s),
             ("material_index", self.material_index, s),
@@ -134,14 +146,21 @@ class StrokeSet:
 
     @classmethod
     def concatenate(cls, parts):
-        """Join StrokeSets into one (strokes in order)."""
+        """Join StrokeSets into one (strokes in order); an extra attribute some parts lack is 0
+        on their points (Blender's value for a missing attribute)."""
         parts = list(parts)
         if not parts:
             return cls.empty()
         sizes = np.concatenate([p.sizes for p in parts])
+        types = {}
+        for p in parts:
+            types.update(p.attribute_types)
         return cls(
             offsets=np.concatenate([[0], np.cumsum(sizes)]),
             **{name: np.concatenate([getattr(p, name) for p in parts]) for name in _FIELDS if name != "offsets"},
+            point_attributes=_joined([p.point_attributes for p in parts], [len(p.positions) for p in parts]),
+            curve_attributes=_joined([p.curve_attributes for p in parts], [len(p) for p in parts]),
+            attribute_types=types,
         )
 
     def subset(self, indices):
@@ -157,7 +176,16 @@ class StrokeSet:
             offsets=np.concatenate([[0], np.cumsum(sizes)]),
             **{name: getattr(self, name)[pts] for name in _POINT_FIELDS},
             **{name: getattr(self, name)[idx] for name in _CURVE_FIELDS},
+            point_attributes={name: v[pts] for name, v in self.point_attributes.items()},
+            curve_attributes={name: v[idx] for name, v in self.curve_attributes.items()},
+            attribute_types=self.attribute_types,
         )
+
+    def replace_positions(self, positions):
+        """The same strokes with other positions, shape (N, 3) (StrokeSet)."""
+        fields = {name: getattr(self, name) for name in _FIELDS if name != "positions"}
+        extras = {name: getattr(self, name) for name in ("point_attributes", "curve_attributes", "attribute_types")}
+        return StrokeSet(positions=positions, **fields, **extras)
 
 
 @dataclass
@@ -203,6 +231,31 @@ class InbetweenResult:
     frames: list
     messages: list = field(default_factory=list)
     pairs: list = field(default_factory=list)
+
+
+def _extras(values, size, domain):
+    """Extra attributes checked: a dict of arrays whose first axis has ``size`` entries."""
+    out = {}
+    for name, array in (values or {}).items():
+        array = np.asarray(array)
+        if array.ndim not in (1, 2) or len(array) != size:
+            raise InvalidCurveError(f"{domain} attribute {name!r}: expected {size} values, got shape {array.shape}")
+        out[str(name)] = array
+    return out
+
+
+def _joined(dicts, sizes):
+    """Per-name concatenation of attribute dicts; a part without an attribute contributes zeros."""
+    names = {}
+    for d in dicts:
+        for name, array in d.items():
+            names.setdefault(name, array)
+    return {
+        name: np.concatenate(
+            [d[name] if name in d else np.zeros((size, *like.shape[1:]), like.dtype) for d, size in zip(dicts, sizes)]
+        )
+        for name, like in names.items()
+    }
 
 
 #: StrokeSet fields per point and per stroke (besides positions' offsets).
