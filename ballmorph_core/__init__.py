@@ -12,14 +12,19 @@ The subpackages go from the bottom up: ``geometry`` (polylines, nothing from the
 from .ballmap import CompatibilityReport, Correspondence, ball_map, classify
 from .drawing import (
     FALLBACK_METHOD,
+    PREVIEW_POINTS,
+    PREVIEW_TIMES,
     InbetweenPlan,
     InbetweenResult,
     Message,
     PairReport,
+    PathPreview,
     StrokeSet,
     ease,
     frame_times,
     inbetween,
+    pair_colors,
+    path_preview,
     plan_inbetween,
 )
 from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
@@ -45,6 +50,11 @@ __all__ = [
     "StrokeSet",
     "inbetween",
     "plan_inbetween",
+    "PathPreview",
+    "PREVIEW_POINTS",
+    "PREVIEW_TIMES",
+    "path_preview",
+    "pair_colors",
     "BallPaths",
     "Morph",
     "make_morph",
