@@ -65,7 +65,8 @@ def test_disabling_the_addon_leaves_no_handler(preview):
     assert _draw_handler_removed(handle)
     assert not any(_our_app_handlers().values()), _our_app_handlers()
     assert not handler.installed()
-    enable_addon()  # (the fixture disables it again)
+    enable_addon()  # the scene still has the toggle on: enabling installs the handler again
+    assert importlib.import_module(f"{MODULE}.ui.path_preview").installed()
 
 
 def test_a_file_saved_with_the_toggle_on_shows_the_preview_when_loaded(preview, tmp_path):
