@@ -7,6 +7,7 @@ scene, it reads the add-on preferences, so the preferences are the defaults for 
 import bpy
 
 from .operators.options import property_annotations
+from .ui import path_preview
 
 __all__ = ["BALLMORPH_PG_settings"]
 
@@ -37,7 +38,16 @@ def _setter(option):
 class BALLMORPH_PG_settings(bpy.types.PropertyGroup):
     """Ball-morph In-between options of a scene (defaults: the add-on preferences)."""
 
-    __annotations__ = property_annotations(getter=_getter, setter=_setter)
+    __annotations__ = {
+        **property_annotations(getter=_getter, setter=_setter),
+        # A view setting, not an option: the operator never reads it.
+        "path_preview": bpy.props.BoolProperty(
+            name="Path Preview",
+            description="Show in the 3D viewport where points of every stroke pair travel between the keys "
+            "around the current frame (active layer)",
+            update=path_preview.toggled,
+        ),
+    }
 
 
 classes = (BALLMORPH_PG_settings,)

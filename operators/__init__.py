@@ -7,8 +7,9 @@ and keys there are, ``pairing`` decides which keys pair up and which frames to w
 ``reports`` words what happened. ``generated`` remembers which frames the add-on made,
 ``grease_pencil`` is the only code that moves stroke data, ``options`` declares the options
 once (with their core values) for the operator, the scene settings, the preferences and the
-command line, and ``plans`` keeps the last run's plans for a redo. ``pairing`` and ``reports``
-never import bpy: plain CPython tests them (tests/addon).
+command line, and ``plans`` keeps the last run's plans for a redo. ``preview`` keeps the path
+preview's trajectories (drawn by ``ui/path_preview.py``). ``pairing`` and ``reports`` never
+import bpy: plain CPython tests them (tests/addon).
 """
 
 import bpy

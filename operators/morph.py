@@ -15,7 +15,7 @@ from ..ballmorph_core import StrokeSet, apply_favor, ease, length_deviation
 from . import grease_pencil, reports
 from .plans import PLANS
 
-__all__ = ["Morphed", "morph_interval"]
+__all__ = ["IntervalKeys", "Morphed", "morph_interval", "plan_options", "read_keys"]
 
 # A layer transform whose 3x3 part has a smaller determinant cannot be inverted to write back.
 _SINGULAR_DETERMINANT = 1e-12
@@ -68,11 +68,86 @@ def _selection(key_a, key_b, messages):
     return key_a.subset(np.flatnonzero(key_a.selected)), key_b.subset(np.flatnonzero(key_b.selected)), held
 
 
+@dataclass
+class IntervalKeys:
+    """Both keys of an interval as the core receives them.
+
+    Attributes
+    ----------
+    key_a, key_b : StrokeSet
+        In the morph's space (the layer's transform applied); with 'selected only', just the
+        selected strokes.
+    held : StrokeSet or None
+        The first key's strokes held unchanged ('selected only'), in the morph's space.
+    to_layer : ndarray, shape (4, 4), or None
+        Morph space -> layer space (None: the layer has no transform).
+    messages : list of (level, text)
+    """
+
+    key_a: StrokeSet
+    key_b: StrokeSet
+    held: object = None
+    to_layer: object = None
+    messages: list = field(default_factory=list)
+
+
+def read_keys(layer, interval, values):
+    """Both keys of an interval, read and checked (the in-betweens and the path preview).
+
+    Parameters
+    ----------
+    layer : bpy.types.GreasePencilLayer
+    interval : pairing.Interval
+        An interval of ``layer`` (only its two keys are read).
+    values : dict
+        The options' values (:func:`.options.values_of`).
+
+    Returns
+    -------
+    IntervalKeys or None
+        None when both keys have no strokes.
+
+    Raises
+    ------
+    ValueError
+        When the layer's transform is flat or a key has non-finite coordinates.
+    """
+    matrix = grease_pencil.layer_matrix(layer)
+    identity = np.array_equal(matrix, np.eye(4))
+    if not identity and abs(np.linalg.det(matrix[:3, :3])) < _SINGULAR_DETERMINANT:
+        raise ValueError(reports.flat_transform(layer.name))
+    to_morph, to_layer = (None, None) if identity else (matrix, np.linalg.inv(matrix))
+    key_a = grease_pencil.read_strokes(_frame(layer, interval.frame_a).drawing, to_morph)
+    key_b = grease_pencil.read_strokes(_frame(layer, interval.frame_b).drawing, to_morph)
+    if len(key_a) == 0 and len(key_b) == 0:
+        return None
+    for number, key in ((interval.frame_a, key_a), (interval.frame_b, key_b)):
+        bad = ~np.isfinite(key.positions).all(axis=1)
+        if bad.any():
+            strokes = np.unique(np.searchsorted(key.offsets, np.flatnonzero(bad), side="right") - 1)
+            raise ValueError(reports.invalid_coordinates(number, strokes.tolist()))
+    messages, held = [], None
+    if values["selected_only"]:
+        key_a, key_b, held = _selection(key_a, key_b, messages)
+    return IntervalKeys(key_a, key_b, held, to_layer, messages)
+
+
+def plan_options(values, method):
+    """The keyword arguments of :func:`ballmorph_core.plan_inbetween` for these option values.
+
+    This is the one place where the options reach the core's plan: an option added to
+    :data:`.options.OPTIONS` for the morph is passed on here.
+    """
+    return {
+        "method": method,
+        "carrier": values["carrier"],
+        "matching": values["matching"],
+        "unmatched": values["unmatched"],
+    }
+
+
 def morph_interval(layer, interval, values, method):
     """In-betweens of one interval.
-
-    This is the one place where the options reach the core: an option added to
-    :data:`.options.OPTIONS` for the morph is passed on here.
 
     Parameters
     ----------
@@ -94,23 +169,10 @@ def morph_interval(layer, interval, values, method):
     ballmorph_core.BallMorphError, ValueError
         When the core cannot in-between these keys at all.
     """
-    matrix = grease_pencil.layer_matrix(layer)
-    identity = np.array_equal(matrix, np.eye(4))
-    if not identity and abs(np.linalg.det(matrix[:3, :3])) < _SINGULAR_DETERMINANT:
-        raise ValueError(reports.flat_transform(layer.name))
-    to_morph, to_layer = (None, None) if identity else (matrix, np.linalg.inv(matrix))
-    key_a = grease_pencil.read_strokes(_frame(layer, interval.frame_a).drawing, to_morph)
-    key_b = grease_pencil.read_strokes(_frame(layer, interval.frame_b).drawing, to_morph)
-    if len(key_a) == 0 and len(key_b) == 0:
+    keys = read_keys(layer, interval, values)
+    if keys is None:
         return None
-    for number, key in ((interval.frame_a, key_a), (interval.frame_b, key_b)):
-        bad = ~np.isfinite(key.positions).all(axis=1)
-        if bad.any():
-            strokes = np.unique(np.searchsorted(key.offsets, np.flatnonzero(bad), side="right") - 1)
-            raise ValueError(reports.invalid_coordinates(number, strokes.tolist()))
-    messages, held = [], None
-    if values["selected_only"]:
-        key_a, key_b, held = _selection(key_a, key_b, messages)
+    messages, held = keys.messages, keys.held
     if interval.chart is None:
         times = ease(interval.fractions, values["easing_type"], values["easing"])
     else:  # a chart gives the morph's own fractions: not eased
@@ -118,18 +180,11 @@ def morph_interval(layer, interval, values, method):
     times = apply_favor(times, values["favor"])
     # The times only enter at the evaluation: a redo with another frame count or easing reuses
     # the plan (matching, ball-maps, carriers) of the same keys and options.
-    plan = PLANS.plan(
-        key_a,
-        key_b,
-        method=method,
-        carrier=values["carrier"],
-        matching=values["matching"],
-        unmatched=values["unmatched"],
-    )
+    plan = PLANS.plan(keys.key_a, keys.key_b, **plan_options(values, method))
     result = plan.evaluate(times)
     messages.extend((message.level, message.text) for message in result.messages)
-    deviation = length_deviation(key_a, key_b, result, times)
+    deviation = length_deviation(keys.key_a, keys.key_b, result, times)
     strays = reports.strays(result.pairs, method, deviation, times, interval.targets)
     frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
-    frames = [_to_layer_space(frame, to_layer) for frame in frames]
+    frames = [_to_layer_space(frame, keys.to_layer) for frame in frames]
     return Morphed(layer, interval, frames, messages, method, strays)

@@ -19,14 +19,14 @@ import numpy as np
 
 from ..ballmorph_core import StrokeSet, plan_inbetween
 
-__all__ = ["PlanCache", "PLANS"]
+__all__ = ["PlanCache", "PLANS", "same_key"]
 
 
 def _same_array(x, y):
     return x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y)
 
 
-def _same_key(a, b):
+def same_key(a, b):
     """Whether two StrokeSets hold equal arrays (dtype, shape and values) in every field, extra
     attributes included."""
     for f in fields(StrokeSet):
@@ -64,9 +64,15 @@ class PlanCache:
 
     def _find(self, key_a, key_b, options):
         for entry in self._used + self._kept:
-            if entry[0] == options and _same_key(entry[1], key_a) and _same_key(entry[2], key_b):
+            if entry[0] == options and same_key(entry[1], key_a) and same_key(entry[2], key_b):
                 return entry
         return None
+
+    def find(self, key_a, key_b, **options):
+        """The plan kept for these keys and options, or None (nothing is recorded: the path
+        preview looks here without changing what the next run keeps)."""
+        entry = self._find(key_a, key_b, options)
+        return None if entry is None else entry[3]
 
     def plan(self, key_a, key_b, **options):
         """The plan of ``plan_inbetween(key_a, key_b, **options)``, reused when already made.

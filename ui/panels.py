@@ -22,6 +22,7 @@ class _InbetweenPanel:
         layout = self.layout
         settings = context.scene.ballmorph_inbetween
         draw_options(layout.column(), settings, compact=True)
+        layout.prop(settings, "path_preview", icon="CURVE_PATH")
         layout.operator(BALLMORPH_OT_inbetween.bl_idname, text="In-between", icon="IPO_EASE_IN_OUT")
 
 

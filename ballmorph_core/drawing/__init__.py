@@ -1,9 +1,10 @@
 """Whole drawings, what the Blender operator calls: strokes, matching, registration, splitting,
-the one stroke-pair pipeline, fallbacks, attributes, the plan, timing, and how far in-betweens
-stray from their keys."""
+the one stroke-pair pipeline, fallbacks, attributes, the plan, timing, how far in-betweens
+stray from their keys, and the path preview."""
 
 from .fallbacks import FALLBACK_METHOD
 from .plan import InbetweenPlan, inbetween, plan_inbetween
+from .preview import PREVIEW_POINTS, PREVIEW_TIMES, PathPreview, pair_colors, path_preview
 from .straying import FALLBACK_MORPHS, ink_lengths, length_deviation
 from .strokes import InbetweenResult, Message, PairReport, StrokeSet
 from .timing import FAVOR_ODDS, apply_favor, ease, frame_times, parse_timing_chart
@@ -15,7 +16,10 @@ __all__ = [
     "InbetweenPlan",
     "InbetweenResult",
     "Message",
+    "PREVIEW_POINTS",
+    "PREVIEW_TIMES",
     "PairReport",
+    "PathPreview",
     "StrokeSet",
     "apply_favor",
     "ease",
@@ -24,5 +28,7 @@ __all__ = [
     "inbetween",
     "ink_lengths",
     "length_deviation",
+    "pair_colors",
+    "path_preview",
     "plan_inbetween",
 ]

@@ -550,12 +550,25 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
-    ready = _own_points_road(plans, pairs, ready, carrier, drawing)
-    ready = _polyline_road(plans, pairs, ready, carrier, drawing)
+    for road in (_own_points_road, _polyline_road):
+        ready = _guarded(road, plans, pairs, ready, carrier, drawing)
     if ready:
         motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing)
         _spread_motions(plans.motions, motions, np.asarray(ready))
     return plans.finish(kind)
+
+
+def _guarded(road, plans, pairs, ready, carrier, drawing):
+    """A road for the pairs it takes; should it fail (a bug), it takes none of them and every
+    ready pair goes on to the ball road, which has its own pair-by-pair isolation."""
+    kept = {c: len(plans.notes[c]) for c in ready}
+    motions_before = plans.motions.take(np.arange(len(pairs)))
+    try:
+        return road(plans, pairs, ready, carrier, drawing)
+    except Exception:  # the ball road plans them instead, and reports anything it cannot do
+        plans.drop(set(ready), kept)
+        plans.motions = motions_before
+        return ready
 
 
 def _polyline_road(plans, pairs, ready, carrier, drawing):

@@ -225,11 +225,16 @@ def _affine_loops(P, Q, index, res_sim, k):
     cq, mq = _area_moments(Q, index)
     ok = np.all(np.isfinite(mp), axis=(1, 2)) & np.all(np.isfinite(mq), axis=(1, 2))
     mp, mq = np.where(ok[:, None, None], mp, np.eye(2)), np.where(ok[:, None, None], mq, np.eye(2))
-    root_q, _ = _sqrtm(mq)
+    # A sliver (second moments of rank one) has no affine shape to fit.
+    for m in (mp, mq):
+        w = np.linalg.eigvalsh(m)
+        ok &= w[:, 0] > tol.ROUNDOFF * np.maximum(np.abs(w[:, 1]), 1e-300)
+    mp, mq = np.where(ok[:, None, None], mp, np.eye(2)), np.where(ok[:, None, None], mq, np.eye(2))
+    root_q, inv_q = _sqrtm(mq)
     _, inv_p = _sqrtm(mp)
     xp, xq = _samples(P, index, k), _samples(Q, index, k)
     wp = as_complex(np.einsum("lij,lkj->lki", inv_p, from_complex(xp) - cp[:, None]))
-    wq = as_complex(np.einsum("lij,lkj->lki", np.linalg.inv(root_q), from_complex(xq) - cq[:, None]))
+    wq = as_complex(np.einsum("lij,lkj->lki", inv_q, from_complex(xq) - cq[:, None]))
     a, _, _ = _loop_fits(wp, wq)
     rot = similarity_matrices(a / np.maximum(np.abs(a), 1e-300))
     A = root_q @ rot @ inv_p

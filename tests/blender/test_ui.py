@@ -86,6 +86,7 @@ def test_sidebar_panels_show_the_scene_settings_and_run(ui):
     assert ui.panels.BALLMORPH_PT_dopesheet.poll(bpy.context)
     log = draw(ui.panels.BALLMORPH_PT_dopesheet.draw, bpy.context)
     assert ("prop", "method") in log and ("prop", "frame_count") in log
+    assert ("prop", "path_preview") in log
     assert log[-1] == ("operator", "ballmorph.inbetween")
     more = draw(ui.panels.BALLMORPH_PT_dopesheet_pairing.draw, bpy.context)
     assert [name for _, name in more] == ["carrier", "matching", "unmatched"]

@@ -1,6 +1,8 @@
 """Pairs the keys' own points carry (drawing/exact.py): unchanged strokes come back bit for bit,
 similar copies move rigidly with their own points."""
 
+import importlib
+
 import numpy as np
 import pytest
 from shapes import circle
@@ -64,3 +66,16 @@ def test_a_copy_far_from_the_origin_is_exact_to_float32_rounding():
     far = HOUSE * 0.01 + [1000.0, -500.0]
     rounded = (far + [0.25, 0.0]).astype(np.float32).astype(np.float64)
     assert exact_fit(far, rounded, True) is not None
+
+
+def test_a_bug_in_the_own_points_road_sends_its_pairs_down_the_ball_road(monkeypatch):
+    pipeline = importlib.import_module("ballmorph_core.drawing.pipeline")
+
+    def broken(*args, **kwargs):
+        raise ZeroDivisionError("simulated core bug")
+
+    monkeypatch.setattr(pipeline, "exact_fit", broken)
+    key = bm.StrokeSet.from_strokes([HOUSE], cyclic=[True])
+    result = bm.inbetween(key, key, [0.5])
+    assert result.pairs[0].method == "polyline"  # the next road took it
+    np.testing.assert_allclose(result.frames[0].positions, key.positions, atol=1e-12)
