@@ -8,16 +8,18 @@ and keys there are, ``pairing`` decides which keys pair up and which frames to w
 ``grease_pencil`` is the only code that moves stroke data, ``options`` declares the options
 once (with their core values) for the operator, the scene settings, the preferences and the
 command line, and ``plans`` keeps the last run's plans for a redo. ``preview`` keeps the path
-preview's trajectories (drawn by ``ui/path_preview.py``). ``pairing`` and ``reports`` never
+preview's trajectories (drawn by ``ui/path_preview.py``); ``hints`` holds the two hint
+operators (their numbering is ``hint_numbers``). ``pairing`` and ``reports`` never
 import bpy: plain CPython tests them (tests/addon).
 """
 
 import bpy
 
+from .hints import BALLMORPH_OT_hint_add, BALLMORPH_OT_hint_clear
 from .inbetween import BALLMORPH_OT_inbetween
 from .plans import PLANS
 
-classes = (BALLMORPH_OT_inbetween,)
+classes = (BALLMORPH_OT_inbetween, BALLMORPH_OT_hint_add, BALLMORPH_OT_hint_clear)
 
 _register_classes, _unregister_classes = bpy.utils.register_classes_factory(classes)
 

@@ -18,6 +18,7 @@ __all__ = [
     "data_collection",
     "layer_matrix",
     "read_strokes",
+    "selected_points",
     "write_strokes",
     "fingerprint",
 ]
@@ -135,6 +136,20 @@ def _read_extras(attributes, n_points, n_strokes):
         (points if attribute.domain == "POINT" else curves)[name] = values
         types[name] = kind
     return points, curves, types
+
+
+def selected_points(drawing):
+    """Per-point edit-mode selection of a drawing, shape (N,) of bool (a selected stroke selects
+    its points; without a ``.selection`` attribute everything counts as selected)."""
+    offsets = _offsets(drawing)
+    n_points = int(offsets[-1])
+    attribute = drawing.attributes.get(".selection")
+    if attribute is None or attribute.data_type not in _FOREACH_KEY:
+        return np.ones(n_points, dtype=bool)
+    values = np.empty(len(attribute.data), dtype=_DTYPE[attribute.data_type])
+    attribute.data.foreach_get(_FOREACH_KEY[attribute.data_type], values)
+    values = values.astype(bool)
+    return np.repeat(values, np.diff(offsets)) if attribute.domain == "CURVE" else values
 
 
 def read_strokes(drawing, matrix=None):

@@ -1,8 +1,9 @@
-"""User interface: Dope Sheet and 3D viewport menus, sidebar panels, preferences, the path preview."""
+"""User interface: Dope Sheet and 3D viewport menus, sidebar panels, preferences, the path preview,
+the hints' numbered dots."""
 
 import bpy
 
-from . import menus, panels, path_preview, preferences
+from . import hint_dots, menus, panels, path_preview, preferences
 
 classes = (*preferences.classes, *menus.classes, *panels.classes)
 
@@ -13,9 +14,11 @@ def register():
     _register_classes()
     menus.register()
     path_preview.register()
+    hint_dots.register()
 
 
 def unregister():
+    hint_dots.unregister()
     path_preview.unregister()
     menus.unregister()
     _unregister_classes()

@@ -23,6 +23,9 @@ class _InbetweenPanel:
         settings = context.scene.ballmorph_inbetween
         draw_options(layout.column(), settings, compact=True)
         layout.prop(settings, "path_preview", icon="CURVE_PATH")
+        row = layout.row(align=True)
+        row.operator("ballmorph.hint_add", text="Add Hint", icon="PINNED")
+        row.operator("ballmorph.hint_clear", text="Clear Hints", icon="UNPINNED")
         layout.operator(BALLMORPH_OT_inbetween.bl_idname, text="In-between", icon="IPO_EASE_IN_OUT")
 
 

@@ -3,6 +3,7 @@ the one stroke-pair pipeline, fallbacks, attributes, the plan, timing, how far i
 stray from their keys, and the path preview."""
 
 from .fallbacks import FALLBACK_METHOD
+from .hints import HINT
 from .plan import InbetweenPlan, inbetween, plan_inbetween
 from .preview import PREVIEW_POINTS, PREVIEW_TIMES, PathPreview, pair_colors, path_preview
 from .straying import FALLBACK_MORPHS, ink_lengths, length_deviation
@@ -13,6 +14,7 @@ __all__ = [
     "FALLBACK_METHOD",
     "FALLBACK_MORPHS",
     "FAVOR_ODDS",
+    "HINT",
     "InbetweenPlan",
     "InbetweenResult",
     "Message",

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .hints import HINT
 from .strokes import StrokeSet
 
 __all__ = ["Held", "Extras", "assemble_frames"]
@@ -61,7 +62,8 @@ class Extras:
         for key in keys:
             for target, arrays in ((out.point, key.point_attributes), (out.curve, key.curve_attributes)):
                 for name, array in arrays.items():
-                    target.setdefault(name, (array.shape[1:], array.dtype))
+                    if name != HINT:  # hints follow the correspondence itself (see .hints)
+                        target.setdefault(name, (array.shape[1:], array.dtype))
             for name, kind in key.attribute_types.items():
                 out.types.setdefault(name, kind)
         return out

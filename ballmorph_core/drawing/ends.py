@@ -109,7 +109,7 @@ def _along(s_on_other, dist, length_other, end_tol, which):
     return np.isfinite(dist) & (depth > end_tol), depth / np.maximum(length_other, 1e-300)
 
 
-def _trims(R, Q, scale, opened):
+def _trims(R, Q, scale, trim):
     """The common parts' arc-length ranges on R and Q, shapes (C, 2) each."""
     n = len(R)
     keep_p, keep_q = np.c_[np.zeros(n), R.length], np.c_[np.zeros(n), Q.length]
@@ -120,8 +120,8 @@ def _trims(R, Q, scale, opened):
         q_over, q_depth = _along(s_q, d_q, Q.length, end_tol, which)
         r_over, r_depth = _along(s_r, d_r, R.length, end_tol, which)
         # Both ends along the other (the strokes overlap there): the shallower trim.
-        trim_q = opened & q_over & (~r_over | (q_depth <= r_depth))
-        trim_r = opened & r_over & ~trim_q
+        trim_q = trim & q_over & (~r_over | (q_depth <= r_depth))
+        trim_r = trim & r_over & ~trim_q
         keep_q[trim_q, which] = s_q[trim_q]
         keep_p[trim_r, which] = s_r[trim_r]
     # A trim that leaves no common part would morph nothing: keep those pairs whole.
@@ -130,7 +130,7 @@ def _trims(R, Q, scale, opened):
     return keep_p, keep_q
 
 
-def settle_ends(R, Q, scale, opened):
+def settle_ends(R, Q, scale, opened, trim=None):
     """The common parts and end gaps of every open pair (see the module docstring).
 
     Parameters
@@ -141,13 +141,16 @@ def settle_ends(R, Q, scale, opened):
         Size of each pair.
     opened : ndarray of bool, shape (C,)
         The pairs to settle (open strokes on the ball road); the others stay whole.
+    trim : ndarray of bool, shape (C,), optional
+        The settled pairs whose overhangs may be trimmed (default: all); the others are only
+        displaced (pieces cut at hints: their ends are the hinted points).
 
     Returns
     -------
     Ends
     """
     n = len(R)
-    keep_p, keep_q = _trims(R, Q, scale, opened)
+    keep_p, keep_q = _trims(R, Q, scale, opened if trim is None else opened & trim)
     idx = np.arange(n)
     part_p, part_q = R.pieces(idx, keep_p[:, 0], keep_p[:, 1]), Q.pieces(idx, keep_q[:, 0], keep_q[:, 1])
     first = part_q.pts[part_q.offsets[:-1]] - part_p.pts[part_p.offsets[:-1]]

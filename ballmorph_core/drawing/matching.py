@@ -54,7 +54,7 @@ from ..geometry.ragged import Ragged, budget_slices
 from ..options import MATCHINGS, check_option
 from .assignment import solve_assignment
 
-__all__ = ["Matching", "match_strokes"]
+__all__ = ["Matching", "match_strokes", "pair_direction"]
 
 #: Samples per stroke in the matching descriptor.
 MATCH_SAMPLES = 32
@@ -472,6 +472,14 @@ def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
         motion=np.array([motion[1].real, motion[1].imag]),
         rotation=complex(motion[0]),
     )
+
+
+def pair_direction(stroke_a, stroke_b, closed_a, closed_b, turn=0.0):
+    """Whether the second stroke should run the other way to morph into the first (bool), by
+    the rules of :func:`match_strokes` (a pair the caller formed, e.g. by hints)."""
+    key_a = _Key([stroke_a], [closed_a], "stroke_a", "closed_a", MATCH_SAMPLES)
+    key_b = _Key([stroke_b], [closed_b], "stroke_b", "closed_b", MATCH_SAMPLES)
+    return bool(_CostTable(key_a, key_b).directions(turn)[0, 0])
 
 
 def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):

@@ -107,6 +107,10 @@ class PairCurves:
     Q: np.ndarray = None
     closed: bool = False
     notes: list = field(default_factory=list)
+    #: Set for the pieces of a pair cut at its hints (:mod:`.hints`): the pair's own carrier
+    #: (Motions of one pair), shared by its pieces so they stay joined, and ends that are the
+    #: hinted points (moved, never trimmed).
+    motion: object = None
 
     @property
     def lengths(self):
@@ -384,11 +388,12 @@ def _handled_directly(P, Q, scale):
     return (~closed & first & last) | nested
 
 
-def register(P, Q, carrier, scale, drawing=None):
+def register(P, Q, carrier, scale, drawing=None, given=None):
     """Step 2: each pair's registration and carrier (see :mod:`.registration`).
 
     Pairs the ball-morph follows as drawn (and every pair with carrier 'none') get none;
-    ``drawing`` (a DrawingMotion) is the keys' overall motion, the prior of symmetric shapes.
+    ``drawing`` (a DrawingMotion) is the keys' overall motion, the prior of symmetric shapes;
+    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
 
     Returns
     -------
@@ -407,6 +412,9 @@ def register(P, Q, carrier, scale, drawing=None):
             np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
         )
         motion = motions(P, fits, carrier, scale, ~_handled_directly(P, Q, scale) & ~still, drawing)
+    for c, own in enumerate(given or []):
+        if own is not None:
+            _spread_motions(motion, own, np.array([c]))
     pts = np.einsum("kij,kj->ki", motion.A[P.owner], P.pts) + motion.b[P.owner]
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
     return motion, R, identity_residual(R, Q)
@@ -419,12 +427,15 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     # own default spacing (the keys may differ in size a lot).
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
-    motions, R, residual = register(P, Q, carrier, pair_scales(P, Q), drawing)
+    given = [pairs[c].motion for c in index]
+    motions, R, residual = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
     h = default_spacings(R, Q) if spacing is None else np.full(len(index), float(spacing))
     coincident = residual <= tol.OVERLAP * scale
-    ends = settle_ends(R, Q, scale, ~closed & ~coincident & (carrier != "none"))
+    pieces = np.array([m is not None for m in given], dtype=bool)
+    settle = ~closed & ~coincident & ((carrier != "none") | pieces)
+    ends = settle_ends(R, Q, scale, settle, trim=settle & ~pieces)
     Rc, Qc = ends.common_p, ends.common_q
     residual = identity_residual(Rc, Qc)  # of the common parts
     coincident |= residual <= tol.OVERLAP * scale
@@ -550,8 +561,12 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
+    # Pieces of hinted pairs share their pair's carrier: only the ball road takes them.
+    pieces = [c for c in ready if pairs[c].motion is not None]
+    ready = [c for c in ready if pairs[c].motion is None]
     for road in (_own_points_road, _polyline_road):
         ready = _guarded(road, plans, pairs, ready, carrier, drawing)
+    ready = sorted(ready + pieces)
     if ready:
         motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing)
         _spread_motions(plans.motions, motions, np.asarray(ready))

@@ -16,9 +16,10 @@ from ..geometry.polyline import reversed_fractions
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
 from .attributes import Extras, Held, assemble_frames
 from .fallbacks import FALLBACK_METHOD, point_motion
+from .hints import END_HINT, HINT, Pieces, common_hints, key_hints, pair_hints
 from .keys import ProjectedKey
 from .layout import PairFrames
-from .matching import match_strokes
+from .matching import match_strokes, pair_direction
 from .pipeline import PairCurves, plan_pairs
 from .registration import DrawingMotion
 from .strokes import InbetweenResult, Message, PairReport, StrokeSet
@@ -114,20 +115,50 @@ class InbetweenPlan:
         kb = ProjectedKey(key_b, plane, extras.point_columns(key_b))
         self.ka, self.kb = ka, kb
         self.messages = []  # the plan's own, before the per-pair reports
-        matched, drawing = self._match(key_a, key_b, matching)
+        hints = common_hints(
+            key_hints(key_a, "first", self.messages), key_hints(key_b, "second", self.messages), self.messages
+        )
+        matched, drawing = self._match(key_a, key_b, matching, hints)
         self.strokes = [(ka.stroke(i), kb.stroke(j, flip), flip) for i, j, flip in matched]
-        self.pairs = plan_pairs([_curves(a, b) for a, b, _ in self.strokes], method, carrier, spacing, drawing)
+        hinted = pair_hints(hints, self.strokes, ka, kb, self.messages)
+        self.strokes, hinted = self._orient_by_hints(hinted, hints)
+        self.has_hints = HINT in key_a.point_attributes or HINT in key_b.point_attributes
+        self.pieces = Pieces(
+            [_curves(a, b) for a, b, _ in self.strokes], self.strokes, hinted, carrier, drawing, _curves
+        )
+        self.pairs = plan_pairs(self.pieces.curves, method, carrier, spacing, drawing)
         self.planarity = _planarity_messages(key_a, key_b, plane)
 
-    def _match(self, key_a, key_b, matching):
+    def _orient_by_hints(self, hinted, hints):
+        """Open pairs whose hints run backwards along the second stroke are flipped (the hints
+        say which way it runs): the strokes and their hints again."""
+        strokes = list(self.strokes)
+        flipped = False
+        for k, h in hinted.items():
+            a, b, flip = strokes[k]
+            backwards = len(h.u_b) >= 2 and h.u_b[-1] < h.u_b[0]
+            # A hint on an end of one stroke and the other end of the other: reversed too.
+            on_end = np.abs(h.u_a - 0.5) >= 0.5 - END_HINT
+            crossed = bool(np.any(on_end & (np.abs(h.u_a - (1.0 - h.u_b)) <= END_HINT)))
+            if not b.closed and (backwards or crossed):
+                strokes[k] = (a, self.kb.stroke(b.index, not flip), not flip)
+                flipped = True
+        if not flipped:
+            return strokes, hinted
+        return strokes, pair_hints(hints, strokes, self.ka, self.kb, [])
+
+    def _match(self, key_a, key_b, matching, hints):
         """Pairs (i, j, flip) of strokes with points (strokes without a partner are held), and
-        the keys' overall motion (DrawingMotion)."""
+        the keys' overall motion (DrawingMotion). Strokes a hint joins are paired first."""
         ka, kb = self.ka, self.kb
         # Strokes without points have nothing to morph or show: leave them out, and say so.
         live_a, live_b = np.flatnonzero(key_a.sizes > 0), np.flatnonzero(key_b.sizes > 0)
         for name, key in (("first", key_a), ("second", key_b)):
             for i in np.flatnonzero(key.sizes == 0):
                 self.messages.append(Message("INFO", f"stroke {i} of the {name} key has no points: left out"))
+        forced = sorted({(h.stroke_a, h.stroke_b) for h in hints})
+        live_a = np.array([i for i in live_a if i not in {a for a, _ in forced}], dtype=np.int64)
+        live_b = np.array([j for j in live_b if j not in {b for _, b in forced}], dtype=np.int64)
         pairing = match_strokes(
             [ka.rg.curve(i) for i in live_a],
             [kb.rg.curve(j) for j in live_b],
@@ -140,7 +171,13 @@ class InbetweenPlan:
         if pairing.method != "index" or self.held:
             self.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
         drawing = DrawingMotion(pairing.rotation, complex(*pairing.motion))
-        return [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs], drawing
+        matched = [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
+        for i, j in forced:
+            flip = pair_direction(ka.rg.curve(i), kb.rg.curve(j), ka.rg.closed[i], kb.rg.closed[j], drawing.turn)
+            matched.append((i, j, flip))
+        if forced:
+            self.messages.append(Message("INFO", f"{len(forced)} stroke pair(s) joined by hints"))
+        return sorted(matched), drawing
 
     def evaluate(self, times):
         """The in-betweens at ``times``.
@@ -156,7 +193,8 @@ class InbetweenPlan:
         """
         times = _check_times(times)
         result = InbetweenResult(frames=[], messages=list(self.messages))
-        parts = _finite(self.pairs.frames(times), self.strokes, times)
+        parts, marks = self.pieces.merge(self.pairs.frames(times))
+        parts = _finite(parts, self.strokes, times)
         for k, (a, b, flip) in enumerate(self.strokes):
             _report_pair(result, a, b, flip, parts.used[k], parts.notes[k])
         for h in self.held:
@@ -164,8 +202,20 @@ class InbetweenPlan:
         # The second key's fractions are along its stroke as morphed: read them back as drawn.
         parts.u_b = _as_drawn(parts, self.strokes)
         result.frames = assemble_frames(parts, self, times)
+        if self.has_hints:
+            for frame in result.frames:
+                _mark_hints(frame, marks)
         result.messages.extend(self.planarity)
         return result
+
+
+def _mark_hints(frame, marks):
+    """Give an in-between the hint attribute: hint k on the one sample that is its image."""
+    values = np.zeros(len(frame.positions), dtype=np.int64)
+    for index, number in marks:
+        values[index] = number
+    frame.point_attributes[HINT] = values
+    frame.attribute_types.setdefault(HINT, "INT")
 
 
 def _curves(a, b):
