@@ -21,8 +21,9 @@ __all__ = [
 CARRIERS = ("similarity", "rigid", "none")
 #: How the strokes of two keys are paired (see :mod:`~ballmorph_core.drawing.matching`).
 MATCHINGS = ("auto", "index")
-#: What a stroke without a partner does: switch at the middle, or hold on every in-between.
-UNMATCHED = ("middle", "hold")
+#: What a stroke without a partner does: switch at the middle, hold on every in-between, fade,
+#: shrink along itself, or shrink into its nearest paired stroke (see drawing/unmatched.py).
+UNMATCHED = ("middle", "hold", "fade", "shrink", "neighbour")
 #: Which curve a correspondence samples uniformly (the paper's approaches 3 and 2).
 SAMPLINGS = ("symmetric", "p", "q")
 #: The five ball-morph paths (paper section 4.2).

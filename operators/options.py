@@ -268,6 +268,14 @@ OPTIONS = (
         (
             Item("MIDDLE", "middle", "Switch Halfway", "Shown until (or from) the middle of the in-betweens"),
             Item("HOLD", "hold", "Hold", "Shown unchanged on every in-between"),
+            Item("FADE", "fade", "Fade", "Fades out (or in) over the in-betweens"),
+            Item("SHRINK", "shrink", "Shrink to a Point", "Slides along itself into (or out of) its middle point"),
+            Item(
+                "NEIGHBOUR",
+                "neighbour",
+                "Shrink into Neighbour",
+                "Shrinks into (or grows out of) the nearest point of its nearest stroke that has a partner",
+            ),
         ),
     ),
 )

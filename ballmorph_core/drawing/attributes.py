@@ -15,6 +15,7 @@ import numpy as np
 
 from .hints import HINT
 from .strokes import StrokeSet
+from .unmatched import Anchors, shown_strokes
 
 __all__ = ["Held", "Extras", "assemble_frames"]
 
@@ -111,35 +112,28 @@ def _pair_values(parts, strokes_a, strokes_b, ka, kb):
     return va, vb
 
 
-def _held_strokes(held, t, unmatched, extras):
-    """The held strokes shown at time ``t``, each as the StrokeSet of its one stroke."""
-    out = []
-    for h in held:
-        if unmatched != "hold" and (t >= 0.5 if h.from_a else t < 0.5):
-            continue
-        s, i = h.key.strokes, h.index
-        sl = s.points(i)
-        values = h.key.values[sl]
-        points = extras.from_columns(values[:, _BASE:])
-        own = extras.arrays(s, "point")
-        points.update({name: own[name][sl] for name in extras.point if name not in points})
-        curves = {name: array[i : i + 1] for name, array in extras.arrays(s, "curve").items()}
-        out.append(
-            StrokeSet(
-                positions=s.positions[sl],
-                offsets=[0, sl.stop - sl.start],
-                cyclic=s.cyclic[i : i + 1],
-                material_index=s.material_index[i : i + 1],
-                radius=values[:, 1],
-                opacity=values[:, 2],
-                vertex_color=values[:, 3:_BASE],
-                origin=[(i, -1) if h.from_a else (-1, i)],
-                point_attributes=points,
-                curve_attributes=curves,
-                attribute_types=extras.types,
-            )
-        )
-    return out
+def _as_drawn(h, extras):
+    """A stroke without a partner as drawn in its key: the StrokeSet of its one stroke."""
+    s, i = h.key.strokes, h.index
+    sl = s.points(i)
+    values = h.key.values[sl]
+    points = extras.from_columns(values[:, _BASE:])
+    own = extras.arrays(s, "point")
+    points.update({name: own[name][sl] for name in extras.point if name not in points})
+    curves = {name: array[i : i + 1] for name, array in extras.arrays(s, "curve").items()}
+    return StrokeSet(
+        positions=s.positions[sl],
+        offsets=[0, sl.stop - sl.start],
+        cyclic=s.cyclic[i : i + 1],
+        material_index=s.material_index[i : i + 1],
+        radius=values[:, 1],
+        opacity=values[:, 2],
+        vertex_color=values[:, 3:_BASE],
+        origin=[(i, -1) if h.from_a else (-1, i)],
+        point_attributes=points,
+        curve_attributes=curves,
+        attribute_types=extras.types,
+    )
 
 
 class _Discrete:
@@ -194,6 +188,8 @@ def assemble_frames(parts, plan, times):
     index_b = np.array([b.index for b in strokes_b], dtype=np.int64)
     va, vb = _pair_values(parts, index_a, index_b, ka, kb)
     discrete = _Discrete(parts, plan, index_a, index_b, extras)
+    anchors = Anchors(held, parts, plan) if unmatched == "neighbour" and held else None
+    drawn = [_as_drawn(h, extras) for h in held]
     mat_a = np.array([a.material for a in strokes_a], dtype=np.int64)
     mat_b = np.array([b.material for b in strokes_b], dtype=np.int64)
     origin = np.c_[index_a, index_b].astype(np.int64).reshape(-1, 2)
@@ -224,5 +220,6 @@ def assemble_frames(parts, plan, times):
             curve_attributes=curves,
             attribute_types=extras.types,
         )
-        out.append(StrokeSet.concatenate([drawing, *_held_strokes(held, t, unmatched, extras)]))
+        shown = shown_strokes(held, drawn, t, unmatched, parts.frames[ti], anchors, plane)
+        out.append(StrokeSet.concatenate([drawing, *shown]))
     return out

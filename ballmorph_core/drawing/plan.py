@@ -75,9 +75,11 @@ def plan_inbetween(
         :mod:`~ballmorph_core.drawing.registration`); 'none' is the paper's pure ball-morph.
     matching : {'auto', 'index'}
         How strokes of the two keys are paired (see :mod:`~ballmorph_core.drawing.matching`).
-    unmatched : {'middle', 'hold'}
-        A stroke without a partner appears (or disappears) at t = 0.5 ('middle'), or is held
-        on every in-between ('hold').
+    unmatched : {'middle', 'hold', 'fade', 'shrink', 'neighbour'}
+        What a stroke without a partner does (see :mod:`.unmatched`): appears (or disappears)
+        at t = 0.5, is held on every in-between, fades in (or out), grows out of (or shrinks
+        into) the point at its middle, or out of (into) the nearest point of its nearest paired
+        stroke.
     spacing : float, optional
         Geodesic sample spacing for every pair (default: each pair's own).
 
@@ -312,9 +314,19 @@ def _report_pair(result, a, b, flipped, used, notes):
         result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {note}"))
 
 
+#: How the report says what a stroke without a partner does: (going, coming) per option.
+_UNMATCHED_WORDS = {
+    "middle": ("disappears at the middle", "appears at the middle"),
+    "hold": ("held", "held"),
+    "fade": ("fades out", "fades in"),
+    "shrink": ("shrinks into its middle", "grows out of its middle"),
+    "neighbour": ("shrinks into its nearest stroke", "grows out of its nearest stroke"),
+}
+
+
 def _report_unmatched(result, index, from_a, unmatched):
     key = "first" if from_a else "second"
-    what = "held" if unmatched == "hold" else ("disappears at the middle" if from_a else "appears at the middle")
+    what = _UNMATCHED_WORDS[unmatched][0 if from_a else 1]
     method = "hold" if unmatched == "hold" else ("disappear" if from_a else "appear")
     result.pairs.append(PairReport(index if from_a else None, None if from_a else index, method))
     result.messages.append(Message("WARNING", f"stroke {index} of the {key} key has no partner: {what}"))
