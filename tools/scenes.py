@@ -1498,12 +1498,6 @@ SCENES = {scene.name: scene for scene in _all_scenes()}
 #: Regenerate with ``python tools/scenes_report.py --xfail-table`` when the core improves.
 XFAIL_TODAY = {
     "static-overlap-loop": ("new self-crossing strokes 1 on 1 of 7 frames, 1 crossings (keys: 0 strokes) (goal ≤ 0)"),
-    "split-1-to-2": (
-        "ink length off the blend, worst 24.4% (goal ≤ ±10%); largest ink jump 1.637 (goal ≤ 0.200 (keys' difference))"
-    ),
-    "split-2-to-1": (
-        "ink length off the blend, worst 24.4% (goal ≤ ±10%); largest ink jump 1.638 (goal ≤ 0.200 (keys' difference))"
-    ),
 }
 
 #: Scenes of XFAIL_TODAY whose float32 twin, as Blender stores the keys, meets every goal: the

@@ -107,8 +107,8 @@ def _pair_values(parts, strokes_a, strokes_b, ka, kb):
     width = ka.values.shape[1]
     if not sizes.sum():
         return np.zeros((0, width)), np.zeros((0, width))
-    va = ka.sample(np.repeat(strokes_a, sizes), parts.u_a)
-    vb = kb.sample(np.repeat(strokes_b, sizes), parts.u_b)
+    va = ka.sample(np.repeat(strokes_a, sizes) if parts.stroke_a is None else parts.stroke_a, parts.u_a)
+    vb = kb.sample(np.repeat(strokes_b, sizes) if parts.stroke_b is None else parts.stroke_b, parts.u_b)
     return va, vb
 
 
@@ -145,8 +145,8 @@ class _Discrete:
         floats_p, floats_c = set(extras.floats("point")), set(extras.floats("curve"))
         self.point = {}
         if any(name not in floats_p for name in extras.point):
-            near_a = plan.ka.nearest(np.repeat(index_a, sizes), parts.u_a)
-            near_b = plan.kb.nearest(np.repeat(index_b, sizes), parts.u_b)
+            near_a = plan.ka.nearest(np.repeat(index_a, sizes) if parts.stroke_a is None else parts.stroke_a, parts.u_a)
+            near_b = plan.kb.nearest(np.repeat(index_b, sizes) if parts.stroke_b is None else parts.stroke_b, parts.u_b)
             arrays_a = extras.arrays(plan.ka.strokes, "point")
             arrays_b = extras.arrays(plan.kb.strokes, "point")
             self.point = {

@@ -134,6 +134,10 @@ class PairFrames:
     closed: np.ndarray
     used: list = field(default_factory=list)
     notes: list = field(default_factory=list)
+    #: Each sample's key strokes (set by the plan: a pair drawn in pieces reads attributes piece
+    #: by piece); None: each pair's own strokes.
+    stroke_a: np.ndarray = None
+    stroke_b: np.ndarray = None
 
     def pair(self, c):
         """``(frames (T, K_c, 2), u_a, u_b)`` of pair ``c``."""

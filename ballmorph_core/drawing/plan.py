@@ -17,11 +17,12 @@ from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positi
 from .attributes import Extras, Held, assemble_frames
 from .fallbacks import FALLBACK_METHOD, point_motion
 from .hints import END_HINT, HINT, Pieces, common_hints, key_hints, pair_hints
-from .keys import ProjectedKey
+from .keys import KeyStroke, ProjectedKey
 from .layout import PairFrames
 from .matching import match_strokes, pair_direction
 from .pipeline import PairCurves, plan_pairs
 from .registration import DrawingMotion
+from .splits import Joined, cut_frame, join_pieces, joined_stroke
 from .strokes import InbetweenResult, Message, PairReport, StrokeSet
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
@@ -121,7 +122,9 @@ class InbetweenPlan:
             key_hints(key_a, "first", self.messages), key_hints(key_b, "second", self.messages), self.messages
         )
         matched, drawing = self._match(key_a, key_b, matching, hints)
-        self.strokes = [(ka.stroke(i), kb.stroke(j, flip), flip) for i, j, flip in matched]
+        hinted_strokes = {h.stroke_a for h in hints}, {h.stroke_b for h in hints}
+        self.joined = self._join_pieces(matched, hinted_strokes)
+        self.strokes = [self._pair_strokes(k, i, j, flip, drawing) for k, (i, j, flip) in enumerate(matched)]
         hinted = pair_hints(hints, self.strokes, ka, kb, self.messages)
         self.strokes, hinted = self._orient_by_hints(hinted, hints)
         self.has_hints = HINT in key_a.point_attributes or HINT in key_b.point_attributes
@@ -130,6 +133,56 @@ class InbetweenPlan:
         )
         self.pairs = plan_pairs(self.pieces.curves, method, carrier, spacing, drawing)
         self.planarity = _planarity_messages(key_a, key_b, plane)
+
+    def _join_pieces(self, matched, hinted_strokes):
+        """Strokes without a partner that are pieces of a paired stroke's line (see
+        :mod:`.splits`), joined to it: dict pair index -> Joined; they are no longer held."""
+        held = [(h.index, h.from_a) for h in self.held]
+        free = [
+            (k, (i, j, f))
+            for k, (i, j, f) in enumerate(matched)
+            if i not in hinted_strokes[0] and j not in hinted_strokes[1]
+        ]
+        extra, side = join_pieces([p for _, p in free], held, self.ka, self.kb)
+        out = {}
+        for local, pieces in extra.items():
+            k, (i, j, _) = free[local]
+            from_a = side[local] == "a"
+            key, first = (self.ka, i) if from_a else (self.kb, j)
+            xy, u, order, flips, spans = joined_stroke(key, first, pieces)
+            out[k] = Joined(k, side[local], order, spans, flips), (xy, u)
+            self.held = [h for h in self.held if not (h.from_a == from_a and h.index in pieces)]
+            names = ", ".join(str(o) for o in order)
+            self.messages.append(
+                Message(
+                    "INFO",
+                    f"strokes {names} of the {'first' if from_a else 'second'} key are one line drawn in pieces: "
+                    f"the gaps {'close' if from_a else 'open'} along the in-betweens",
+                )
+            )
+        return out
+
+    def _pair_strokes(self, k, i, j, flip, drawing):
+        """The two KeyStrokes of pair ``k`` (the pieced side joined), and whether B is flipped."""
+        if k not in self.joined:
+            return self.ka.stroke(i), self.kb.stroke(j, flip), flip
+        joined, (xy, u) = self.joined[k]
+        first = joined.strokes[0]
+        if joined.side == "a":
+            a = KeyStroke(first, xy, u, False, int(self.ka.strokes.material_index[first]))
+            b_xy = self.kb.rg.curve(j)
+            flip = pair_direction(xy, b_xy, False, bool(self.kb.rg.closed[j]), drawing.turn)
+            return a, self.kb.stroke(j, flip), flip
+        a = self.ka.stroke(i)
+        flip = pair_direction(a.xy, xy, a.closed, False, drawing.turn)
+        b = KeyStroke(
+            first,
+            xy[::-1] if flip else xy,
+            1.0 - u[::-1] if flip else u,
+            False,
+            int(self.kb.strokes.material_index[first]),
+        )
+        return a, b, flip
 
     def _orient_by_hints(self, hinted, hints):
         """Open pairs whose hints run backwards along the second stroke are flipped (the hints
@@ -181,6 +234,44 @@ class InbetweenPlan:
             self.messages.append(Message("INFO", f"{len(forced)} stroke pair(s) joined by hints"))
         return sorted(matched), drawing
 
+    def _sources(self, parts):
+        """Every sample's key strokes and fractions along them as drawn (``parts.stroke_a``,
+        ``stroke_b``, ``u_a``, ``u_b``), the joined pieces read back piece by piece; returns the
+        joined fractions of the pieced side, per joined pair (for the gaps)."""
+        parts.stroke_a, parts.stroke_b = _sources_default(parts, self.strokes)
+        along = {}
+        for k, (joined, _) in self.joined.items():
+            sl = slice(parts.offsets[k], parts.offsets[k + 1])
+            name = "a" if joined.side == "a" else "b"
+            u = getattr(parts, f"u_{name}")[sl].copy()
+            along[k] = u
+            stroke, local = joined.sources(u)
+            getattr(parts, f"stroke_{name}")[sl] = stroke
+            getattr(parts, f"u_{name}")[sl] = local
+        return along
+
+    def _windows(self, parts, along, t):
+        """The stretches of each joined pair's in-between that its gaps leave out at ``t``: dict
+        stroke -> list of ``(lo, hi)`` fractional sample indices (gaps open from their middles in
+        the second key drawn in pieces, close to them in the first)."""
+        out = {}
+        for k, (joined, _) in self.joined.items():
+            grow = t if joined.side == "b" else 1.0 - t
+            u = along[k]
+            ranges = []
+            index = np.arange(len(u), dtype=np.float64)
+            backwards = len(u) > 1 and u[-1] < u[0]  # the samples run against the joined stroke
+            for g0, g1 in joined.gaps():
+                m = 0.5 * (g0 + g1)
+                ends = [m - grow * (m - g0), m + grow * (g1 - m)]
+                if backwards:
+                    hi, lo = len(u) - 1 - np.interp(ends, u[::-1], index)
+                else:
+                    lo, hi = np.interp(ends, u, index)
+                ranges.append((float(lo), float(hi)))
+            out[k] = ranges
+        return out
+
     def evaluate(self, times):
         """The in-betweens at ``times``.
 
@@ -199,14 +290,23 @@ class InbetweenPlan:
         parts = _finite(parts, self.strokes, times)
         for k, (a, b, flip) in enumerate(self.strokes):
             _report_pair(result, a, b, flip, parts.used[k], parts.notes[k])
+            if k in self.joined:  # the other pieces of a line drawn in pieces: part of this pair
+                joined = self.joined[k][0]
+                for piece in joined.strokes[1:]:
+                    stroke_a, stroke_b = (piece, None) if joined.side == "a" else (None, piece)
+                    whole = b.index if joined.side == "a" else a.index
+                    result.pairs.append(PairReport(stroke_a, stroke_b, f"piece of the line of stroke {whole}"))
         for h in self.held:
             _report_unmatched(result, h.index, h.from_a, self.unmatched)
         # The second key's fractions are along its stroke as morphed: read them back as drawn.
         parts.u_b = _as_drawn(parts, self.strokes)
+        along = self._sources(parts)
         result.frames = assemble_frames(parts, self, times)
         if self.has_hints:
             for frame in result.frames:
                 _mark_hints(frame, marks)
+        if self.joined:
+            result.frames = [cut_frame(f, self._windows(parts, along, t)) for f, t in zip(result.frames, times)]
         result.messages.extend(self.planarity)
         return result
 
@@ -218,6 +318,14 @@ def _mark_hints(frame, marks):
         values[index] = number
     frame.point_attributes[HINT] = values
     frame.attribute_types.setdefault(HINT, "INT")
+
+
+def _sources_default(parts, strokes):
+    sizes = np.diff(parts.offsets)
+    return (
+        np.repeat(np.array([a.index for a, _, _ in strokes], dtype=np.int64), sizes),
+        np.repeat(np.array([b.index for _, b, _ in strokes], dtype=np.int64), sizes),
+    )
 
 
 def _curves(a, b):
