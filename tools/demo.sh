@@ -2,7 +2,8 @@
 # The main job (README's `make demo`): the add-on in-betweens five shot-like Grease Pencil
 # cases inside Blender 5.0 (headless) and writes out/demo.blend and out/demo.png; Blender renders
 # every frame of out/demo.blend with Workbench into out/demo.gif; then the picture of the path
-# preview drawn from the same shots, out/path_preview.png, and the core's own picture of a
+# preview drawn from the same shots, out/path_preview.png, the correspondence hints on a real
+# scene, out/hints.png, and the core's own picture of a
 # ball-morph, out/core_demo.png.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -11,4 +12,5 @@ py=$(tools/bootstrap.sh 5.0.1)
 timeout 600 "$py" tools/demo.py
 timeout 600 "$py" tools/render_demo.py
 timeout 600 "$py" tools/path_preview.py
+timeout 600 "$py" tools/hints_picture.py
 "$py" tools/core_demo.py

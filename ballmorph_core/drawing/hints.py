@@ -27,7 +27,18 @@ from .layout import PairFrames
 from .registration import Fits, Motions, motions, similarity_matrices
 from .strokes import Message
 
-__all__ = ["HINT", "END_HINT", "Hint", "KeyHints", "PairHints", "Pieces", "key_hints", "common_hints", "pair_hints"]
+__all__ = [
+    "HINT",
+    "END_HINT",
+    "Hint",
+    "hinted_fit",
+    "KeyHints",
+    "PairHints",
+    "Pieces",
+    "key_hints",
+    "common_hints",
+    "pair_hints",
+]
 
 #: The point attribute holding hint numbers (a contract: outside checks write and read it).
 HINT = "ballmorph_hint"

@@ -335,6 +335,7 @@ class _CostTable:
         self.valid = key_a.valid[:, None] & key_b.valid[None, :]
         self.mixed = key_a.loop[:, None] != key_b.loop[None, :]
         self.dot_spread = DOT_SPREAD * max(key_a.diagonal, key_b.diagonal, 1e-300)
+        self.prior_turn = 1.0 + 0j  # the turn motions are charged from (the hints' when given)
         oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
         ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
         e_f, e_r, t_f, t_r = _open_shapes(oa, ob)
@@ -380,7 +381,7 @@ class _CostTable:
         ratio = np.maximum(self.rb[None, :], 1e-300) / np.maximum(scale * self.ra[:, None], 1e-300)
         size = np.where((self.ra[:, None] > 0) & (self.rb[None, :] > 0), np.abs(np.log(ratio)) / np.log(4.0), 0.0)
         c = W_SHAPE * self.shape + W_PLACE * place + W_SCALE * size + MATCH_CYCLIC_PENALTY * self.mixed
-        c = c + W_TURN * abs(np.angle(a)) / np.pi
+        c = c + W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
         return np.where(self.valid, c, np.inf)
 
     def fit_motion(self, rows, cols):
@@ -415,9 +416,9 @@ def _padded_total(pair_costs, n_a, n_b):
     return float(np.sum(pair_costs)) + 0.5 * MATCH_MAX_COST * unmatched
 
 
-def _guesses(table, key_a, key_b):
-    """Starting guesses of the keys' overall motion (complex ``a, b``)."""
-    guesses = [(1.0 + 0j, 0j)]
+def _guesses(table, key_a, key_b, motion=None):
+    """Starting guesses of the keys' overall motion (complex ``a, b``), ``motion`` first."""
+    guesses = [(1.0 + 0j, 0j)] if motion is None else [motion, (1.0 + 0j, 0j)]
     if key_a.valid.any() and key_b.valid.any():
         shift = _complex(key_b.ink_centroid() - key_a.ink_centroid())
         guesses.append((1.0 + 0j, complex(shift)))
@@ -427,7 +428,7 @@ def _guesses(table, key_a, key_b):
     return guesses
 
 
-def _best_assignment(table, key_a, key_b):
+def _best_assignment(table, key_a, key_b, motion=None):
     """Alternate assignment and motion fit from each starting guess; keep the cheapest.
 
     Returns
@@ -437,7 +438,7 @@ def _best_assignment(table, key_a, key_b):
     motion : tuple of complex
     """
     best, tried = None, []
-    for motion in _guesses(table, key_a, key_b):
+    for motion in _guesses(table, key_a, key_b, motion):  # noqa: B020 (the guess starts the list)
         for _ in range(MATCH_MOTION_ITERATIONS):
             # A motion already evaluated (the previous pairs refit to the same motion, or another
             # guess led here) would give the same assignment: this guess has converged.
@@ -482,7 +483,7 @@ def pair_direction(stroke_a, stroke_b, closed_a, closed_b, turn=0.0):
     return bool(_CostTable(key_a, key_b).directions(turn)[0, 0])
 
 
-def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
+def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto", motion=None):
     """Pair the strokes of two keys.
 
     Parameters
@@ -501,6 +502,9 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
         optimal assignment's), which keeps the animator's order when it is right; otherwise it
         returns the optimal assignment, where no pair costs ``MATCH_MAX_COST`` or more.
         Either way each pair's direction is chosen (see the module notes).
+    motion : (complex, complex), optional
+        A guess of the keys' overall motion ``z -> a z + b`` tried first, its turn the one
+        motions are charged from (the animator's hints say how the drawing moves).
 
     Returns
     -------
@@ -525,6 +529,8 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
     key_a = _Key(strokes_a, closed_a, "strokes_a", "closed_a", MATCH_SAMPLES)
     key_b = _Key(strokes_b, closed_b, "strokes_b", "closed_b", MATCH_SAMPLES)
     table = _CostTable(key_a, key_b)
+    if motion is not None and abs(motion[0]) > 0:
+        table.prior_turn = motion[0] / abs(motion[0])
     n_a, n_b = key_a.count, key_b.count
     index = np.arange(min(n_a, n_b))
     if mode == "index":
@@ -535,7 +541,7 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto"):
         )
     if n_a == n_b == 0:
         return _matching(key_a, key_b, table, index, index, (1.0 + 0j, 0j), "index", "neither key has strokes")
-    total, rows, cols, motion = _best_assignment(table, key_a, key_b)
+    total, rows, cols, motion = _best_assignment(table, key_a, key_b, motion)
     if n_a != n_b:
         reason = f"stroke counts differ ({n_a} vs {n_b}): optimal assignment"
         return _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)

@@ -16,7 +16,7 @@ from ..geometry.polyline import reversed_fractions
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
 from .attributes import Extras, Held, assemble_frames
 from .fallbacks import FALLBACK_METHOD, point_motion
-from .hints import END_HINT, HINT, Pieces, common_hints, key_hints, pair_hints
+from .hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
 from .keys import KeyStroke, ProjectedKey
 from .layout import PairFrames
 from .matching import match_strokes, pair_direction
@@ -134,6 +134,21 @@ class InbetweenPlan:
         self.pairs = plan_pairs(self.pieces.curves, method, carrier, spacing, drawing)
         self.planarity = _planarity_messages(key_a, key_b, plane)
 
+    def _hinted_motion(self, forced, hints):
+        """How the hints say the drawing moves (complex ``a, b``): the hinted registration of
+        the longest pair the hints join, or None. A wheel hinted to turn a quarter turn turns its
+        unhinted spokes with it."""
+        best, longest = None, 0.0
+        for i, j in forced:
+            ka, kb = self.ka, self.kb
+            flip = pair_direction(ka.rg.curve(i), kb.rg.curve(j), ka.rg.closed[i], kb.rg.closed[j])
+            a, b = ka.stroke(i), kb.stroke(j, flip)
+            found = pair_hints(hints, [(a, b, flip)], ka, kb, [])
+            length = float(ka.rg.length[i] + kb.rg.length[j])
+            if 0 in found and length > longest:
+                best, longest = hinted_fit(a, b, found[0]), length
+        return best
+
     def _join_pieces(self, matched, hinted_strokes):
         """Strokes without a partner that are pieces of a paired stroke's line (see
         :mod:`.splits`), joined to it: dict pair index -> Joined; they are no longer held."""
@@ -220,6 +235,7 @@ class InbetweenPlan:
             ka.rg.closed[live_a],
             kb.rg.closed[live_b],
             mode=matching,
+            motion=self._hinted_motion(forced, hints),
         )
         self.held = [Held(ka, int(live_a[i]), True) for i in pairing.unmatched_a]
         self.held += [Held(kb, int(live_b[j]), False) for j in pairing.unmatched_b]

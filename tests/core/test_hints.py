@@ -126,3 +126,29 @@ def test_keys_without_hints_get_no_hint_attribute():
     c = circle(1.0, 40)
     result = bm.inbetween(bm.StrokeSet.from_strokes([c], [True]), bm.StrokeSet.from_strokes([1.2 * c], [True]), [0.5])
     assert HINT not in result.frames[0].point_attributes
+
+
+def test_a_hint_on_the_rim_turns_the_unhinted_spokes_with_it():
+    """The hints say how the drawing moves: strokes they do not touch are paired for that motion
+    (a wheel's three spokes turn a quarter turn with the rim instead of taking their nearest)."""
+
+    def wheel(turn):
+        spokes = []
+        for k in range(3):
+            a = np.radians(turn + 120.0 * k + 30.0)
+            spokes.append(np.linspace(0.0, 0.95, 12)[:, None] * [np.cos(a), np.sin(a)])
+        return [circle(1.0, 72), *spokes]
+
+    rim_b = circle(1.0, 72)  # the rim's point 18 is at 90 degrees
+    plain = bm.inbetween(
+        bm.StrokeSet.from_strokes(wheel(0.0), [True, False, False, False]),
+        bm.StrokeSet.from_strokes([rim_b, *wheel(90.0)[1:]], [True, False, False, False]),
+        [0.5],
+    )
+    key_a = hinted(wheel(0.0), [True, False, False, False], {0: 1})
+    key_b = hinted([rim_b, *wheel(90.0)[1:]], [True, False, False, False], {18: 1})
+    turned = bm.inbetween(key_a, key_b, [0.5])
+    for result, turn in ((plain, -15.0), (turned, 45.0)):  # spoke 0 at 30 degrees, halfway
+        frame = result.frames[0]
+        tip = frame.positions[frame.points(1)][-1, [0, 2]]
+        assert abs(np.degrees(np.arctan2(tip[1], tip[0])) - (30.0 + turn)) < 1.0
