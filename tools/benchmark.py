@@ -1,4 +1,4 @@
-"""Benchmark of the operator against Blender's own Interpolate Sequence (issue 6).
+"""Benchmark of the operator against Blender's own Interpolate Sequence (issues 6 and 14).
 
 Runs inside bpy (Blender as a Python module, headless)::
 
@@ -27,8 +27,9 @@ matching / ball-map / frames evaluation / assembly, write-back), and measures th
 run of every operator on the largest drawing (and the goal sizes), each in a fresh bpy process
 (the growth of the process's peak resident set, see :func:`_reset_peak`).
 
-The ball-map scaling (tools/bench_ballmap.py) runs in a plain CPython subprocess and its table
-is embedded. ``--write`` writes the markdown report (docs/benchmark.md for ``make bench``).
+The ball-map scaling (tools/bench_ballmap.py) and the scribble (one stroke of random points whose
+long edges all cross, issue 14's superlinear case) run in plain CPython subprocesses and their
+tables are embedded. ``--write`` writes the markdown report (docs/benchmark.md for ``make bench``).
 """
 
 import argparse
@@ -70,8 +71,12 @@ INBETWEENS = (3, 9, 23)
 METHODS = ("CIRCULAR_BALL", "LINEAR_BALL", "PARABOLIC_BALL")
 QUICK_SIZES = ((10, 50, 3), (100, 200, 9))
 
-# The goals of issue 6.
-GOAL_RATIOS = {(100, 200, 9): 1.5, (400, 500, 23): 1.0}  # ours (circular) / built-in, at most
+# The goals of issue 14 (issue 6 asked for 1.5 and 1.0: out of reach for numpy, see its note).
+GOAL_RATIOS = {(100, 200, 9): 8.0, (400, 500, 23): 5.0}  # cold run, ours (circular) / built-in, at most
+REDO_GOAL = 1.0  # the redo (F9 with another easing) / built-in at the goal sizes, at most
+# The scribble: random points in the unit square, against itself plus 1 % noise (one stroke each).
+SCRIBBLE_POINTS = (1000, 2000, 3000)
+SCRIBBLE_GOAL = (2000, 2.0)  # this many points in at most this many seconds
 GOAL_METHOD = "CIRCULAR_BALL"
 GOAL_MEMORY = 2.0  # peak memory ours / built-in on the largest drawing, at most
 # Where re-running over the operator's own earlier in-betweens is timed too.
@@ -706,6 +711,31 @@ def machine():
     }
 
 
+_SCRIBBLE = """
+import sys, time
+import numpy as np
+sys.path.insert(0, sys.argv[1])
+from ballmorph_core import StrokeSet, inbetween
+rng = np.random.default_rng(1)
+a = rng.random((int(sys.argv[2]), 2))
+A = StrokeSet.from_strokes([a])
+B = StrokeSet.from_strokes([a + 0.01 * rng.standard_normal(a.shape)])
+started = time.perf_counter()
+inbetween(A, B, [0.0, 0.5, 1.0])
+print(time.perf_counter() - started)
+"""
+
+
+def scribble_times():
+    """Seconds of one cold ``inbetween`` of the scribble per point count (fresh CPython each)."""
+    times = {}
+    for points in SCRIBBLE_POINTS:
+        run = [sys.executable, "-c", _SCRIBBLE, ROOT, str(points)]
+        times[points] = float(subprocess.run(run, capture_output=True, text=True, check=True).stdout)
+        say(f"scribble {points} points: {times[points]:.2f} s")
+    return times
+
+
 def ballmap_scaling():
     """bench_ballmap.py's rows, run in a plain CPython subprocess (no bpy imported)."""
     script = os.path.join(ROOT, "tools", "bench_ballmap.py")
@@ -713,7 +743,7 @@ def ballmap_scaling():
     return json.loads(out)
 
 
-def goals(cases, ballmap_rows, methods):
+def goals(cases, ballmap_rows, methods, scribble):
     """(goal text, measured text, verdict) rows."""
     rows = []
     by_key = {(c.kind, c.size): c for c in cases}
@@ -734,9 +764,9 @@ def goals(cases, ballmap_rows, methods):
                 ratio = case.redo.median / case.builtin.median
                 rows.append(
                     (
-                        f"the same, redo (F9 with another easing: the kept plan re-evaluated) ({kind}) <= {limit}",
+                        f"the same, redo (F9 with another easing: the kept plan re-evaluated) ({kind}) <= {REDO_GOAL}",
                         f"{ratio:.2f} ({_ms(case.redo.median)} ms / {_ms(case.builtin.median)} ms)",
-                        ratio <= limit,
+                        ratio <= REDO_GOAL,
                     )
                 )
     for which in bench_ballmap.SPACINGS:
@@ -749,6 +779,15 @@ def goals(cases, ballmap_rows, methods):
                     growth <= bench_ballmap.GROWTH_GOAL,
                 )
             )
+    points, limit = SCRIBBLE_GOAL
+    if points in scribble:
+        rows.append(
+            (
+                f"the {points}-point scribble (core, cold) < {limit:g} s",
+                f"{scribble[points]:.2f} s",
+                scribble[points] < limit,
+            )
+        )
     largest = max((c.size for c in cases), default=None, key=lambda s: s[0] * s[1] * s[2])
     for kind in KINDS:
         case = by_key.get((kind, largest))
@@ -840,7 +879,7 @@ def _kind_section(kind, rows, methods, short):
     return lines
 
 
-def report(cases, methods, ballmap_rows, info, wall, argv):
+def report(cases, methods, ballmap_rows, scribble, info, wall, argv):
     short = {"CIRCULAR_BALL": "circular", "LINEAR_BALL": "linear", "PARABOLIC_BALL": "parabolic"}
     lines = [
         "# Benchmark: Ball-morph In-between against Blender's Interpolate Sequence",
@@ -858,12 +897,14 @@ def report(cases, methods, ballmap_rows, info, wall, argv):
         f"- Date: {info['date']}; code: commit {info['commit']}",
         f"- Whole run: {wall / 60:.1f} min",
         "",
-        "## Goals (issue 6)",
+        "- Threads: one. The add-on starts no worker threads, so its default is that single thread.",
+        "",
+        "## Goals (issue 14)",
         "",
         "| goal | measured | verdict |",
         "|---|---|---|",
     ]
-    for goal, measured, ok in goals(cases, ballmap_rows, methods):
+    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble):
         lines.append(f"| {goal} | {measured} | {'pass' if ok else '**FAIL**'} |")
     for kind in KINDS:
         rows = [c for c in cases if c.kind == kind]
@@ -886,6 +927,18 @@ def report(cases, methods, ballmap_rows, info, wall, argv):
             ratio = c.memory[GOAL_METHOD] / max(c.memory[BUILTIN], 1e-9) if GOAL_METHOD in c.memory else None
             cells.append(f"{ratio:.1f}" if ratio is not None else "n/a")
             lines.append(f"| {c.kind} {c.label} | " + " | ".join(cells) + " |")
+    if scribble:
+        lines += [
+            "",
+            "## The scribble (plain CPython, one cold `inbetween` each in a fresh process)",
+            "",
+            "One stroke of N random points in the unit square (its long edges cross each other about "
+            "N^2 / 9 times) against the same points plus 1 % noise, in-betweened at t = 0, 0.5, 1.",
+            "",
+            "| points | seconds |",
+            "|---:|---:|",
+            *(f"| {n} | {t:.2f} |" for n, t in sorted(scribble.items())),
+        ]
     if ballmap_rows:
         lines += [
             "",
@@ -989,7 +1042,9 @@ def _quiet_stdout():
 
 
 def _parser():
-    parser = argparse.ArgumentParser(description="Benchmark the operator against Interpolate Sequence (issue 6).")
+    parser = argparse.ArgumentParser(
+        description="Benchmark the operator against Interpolate Sequence (issues 6 and 14)."
+    )
     parser.add_argument(
         "--quick", action="store_true", help=f"only {', '.join('x'.join(map(str, s)) for s in QUICK_SIZES)}"
     )
@@ -999,7 +1054,7 @@ def _parser():
     parser.add_argument(
         "--memory-sizes", type=parse_sizes, help="drawings to probe memory on (default: the largest and the goal sizes)"
     )
-    parser.add_argument("--no-ballmap", action="store_true", help="skip the ball-map scaling table")
+    parser.add_argument("--no-ballmap", action="store_true", help="skip the ball-map scaling and scribble tables")
     parser.add_argument("--write", metavar="PATH", help="write the markdown report there (else print it)")
     parser.add_argument("--probe", nargs=3, metavar=("KIND", "SIZE", "OP"), help=argparse.SUPPRESS)
     return parser
@@ -1062,8 +1117,9 @@ def main(argv=None):
             case.memory = memory_of(case, [BUILTIN, *methods])
             say(f"memory {case.kind} {case.label}: " + "  ".join(f"{op} {v:.1f} MiB" for op, v in case.memory.items()))
     ballmap_rows = [] if args.no_ballmap else ballmap_scaling()
+    scribble = {} if args.no_ballmap else scribble_times()
     info["load_end"] = _read("/proc/loadavg").split()[:3]
-    text = report(cases, methods, ballmap_rows, info, time.perf_counter() - started, argv)
+    text = report(cases, methods, ballmap_rows, scribble, info, time.perf_counter() - started, argv)
     if args.write:
         with open(args.write, "w") as f:
             f.write(text)
