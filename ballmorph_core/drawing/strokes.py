@@ -147,10 +147,13 @@ class StrokeSet:
     @classmethod
     def concatenate(cls, parts):
         """Join StrokeSets into one (strokes in order); an extra attribute some parts lack is 0
-        on their points (Blender's value for a missing attribute)."""
+        on their points (Blender's value for a missing attribute). One part is returned as it is,
+        not copied: in-betweens share the attribute arrays their keys agree on."""
         parts = list(parts)
         if not parts:
             return cls.empty()
+        if len(parts) == 1:
+            return parts[0]
         sizes = np.concatenate([p.sizes for p in parts])
         types = {}
         for p in parts:
