@@ -360,7 +360,7 @@ class _CostTable:
     def directions(self, turn):
         """Whether B's stroke runs opposite to A's, given the drawing's turn (radians), shape
         (S_a, S_b): the direction sharing more ends; then the better fit, a turn away from the
-        drawing's counting against it; then the drawn direction."""
+        drawing's counting against it; then the drawn direction (always, next to a dot)."""
         (e_f, e_r), (t_f, t_r) = self._fits, self._turns
         away = [np.angle(np.exp(1j * (t - turn))) / np.pi for t in (t_f, t_r)]
         cost_f, cost_r = e_f + DIRECTION_TURN * away[0] ** 2, e_r + DIRECTION_TURN * away[1] ** 2
@@ -370,7 +370,8 @@ class _CostTable:
         if self._loops is not None:
             la, lb, flip = self._loops
             reverse[np.ix_(la, lb)] = flip
-        return reverse
+        # A dot has no direction: its partner keeps the one it was drawn in.
+        return reverse & (self.ra[:, None] > 0) & (self.rb[None, :] > 0)
 
     def costs(self, a, b):
         """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b)."""

@@ -343,6 +343,16 @@ def test_dot_pairs_with_the_short_stroke_grown_out_of_it():
     assert m.pairs == identity_pairs(2)
 
 
+def test_a_dot_grows_into_its_dash_in_the_dash_s_drawn_direction():
+    far = np.c_[np.linspace(0, 1, 9), np.zeros(9)] + [0.0, 5.0]
+    for x in (15.0, -3.0, 0.1, 0.7, 1e3):
+        for angle in np.linspace(0.0, 6.0, 7):
+            dot = np.array([[x, 0.3 * x]])
+            dash = dot + [[0.0, 0.0], [0.6 * np.cos(angle), 0.6 * np.sin(angle)]]
+            m = match_strokes([far, dot], [far, dash], [False] * 2, [False] * 2)
+            assert m.pairs == identity_pairs(2), (x, angle)
+
+
 def test_four_hundred_strokes_timing():
     rng = np.random.default_rng(3)
     strokes, closed = [], []
