@@ -170,6 +170,23 @@ def test_closest_points_match_brute_force(queries):
     np.testing.assert_allclose(near[dist <= 0.1], dist[dist <= 0.1], atol=1e-12)
 
 
+@given(st.integers(0, 2**32 - 1), st.sampled_from([None, 0.1, 0.5]))
+@settings(max_examples=20)
+def test_nearest_edge_on_long_edges_matches_brute_force(seed, reach):
+    # A scribble: every edge spans the drawing, so the search cuts them into pieces and widens
+    # step by step; the answer is still the closest point within the reach.
+    rng = np.random.default_rng(seed)
+    curve = rng.random((rng.integers(2, 300), 2))
+    queries = rng.uniform(-0.2, 1.2, (50, 2))
+    limit = np.inf if reach is None else reach
+    near, edge, frac = nearest_within(queries, np.zeros(50, np.int64), Ragged.from_list([curve], [False]), limit)
+    brute = distance_to_polyline(queries, curve, False)
+    np.testing.assert_array_equal(np.isfinite(near), brute <= limit)
+    np.testing.assert_allclose(near[np.isfinite(near)], brute[np.isfinite(near)], atol=1e-12)
+    feet = curve[edge] + frac[:, None] * (curve[np.minimum(edge + 1, len(curve) - 1)] - curve[edge])
+    np.testing.assert_allclose(np.linalg.norm(feet - queries, axis=1)[np.isfinite(near)], near[np.isfinite(near)])
+
+
 @given(st.integers(0, 2**32 - 1), st.booleans())
 @settings(max_examples=40)
 def test_is_simple_stops_early_but_agrees_with_every_self_crossing(seed, closed):
