@@ -239,8 +239,7 @@ def choose_roads(R, Q, events, coincident, near, carrier, scale):
             kind[c], reason[c] = "linear", "the strokes do not share endpoints and no carrier is used"
         elif not events.agree[c]:
             kind[c] = "linear"
-            why = "the curves cross in a different order along each one (tangled) and do not cut into lenses"
-            reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), why)
+            reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), events.why_tangled(c))
         elif kind[c] == "whole" and not nested[c]:
             why = "the loops neither cross nor lie one inside the other"
             kind[c], reason[c] = "linear", unsplittable(R.curve(c), Q.curve(c), True, why)

@@ -23,7 +23,17 @@ from ..geometry.polyline import scale_of
 from ..geometry.projection import nearest_within
 from ..geometry.ragged import Ragged
 
-__all__ = ["Events", "Chains", "find_events", "cut_chains", "Piece", "split_pair"]
+__all__ = ["Events", "Chains", "find_events", "cut_chains", "Piece", "split_pair", "MAX_HITS_PER_POINT"]
+
+#: Crossings in the same order along both curves cut them into lenses, and every lens holds a
+#: vertex of P or Q (two straight pieces meet once), so such a pair has at most ``n_P + n_Q + 1``
+#: crossings, each seen by at most four segment pairs. A pair whose segments meet more than this
+#: many times per point (twice that) is tangled: its crossings are not all enumerated (a
+#: scribble's million), it goes to its fallback and the note says why.
+MAX_HITS_PER_POINT = 8
+
+#: Why a tangled pair is not cut into lenses.
+_TANGLED = "the curves cross in a different order along each one (tangled) and do not cut into lenses"
 
 
 @dataclass
@@ -37,10 +47,13 @@ class Events:
         Arc-length start and end of each event on P and on Q (equal for a crossing).
     overlap : ndarray of bool, shape (E,)
     count : ndarray of int, shape (C,)
-        Events per pair.
+        Events per pair (for a crowded pair: more than this less one, none of them listed).
     agree : ndarray of bool, shape (C,)
         The events come in the same order along both curves (cyclically for loops): the pair
         cuts into lenses. Otherwise it is tangled (paper Fig. 8 and 9, right).
+    crowded : ndarray of bool, shape (C,)
+        Pairs meeting too often to cut into lenses (see ``MAX_HITS_PER_POINT``): tangled, their
+        events not searched to the end.
     """
 
     pair: np.ndarray
@@ -51,14 +64,26 @@ class Events:
     overlap: np.ndarray
     count: np.ndarray
     agree: np.ndarray
+    crowded: np.ndarray = None
 
     def take(self, rows):
-        """The events at ``rows`` (count and agree unchanged)."""
+        """The events at ``rows`` (count, agree and crowded unchanged)."""
         return Events(
             *(getattr(self, name)[rows] for name in ("pair", "s_p0", "s_p1", "s_q0", "s_q1", "overlap")),
             self.count,
             self.agree,
+            self.crowded,
         )
+
+    def why_tangled(self, c):
+        """Why pair ``c`` (tangled: not ``agree``) does not cut into lenses, for its note."""
+        if self.crowded is not None and self.crowded[c]:
+            return (
+                f"the curves meet more than {self.count[c] - 1} times, more than lenses between "
+                f"their points allow ({MAX_HITS_PER_POINT} per point), so they are tangled and do "
+                "not cut into lenses"
+            )
+        return _TANGLED
 
 
 def _runs(near, closed):
@@ -146,11 +171,13 @@ def find_events(R, Q, scale, spacing, wanted):
     -------
     Events
         A stroke pair's shared endpoints are not events; nor are crossings within an overlap.
+        A pair meeting too often (``crowded``) has no events listed and does not agree.
     """
     n, closed = len(R), R.closed
     end_eps = tol.SHARED_ENDPOINT * scale
+    max_hits = MAX_HITS_PER_POINT * (R.n + Q.n)
     # Overlaps need nearly parallel segments close together: only those pairs are searched.
-    cx, along = batch_crossings(R, Q, scale, wanted, overlap_reach=tol.OVERLAP * scale)
+    cx, along = batch_crossings(R, Q, scale, wanted, overlap_reach=tol.OVERLAP * scale, max_hits=max_hits)
     pair, s_p, s_q = cx.pair, cx.s_a, cx.s_b
     interior = closed[pair] | ((s_p > end_eps[pair]) & (s_p < R.length[pair] - end_eps[pair]))
     pair, s_p, s_q = pair[interior], s_p[interior], s_q[interior]
@@ -171,10 +198,11 @@ def find_events(R, Q, scale, spacing, wanted):
         sq0[order],
         sq1[order],
         np.r_[np.zeros(len(pair), bool), np.ones(len(o_pair), bool)][order],
-        np.bincount(all_pair, minlength=n),
+        np.where(cx.crowded, max_hits + 1, np.bincount(all_pair, minlength=n)),
         np.ones(n, dtype=bool),
+        cx.crowded,
     )
-    events.agree = _orders_agree(events, closed, n, end_eps)
+    events.agree = _orders_agree(events, closed, n, end_eps) & ~cx.crowded
     return events
 
 

@@ -1,9 +1,10 @@
 """Segment intersections between polylines and within one polyline.
 
-Candidate segment pairs come from a uniform grid (:func:`~.spatial.box_pairs`), so the cost grows
-with the number of segments and crossings, not with their product. :func:`batch_crossings` finds
-the crossings of many curve pairs at once (the drawing pipeline's batches); :func:`crossings` is
-a batch of one.
+Candidate segment pairs come from a uniform grid (:func:`~.spatial.box_pair_chunks`, run by run so
+memory stays bounded), so the cost grows with the number of segments and crossings, not with their
+product; a search that only needs to know whether there is one, or whether there are too many,
+stops early. :func:`batch_crossings` finds the crossings of many curve pairs at once (the drawing
+pipeline's batches); :func:`crossings` is a batch of one.
 """
 
 from dataclasses import dataclass
@@ -13,7 +14,7 @@ import numpy as np
 from .. import tolerances as tol
 from .polyline import edges, scale_of
 from .ragged import Ragged
-from .spatial import box_pairs
+from .spatial import box_pair_chunks
 
 __all__ = ["Crossings", "batch_crossings", "crossings", "self_crossings", "is_simple", "segment_hits"]
 
@@ -34,6 +35,9 @@ class Crossings:
         Arc-length position of each point on the first and on the second curve.
     edge_a, edge_b : ndarray of int, shape (K,)
         The segments that meet there (first-vertex index within each curve).
+    crowded : ndarray of bool, shape (C,) or None
+        From :func:`batch_crossings`: pairs whose search stopped at its hit budget (their
+        crossings are not listed).
     """
 
     pair: np.ndarray
@@ -42,6 +46,7 @@ class Crossings:
     s_b: np.ndarray
     edge_a: np.ndarray
     edge_b: np.ndarray
+    crowded: np.ndarray = None
 
     def __len__(self):
         return len(self.s_a)
@@ -90,16 +95,41 @@ def _first_of_each(pair, s_a, s_b, scale):
     return np.sort(first)
 
 
-def _candidates(A, B, wanted):
-    """Segment pairs of curve c of A and curve c of B whose boxes overlap: global first-vertex
-    indices of each segment, shape (K,) each."""
+def _candidates(A, B, wanted, scale, max_hits):
+    """Segment pairs of curve c of A and curve c of B whose boxes overlap, run by run.
+
+    Returns
+    -------
+    ga, gb : ndarray of int, shape (K,)
+        Global first-vertex indices of each segment.
+    crowded : ndarray of bool, shape (C,)
+        Pairs left out once their segments met more than ``max_hits`` times (none without it).
+    """
     wanted = np.ones(len(A), dtype=bool) if wanted is None else wanted
     ea = np.flatnonzero((A.nxt >= 0) & wanted[A.owner])
     eb = np.flatnonzero((B.nxt >= 0) & wanted[B.owner])
     a0, b0 = A.pts[ea], B.pts[eb]
-    i, j = box_pairs(_boxes(a0, a0 + A.edge[ea]), _boxes(b0, b0 + B.edge[eb]))
-    keep = A.owner[ea[i]] == B.owner[eb[j]]
-    return ea[i[keep]], eb[j[keep]]
+    active = np.ones(len(ea), dtype=bool)
+    crowded, hits = np.zeros(len(A), dtype=bool), np.zeros(len(A), dtype=np.int64)
+    found_a, found_b = [], []
+    for i, j in box_pair_chunks(_boxes(a0, a0 + A.edge[ea]), _boxes(b0, b0 + B.edge[eb]), active=active):
+        keep = A.owner[ea[i]] == B.owner[eb[j]]
+        ga, gb = ea[i[keep]], eb[j[keep]]
+        found_a.append(ga)
+        found_b.append(gb)
+        if max_hits is None:
+            continue
+        pair = A.owner[ga]
+        ok, _, _ = segment_hits(A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb], scale[pair])
+        hits += np.bincount(pair[ok], minlength=len(A))
+        # Enough is known of these pairs: their remaining segments are not searched.
+        crowded |= hits > max_hits
+        active &= ~crowded[A.owner[ea]]
+    if not found_a:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64), crowded
+    ga, gb = np.concatenate(found_a), np.concatenate(found_b)
+    keep = ~crowded[A.owner[ga]]
+    return ga[keep], gb[keep], crowded
 
 
 def _crossings_of(A, B, ga, gb, scale):
@@ -146,7 +176,7 @@ def _lying_along(A, B, ga, gb, reach):
     return np.bincount(A.owner[ga][along], minlength=len(A)) > 0
 
 
-def batch_crossings(A, B, scale, wanted=None, overlap_reach=None):
+def batch_crossings(A, B, scale, wanted=None, overlap_reach=None, max_hits=None):
     """Points where curve ``c`` of ``A`` meets curve ``c`` of ``B`` (crossing or touching), for every c.
 
     Parameters
@@ -159,17 +189,24 @@ def batch_crossings(A, B, scale, wanted=None, overlap_reach=None):
         Pairs to search (default all).
     overlap_reach : ndarray, shape (C,), optional
         Also say which pairs have nearly parallel segments within this distance of each other.
+    max_hits : ndarray of int, shape (C,), optional
+        Stop searching a pair once its segments met more than this many times (counted before
+        joining the hits of segments that share a vertex): its crossings are left out and
+        ``crowded`` says so. Without it every crossing is found.
 
     Returns
     -------
     Crossings
         Collinear overlapping segments are not reported: an overlap is a stretch, not a point.
-        On a loop, a crossing within round-off of its end is put at its start.
+        On a loop, a crossing within round-off of its end is put at its start. ``crowded``,
+        shape (C,), marks the pairs cut short by ``max_hits``.
     maybe_overlapping : ndarray of bool, shape (C,)
-        Only with ``overlap_reach``: the pairs whose curves may overlap somewhere.
+        Only with ``overlap_reach``: the pairs whose curves may overlap somewhere (never a
+        crowded pair).
     """
-    ga, gb = _candidates(A, B, wanted)
+    ga, gb, crowded = _candidates(A, B, wanted, scale, max_hits)
     found = _crossings_of(A, B, ga, gb, scale)
+    found.crowded = crowded
     if overlap_reach is None:
         return found
     return found, _lying_along(A, B, ga, gb, overlap_reach)
@@ -189,6 +226,38 @@ def crossings(a, closed_a, b, closed_b):
     return batch_crossings(A, B, np.array([scale_of(a, b)]))
 
 
+class _SelfHits:
+    """One polyline's segments without repeated points, and its self-intersections run by run.
+
+    Parameters
+    ----------
+    curve : ndarray, shape (N, 2)
+    closed : bool
+    """
+
+    def __init__(self, curve, closed):
+        self.scale = scale_of(curve)
+        # Repeated points (a fan of trajectories leaving one corner) are not crossings.
+        step = np.linalg.norm(np.diff(curve, axis=0), axis=1)
+        curve = curve[np.r_[True, step > tol.COINCIDENT * self.scale]]
+        if closed and len(curve) > 1 and np.linalg.norm(curve[-1] - curve[0]) <= tol.COINCIDENT * self.scale:
+            curve = curve[:-1]
+        self.closed = closed
+        self.rg = Ragged.from_list([curve], [closed])
+        self.e = np.flatnonzero(self.rg.nxt >= 0)
+        self.c0, self.ev = self.rg.pts[self.e], self.rg.edge[self.e]
+
+    def runs(self):
+        """Hits of non-adjacent segments, run after run of candidate pairs (bounded memory):
+        ``(i, j, sa, sb)``, segment indices ``i < j`` and where along each, in [0, 1]."""
+        n, c0, ev = len(self.e), self.c0, self.ev
+        for i, j in box_pair_chunks(_boxes(c0, c0 + ev)):
+            adjacent = (j - i == 1) | (self.closed & (i == 0) & (j == n - 1))
+            i, j = i[~adjacent], j[~adjacent]
+            ok, sa, sb = segment_hits(c0[i], ev[i], c0[j], ev[j], self.scale)
+            yield i[ok], j[ok], sa[ok], sb[ok]
+
+
 def self_crossings(curve, closed):
     """Points where a polyline meets itself, other than at the joints of adjacent edges.
 
@@ -203,25 +272,15 @@ def self_crossings(curve, closed):
         ``s_a`` and ``s_b`` are the two arc-length positions of each self-intersection; edge
         indices refer to the polyline without repeated consecutive points.
     """
-    scale = scale_of(curve)
-    # Repeated points (a fan of trajectories leaving one corner) are not crossings.
-    step = np.linalg.norm(np.diff(curve, axis=0), axis=1)
-    curve = curve[np.r_[True, step > tol.COINCIDENT * scale]]
-    if closed and len(curve) > 1 and np.linalg.norm(curve[-1] - curve[0]) <= tol.COINCIDENT * scale:
-        curve = curve[:-1]
-    rg = Ragged.from_list([curve], [closed])
-    e = np.flatnonzero(rg.nxt >= 0)
-    n = len(e)
-    c0, ev = rg.pts[e], rg.edge[e]
-    i, j = box_pairs(_boxes(c0, c0 + ev))
-    adjacent = (j - i == 1) | (closed & (i == 0) & (j == n - 1))
-    i, j = i[~adjacent], j[~adjacent]
-    ok, sa, sb = segment_hits(c0[i], ev[i], c0[j], ev[j], scale)
-    i, j, sa, sb = i[ok], j[ok], sa[ok], sb[ok]
+    hits = _SelfHits(curve, closed)
+    runs = list(hits.runs())
+    i, j, sa, sb = (np.concatenate([r[k] for r in runs]) if runs else np.zeros(0) for k in range(4))
+    i, j = i.astype(np.int64), j.astype(np.int64)
+    rg, e, c0, ev = hits.rg, hits.e, hits.c0, hits.ev
     s_a = rg.s[e[i]] + sa * rg.length_of_edge[e[i]]
     s_b = rg.s[e[j]] + sb * rg.length_of_edge[e[j]]
     pair = np.zeros(len(i), dtype=np.int64)
-    first = _first_of_each(pair, s_a, s_b, np.array([scale]))
+    first = _first_of_each(pair, s_a, s_b, np.array([hits.scale]))
     i, j, sa, s_a, s_b = i[first], j[first], sa[first], s_a[first], s_b[first]
     order = np.argsort(s_a, kind="stable")
     return Crossings(
@@ -230,8 +289,12 @@ def self_crossings(curve, closed):
 
 
 def is_simple(curve, closed):
-    """True when the polyline does not meet itself (no crossing, no fold-back spike)."""
-    if len(self_crossings(curve, closed)):
+    """True when the polyline does not meet itself (no crossing, no fold-back spike).
+
+    Stops at the first run of candidate segment pairs holding a crossing: a scribble's
+    million self-crossings are not enumerated to answer no.
+    """
+    if any(len(i) for i, _, _, _ in _SelfHits(curve, closed).runs()):
         return False
     e = edges(curve, closed)
     # Repeated points (within round-off) are one point, not a fold.

@@ -1,16 +1,18 @@
 """Closest points on polylines, for many query points at once.
 
 :func:`nearest_within` is the one search: every query against the edges of its own curve of a
-batch, within a reach, through the uniform grid of :func:`~.spatial.box_pairs`. With no bound
-known in advance, :class:`PolylineProjector` first takes each query's distance to the nearest
-vertex (a k-d tree) plus half the longest edge as its reach: the closest point lies within it.
+batch, within a reach, through the uniform grid of :func:`~.spatial.box_pairs` (long edges cut
+into pieces, the reach widened step by step, so a scribble's edges spanning the whole drawing
+do not make every query a candidate of every edge). With no bound known in advance,
+:class:`PolylineProjector` first takes each query's distance to the nearest vertex (a k-d tree)
+plus half the longest edge as its reach: the closest point lies within it.
 """
 
 import numpy as np
 
 from .. import tolerances as tol
 from .polyline import scale_of
-from .ragged import Ragged
+from .ragged import Ragged, ragged_arange
 from .spatial import PointTree, box_pairs
 
 __all__ = ["nearest_within", "PolylineProjector", "distances_to_polyline"]
@@ -18,6 +20,54 @@ __all__ = ["nearest_within", "PolylineProjector", "distances_to_polyline"]
 #: Queries searched at once: the grid search's candidates are sparse, but a query far from its
 #: curve has a large reach; this bounds the candidates of such queries.
 _QUERY_CHUNK = 20_000
+
+#: A uniform grid needs boxes about as small as its cells, and a scribble's edges each span the
+#: whole drawing: edges are searched as pieces no longer than the side of one cell per edge of
+#: the curves' bounding box, but never more than this many pieces per edge on average.
+_PIECES_PER_EDGE = 8
+
+#: Queries search within this many piece lengths first (or their reach, if smaller), then
+#: within ``_WIDEN`` times more until they find their curve or reach their reach: a query
+#: with a large reach but its curve close by never looks at the far edges.
+_FIRST_REACH = 0.5
+_WIDEN = 4.0
+
+
+def _pieces(a, d):
+    """Boxes of the edges ``a + s d``, long ones cut into pieces (see ``_PIECES_PER_EDGE``).
+
+    Parameters
+    ----------
+    a, d : ndarray, shape (E, 2)
+
+    Returns
+    -------
+    boxes : ndarray, shape (M, 4)
+        ``(xmin, ymin, xmax, ymax)`` of every piece (cut pieces widened by round-off, so
+        together they hold their edge).
+    edge : ndarray of int, shape (M,)
+        The edge (row of ``a``) of each piece.
+    piece : float
+        The longest a piece may be.
+    """
+    lo, hi = np.minimum(a, a + d), np.maximum(a, a + d)
+    corner_lo, corner_hi = lo.min(axis=0), hi.max(axis=0)
+    width, height = corner_hi - corner_lo
+    n = len(a)
+    length = np.hypot(d[:, 0], d[:, 1])
+    piece = max(np.sqrt(width * height / n), max(width, height) / n, length.sum() / (_PIECES_PER_EDGE * n), 1e-300)
+    count = np.maximum(np.ceil(length / piece), 1).astype(np.int64)
+    if (count == 1).all():
+        return np.concatenate([lo, hi], axis=1), np.arange(n), piece
+    edge, k = ragged_arange(count)
+    t0, t1 = k / count[edge], (k + 1) / count[edge]
+    p0, p1 = a[edge] + t0[:, None] * d[edge], a[edge] + t1[:, None] * d[edge]
+    pad = np.where(count[edge] > 1, tol.ROUNDOFF * (np.abs(corner_lo).max() + np.abs(corner_hi).max()), 0.0)[:, None]
+    boxes = np.concatenate([np.minimum(p0, p1) - pad, np.maximum(p0, p1) + pad], axis=1)
+    # Uncut edges keep their exact boxes.
+    whole = count[edge] == 1
+    boxes[whole] = np.concatenate([lo, hi], axis=1)[edge[whole]]
+    return boxes, edge, piece
 
 
 def nearest_within(points, owner, curves, reach):
@@ -40,31 +90,48 @@ def nearest_within(points, owner, curves, reach):
         Global first-vertex index of the closest edge (ties: the lower one); 0 where none.
     frac : ndarray, shape (K,)
         The closest point is ``curves.pts[edge] + frac * curves.edge[edge]``.
+
+    Notes
+    -----
+    A query that finds an edge within a smaller reach has found its closest edge (a nearer one
+    lies within that reach too), so widening the search step by step gives the same answer as
+    searching the whole reach at once.
     """
     points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    dist, edge, frac = np.full(len(points), np.inf), np.zeros(len(points), np.int64), np.zeros(len(points))
+    e = np.flatnonzero(curves.nxt >= 0)
+    if len(points) == 0 or len(e) == 0:
+        return dist, edge, frac
     # No edge of a curve lies farther than the far corner of its bounding box: a bound for any reach.
-    box = curves.boxes()[owner] if len(points) else np.zeros((0, 4))
+    box = curves.boxes()[owner]
     corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
     reach = np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
-    e = np.flatnonzero(curves.nxt >= 0)
     a, d = curves.pts[e], curves.edge[e]
-    seg_boxes = np.concatenate([np.minimum(a, a + d), np.maximum(a, a + d)], axis=1)
-    dist, edge, frac = np.full(len(points), np.inf), np.zeros(len(points), np.int64), np.zeros(len(points))
-    for start in range(0, len(points), _QUERY_CHUNK):
-        sl = slice(start, min(start + _QUERY_CHUNK, len(points)))
-        x, r = points[sl], reach[sl][:, None]
-        i, j = box_pairs(np.concatenate([x - r, x + r], axis=1), seg_boxes)
-        keep = curves.owner[e[j]] == owner[sl][i]
-        i, j = i[keep], j[keep]
-        ee = np.einsum("ij,ij->i", d[j], d[j])
-        f = np.clip(np.divide(np.einsum("ij,ij->i", x[i] - a[j], d[j]), ee, out=np.zeros_like(ee), where=ee > 0), 0, 1)
-        d2 = np.sum(np.square(a[j] + f[:, None] * d[j] - x[i]), axis=1)
-        order = np.lexsort((j, d2, i))
-        first = order[np.r_[True, i[order][1:] != i[order][:-1]]] if len(order) else order
-        # A nearer edge would lie within reach too: the best candidate within reach is the closest.
-        first = first[d2[first] <= np.square(r[i[first], 0])]
-        hit = np.arange(sl.start, sl.stop)[i[first]]
-        dist[hit], edge[hit], frac[hit] = np.sqrt(d2[first]), e[j[first]], f[first]
+    piece_boxes, piece_edge, piece = _pieces(a, d)
+    r_all = np.minimum(reach, _FIRST_REACH * piece)
+    todo = np.arange(len(points))
+    while len(todo):
+        found = np.zeros(len(todo), dtype=bool)
+        for start in range(0, len(todo), _QUERY_CHUNK):
+            rows = todo[start : start + _QUERY_CHUNK]
+            x, r = points[rows], r_all[rows][:, None]
+            i, p = box_pairs(np.concatenate([x - r, x + r], axis=1), piece_boxes)
+            j = piece_edge[p]
+            keep = curves.owner[e[j]] == owner[rows][i]
+            i, j = i[keep], j[keep]
+            ee = np.einsum("ij,ij->i", d[j], d[j])
+            f = np.divide(np.einsum("ij,ij->i", x[i] - a[j], d[j]), ee, out=np.zeros_like(ee), where=ee > 0)
+            f = np.clip(f, 0, 1)
+            d2 = np.sum(np.square(a[j] + f[:, None] * d[j] - x[i]), axis=1)
+            order = np.lexsort((j, d2, i))
+            first = order[np.r_[True, i[order][1:] != i[order][:-1]]] if len(order) else order
+            # A nearer edge would lie within reach too: the best candidate within reach is the closest.
+            first = first[d2[first] <= np.square(r[i[first], 0])]
+            hit = rows[i[first]]
+            dist[hit], edge[hit], frac[hit] = np.sqrt(d2[first]), e[j[first]], f[first]
+            found[start + i[first]] = True
+        todo = todo[~found & (r_all[todo] < reach[todo])]
+        r_all[todo] = np.minimum(r_all[todo] * _WIDEN, reach[todo])
     return dist, edge, frac
 
 

@@ -7,9 +7,9 @@ every pair, and both run without any per-pair Python loop.
 
 import numpy as np
 
-from .ragged import ragged_arange
+from .ragged import budget_slices, ragged_arange
 
-__all__ = ["box_pairs", "PointTree", "CurveTree"]
+__all__ = ["box_pairs", "box_pair_chunks", "PointTree", "CurveTree"]
 
 
 def _cells(boxes, origin, cell, ny):
@@ -34,8 +34,90 @@ def _cell_entries(boxes, origin, cell):
     return float(np.prod(hi - lo + 1, axis=1).sum())
 
 
+#: Candidate (box, box) entries expanded at once (memory bound: about 40 bytes each). Long
+#: boxes that all overlap (a scribble's edges) give O(n^2) pairs; they come in runs of this many.
+PAIR_BUDGET = 1 << 18
+
+
+def _grid_cell(a, b, origin, extent, cell):
+    """The grid's cell size: the given one, else the larger typical box size, grown while long
+    boxes would fill too many cells."""
+    if cell is None:
+        # The larger of the two sets' typical box sizes: tiny boxes (points) against long ones
+        # (a coarse polygon's edges) must not make every long box span millions of cells.
+        cell = max(_typical_size(a), _typical_size(b))
+    cell = max(cell, extent / 4096.0, 1e-300)
+    # Bound the number of (box, cell) entries: grow the cells while long boxes would fill too many.
+    for _ in range(16):
+        if _cell_entries(a, origin, cell) + _cell_entries(b, origin, cell) <= 16 * (len(a) + len(b)) + 1024:
+            break
+        cell *= 2.0
+    return cell
+
+
+def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active=None):
+    """All pairs of overlapping axis-aligned boxes, in runs of consecutive boxes of ``boxes_a``.
+
+    Parameters
+    ----------
+    boxes_a : ndarray, shape (A, 4)
+        Rows ``(xmin, ymin, xmax, ymax)``.
+    boxes_b : ndarray, shape (B, 4), optional
+        If omitted, pairs within ``boxes_a`` are returned with ``i < j``.
+    cell : float, optional
+        Grid cell size; default the median box size.
+    budget : int
+        Most candidate entries a run expands (a box with more still gets a run of its own).
+    active : ndarray of bool, shape (A,), optional
+        Read before each run: boxes of ``boxes_a`` cleared since are skipped (a caller that has
+        seen enough of some boxes stops paying for them).
+
+    Yields
+    ------
+    i, j : ndarray of int, shape (K,)
+        Indices into ``boxes_a`` and ``boxes_b`` of boxes that overlap (touching counts), sorted
+        by ``i`` then ``j`` within a run; runs follow each other in ``i``, so joined they are
+        :func:`box_pairs`.
+    """
+    same = boxes_b is None
+    a = np.asarray(boxes_a, dtype=np.float64).reshape(-1, 4)
+    b = a if same else np.asarray(boxes_b, dtype=np.float64).reshape(-1, 4)
+    if len(a) == 0 or len(b) == 0:
+        return
+    both = np.concatenate([a, b])
+    origin = both[:, :2].min(axis=0)
+    extent = float(max((both[:, 2:] - origin).max(), 1e-300))
+    cell = _grid_cell(a, b, origin, extent, cell)
+    ny = int(extent / cell) + 2
+    # The grid holds b; every run of a looks its cells up in it.
+    key_a, own_a = _cells(a, origin, cell, ny)
+    key_b, own_b = (key_a, own_a) if same else _cells(b, origin, cell, ny)
+    order = np.argsort(key_b, kind="stable")
+    key_b, own_b = key_b[order], own_b[order]
+    lo = np.searchsorted(key_b, key_a, side="left")
+    count = np.searchsorted(key_b, key_a, side="right") - lo
+    # own_a is sorted (entries come box after box), so a run of boxes is a run of entries.
+    first_entry = np.searchsorted(own_a, np.arange(len(a) + 1))
+    cost = np.bincount(own_a, weights=count, minlength=len(a))
+    for sl in budget_slices(cost, budget):
+        rows = np.arange(sl.start, sl.stop)
+        if active is not None:
+            rows = rows[active[rows]]
+        n_entries = first_entry[rows + 1] - first_entry[rows]
+        owner, local = ragged_arange(n_entries)
+        entry = first_entry[rows][owner] + local
+        owner, local = ragged_arange(count[entry])
+        i = own_a[entry[owner]]
+        j = own_b[lo[entry[owner]] + local]
+        keep = (a[i, 0] <= b[j, 2]) & (b[j, 0] <= a[i, 2]) & (a[i, 1] <= b[j, 3]) & (b[j, 1] <= a[i, 3])
+        if same:
+            keep &= i < j
+        code = np.unique(i[keep] * len(b) + j[keep])
+        yield code // len(b), code % len(b)
+
+
 def box_pairs(boxes_a, boxes_b=None, cell=None):
-    """All pairs of overlapping axis-aligned boxes.
+    """All pairs of overlapping axis-aligned boxes (:func:`box_pair_chunks` joined).
 
     Parameters
     ----------
@@ -49,42 +131,14 @@ def box_pairs(boxes_a, boxes_b=None, cell=None):
     Returns
     -------
     i, j : ndarray of int, shape (K,)
-        Indices into ``boxes_a`` and ``boxes_b`` of boxes that overlap (touching counts).
+        Indices into ``boxes_a`` and ``boxes_b`` of boxes that overlap (touching counts),
+        sorted by ``i`` then ``j``.
     """
-    same = boxes_b is None
-    a = np.asarray(boxes_a, dtype=np.float64).reshape(-1, 4)
-    b = a if same else np.asarray(boxes_b, dtype=np.float64).reshape(-1, 4)
-    empty = np.zeros(0, dtype=np.int64)
-    if len(a) == 0 or len(b) == 0:
+    runs = list(box_pair_chunks(boxes_a, boxes_b, cell))
+    if not runs:
+        empty = np.zeros(0, dtype=np.int64)
         return empty, empty
-    both = np.concatenate([a, b])
-    origin = both[:, :2].min(axis=0)
-    extent = float(max((both[:, 2:] - origin).max(), 1e-300))
-    if cell is None:
-        # The larger of the two sets' typical box sizes: tiny boxes (points) against long ones
-        # (a coarse polygon's edges) must not make every long box span millions of cells.
-        cell = max(_typical_size(a), _typical_size(b))
-    cell = max(cell, extent / 4096.0, 1e-300)
-    # Bound the number of (box, cell) entries: grow the cells while long boxes would fill too many.
-    for _ in range(16):
-        if _cell_entries(a, origin, cell) + _cell_entries(b, origin, cell) <= 16 * (len(a) + len(b)) + 1024:
-            break
-        cell *= 2.0
-    ny = int(extent / cell) + 2
-    key_a, own_a = _cells(a, origin, cell, ny)
-    key_b, own_b = (key_a, own_a) if same else _cells(b, origin, cell, ny)
-    order = np.argsort(key_a, kind="stable")
-    key_a, own_a = key_a[order], own_a[order]
-    lo = np.searchsorted(key_a, key_b, side="left")
-    hi = np.searchsorted(key_a, key_b, side="right")
-    owner, local = ragged_arange(hi - lo)
-    i = own_a[lo[owner] + local]
-    j = own_b[owner]
-    keep = (a[i, 0] <= b[j, 2]) & (b[j, 0] <= a[i, 2]) & (a[i, 1] <= b[j, 3]) & (b[j, 1] <= a[i, 3])
-    if same:
-        keep &= i < j
-    code = np.unique(i[keep] * len(b) + j[keep])
-    return code // len(b), code % len(b)
+    return np.concatenate([i for i, _ in runs]), np.concatenate([j for _, j in runs])
 
 
 def _box_reach(boxes, centres):

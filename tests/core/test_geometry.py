@@ -8,7 +8,7 @@ from shapes import circle, distance_to_polyline
 
 from ballmorph_core.ballmap.onemap import OneWayMap
 from ballmorph_core.geometry.circles import circumcircles
-from ballmorph_core.geometry.intersections import batch_crossings, crossings
+from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, self_crossings
 from ballmorph_core.geometry.polyline import (
     default_spacing,
     default_spacings,
@@ -22,7 +22,7 @@ from ballmorph_core.geometry.polyline import (
 )
 from ballmorph_core.geometry.projection import PolylineProjector, distances_to_polyline, nearest_within
 from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange
-from ballmorph_core.geometry.spatial import CurveTree, PointTree, box_pairs
+from ballmorph_core.geometry.spatial import CurveTree, PointTree, box_pair_chunks, box_pairs
 
 POINTS = st.integers(0, 2**32 - 1).map(lambda seed: np.random.default_rng(seed).uniform(-1, 1, (60, 2)))
 
@@ -114,6 +114,23 @@ def test_box_pairs_finds_exactly_the_overlapping_boxes(a, b):
     assert sorted(zip(i.tolist(), j.tolist())) == sorted(zip(*np.nonzero(overlap)))
 
 
+@given(POINTS, st.integers(1, 400))
+@settings(max_examples=20)
+def test_box_pair_runs_join_into_box_pairs_and_skip_inactive_boxes(a, budget):
+    boxes = np.c_[a, a + 0.5]
+    runs = list(box_pair_chunks(boxes, budget=budget))
+    i, j = box_pairs(boxes)
+    np.testing.assert_array_equal(np.concatenate([r[0] for r in runs]) if runs else [], i)
+    np.testing.assert_array_equal(np.concatenate([r[1] for r in runs]) if runs else [], j)
+    # Boxes cleared between runs are not looked up again.
+    active = np.ones(len(boxes), dtype=bool)
+    seen = []
+    for ri, _ in box_pair_chunks(boxes, budget=budget, active=active):
+        seen.append(ri)
+        active[:] = False
+    assert len(np.concatenate(seen)) == len(runs[0][0]) if runs else not seen
+
+
 @given(POINTS, POINTS)
 @settings(max_examples=20)
 def test_point_tree_nearest_and_within_match_brute_force(points, queries):
@@ -151,6 +168,48 @@ def test_closest_points_match_brute_force(queries):
     near, _, _ = nearest_within(queries, np.zeros(len(queries), np.int64), Ragged.from_list([curve], [False]), 0.1)
     np.testing.assert_array_equal(np.isfinite(near), dist <= 0.1)
     np.testing.assert_allclose(near[dist <= 0.1], dist[dist <= 0.1], atol=1e-12)
+
+
+@given(st.integers(0, 2**32 - 1), st.sampled_from([None, 0.1, 0.5]))
+@settings(max_examples=20)
+def test_nearest_edge_on_long_edges_matches_brute_force(seed, reach):
+    # A scribble: every edge spans the drawing, so the search cuts them into pieces and widens
+    # step by step; the answer is still the closest point within the reach.
+    rng = np.random.default_rng(seed)
+    curve = rng.random((rng.integers(2, 300), 2))
+    queries = rng.uniform(-0.2, 1.2, (50, 2))
+    limit = np.inf if reach is None else reach
+    near, edge, frac = nearest_within(queries, np.zeros(50, np.int64), Ragged.from_list([curve], [False]), limit)
+    brute = distance_to_polyline(queries, curve, False)
+    np.testing.assert_array_equal(np.isfinite(near), brute <= limit)
+    np.testing.assert_allclose(near[np.isfinite(near)], brute[np.isfinite(near)], atol=1e-12)
+    feet = curve[edge] + frac[:, None] * (curve[np.minimum(edge + 1, len(curve) - 1)] - curve[edge])
+    np.testing.assert_allclose(np.linalg.norm(feet - queries, axis=1)[np.isfinite(near)], near[np.isfinite(near)])
+
+
+@given(st.integers(0, 2**32 - 1), st.booleans())
+@settings(max_examples=40)
+def test_is_simple_stops_early_but_agrees_with_every_self_crossing(seed, closed):
+    # Random walks: short ones are often simple, long ones cross themselves.
+    rng = np.random.default_rng(seed)
+    curve = np.cumsum(rng.standard_normal((rng.integers(3, 200), 2)), axis=0)
+    assert is_simple(curve, closed) == (len(self_crossings(curve, closed)) == 0)
+
+
+def test_crossing_budget_stops_a_crowded_pair_only():
+    # Two combs whose teeth all cross (about 1,700 crossings for 60 + 60 points), and a pair
+    # of circles crossing twice: only the combs are cut short, the circles' crossings are whole.
+    x, y = np.linspace(0, 1, 60), np.tile([0.0, 1.0], 30)
+    p, q = np.c_[x, y], np.c_[y, x]
+    c0, c1 = circle(1.0, 40), circle(1.0, 40, centre=(0.5, 0.0))
+    A, B = Ragged.from_list([p, c0], [False, True]), Ragged.from_list([q, c1], [False, True])
+    scale = pair_scales(A, B)
+    everything = batch_crossings(A, B, scale)
+    assert np.sum(everything.pair == 0) > 1000 and not everything.crowded.any()
+    budget = batch_crossings(A, B, scale, max_hits=np.array([500, 500]))
+    assert budget.crowded.tolist() == [True, False]
+    assert np.sum(budget.pair == 0) == 0
+    np.testing.assert_array_equal(budget.s_a, everything.s_a[everything.pair == 1])
 
 
 def test_batched_crossings_are_the_crossings_of_each_pair():
