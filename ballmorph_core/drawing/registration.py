@@ -327,17 +327,35 @@ def _sliding_fits(xp, Q, index, starts, size):
     best = (np.ones(L, complex), np.zeros(L, complex), np.full(L, np.inf))
     end_eps = tol.SHARED_ENDPOINT * np.repeat(size, k)
     length_q = np.repeat(Q.length[index], k)
+    reach = SLIDE_REACH * np.repeat(size, k)
+    cols = np.arange(k)
     for a, b in starts:
-        for _ in range(SLIDE_ITERATIONS):
-            z = (a[:, None] * xp + b[:, None]).ravel()
-            dist, edge, frac = nearest_within(from_complex(z), owner, Q, SLIDE_REACH * np.repeat(size, k))
-            s_q = Q.s[edge] + frac * Q.length_of_edge[edge]
-            inner = np.isfinite(dist) & (s_q > end_eps) & (s_q < length_q - end_eps)
-            d = np.where(inner, dist, np.inf).reshape(L, k)
-            limit = np.maximum(3.0 * _finite_median(d), 1e-3 * size)
-            w = (d <= limit[:, None]).astype(np.float64)
-            target = as_complex(Q.pts[edge] + frac[:, None] * Q.edge[edge]).reshape(L, k)
-            a, b = _weighted_similarity(xp, target, w)
+        a, b = np.array(a, dtype=complex), np.array(b, dtype=complex)
+        d, w, s_q = np.full((L, k), np.inf), np.zeros((L, k)), np.zeros(L * k)
+        foot = np.full(L * k, np.nan, dtype=complex)
+        active = np.arange(L)
+        for step in range(SLIDE_ITERATIONS):
+            if not len(active):
+                break
+            q = (active[:, None] * k + cols).ravel()
+            z = (a[active, None] * xp[active] + b[active, None]).ravel()
+            # The last iteration's foot is still on Q: the closest point lies no farther than it,
+            # which bounds the search as the fit settles (the same answer, found sooner; fmin: a
+            # query that found nothing keeps its reach).
+            bound = reach[q] if step == 0 else np.fmin(reach[q], np.abs(z - foot[q]) * (1.0 + 1e-9) + 1e-300)
+            dist, edge, frac = nearest_within(from_complex(z), owner[q], Q, bound)
+            s_q[q] = Q.s[edge] + frac * Q.length_of_edge[edge]
+            inner = np.isfinite(dist) & (s_q[q] > end_eps[q]) & (s_q[q] < length_q[q] - end_eps[q])
+            d[active] = np.where(inner, dist, np.inf).reshape(-1, k)
+            limit = np.maximum(3.0 * _finite_median(d[active]), 1e-3 * size[active])
+            w[active] = d[active] <= limit[:, None]
+            target = as_complex(Q.pts[edge] + frac[:, None] * Q.edge[edge])
+            foot[q] = np.where(np.isfinite(dist), target, np.nan)
+            new_a, new_b = _weighted_similarity(xp[active], target.reshape(-1, k), w[active])
+            # A fit that did not move is a fixed point: every later iteration would repeat it.
+            moved = (new_a != a[active]) | (new_b != b[active])
+            a[active], b[active] = new_a, new_b
+            active = active[moved]
         covered_p = w.mean(axis=1)
         s_kept = np.where(w > 0, s_q.reshape(L, k), np.nan)
         span_q = (np.nanmax(s_kept, axis=1, initial=-np.inf) - np.nanmin(s_kept, axis=1, initial=np.inf)) / np.maximum(
