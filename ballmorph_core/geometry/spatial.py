@@ -121,12 +121,8 @@ def box_pairs(boxes_a, boxes_b=None, cell=None):
 
     Parameters
     ----------
-    boxes_a : ndarray, shape (A, 4)
-        Rows ``(xmin, ymin, xmax, ymax)``.
-    boxes_b : ndarray, shape (B, 4), optional
-        If omitted, pairs within ``boxes_a`` are returned with ``i < j``.
-    cell : float, optional
-        Grid cell size; default the median box size.
+    boxes_a, boxes_b, cell
+        As for :func:`box_pair_chunks`.
 
     Returns
     -------
