@@ -54,7 +54,7 @@ from .ends import overhang_morph, settle_ends
 from .exact import exact_fit
 from .fallbacks import (
     BALL_METHODS,
-    arc_length_morph,
+    arc_length_morphs,
     chain_fallback,
     comparison_morph,
     linear_fallback,
@@ -347,11 +347,40 @@ def _on_whole(ends, pair, range_p, u_p):
 def _add_piece(plans, ends, index, c, morph, closed, order, ranges):
     """A morph of chain ``order`` of (local) pair ``c`` whose pieces lie at ``ranges`` along
     the common parts: placed on the whole curves, its samples' displacement undone."""
-    rp, rq = np.asarray(ranges[0], dtype=np.float64), np.asarray(ranges[1], dtype=np.float64)
-    k = len(morph.u_p)
-    morph.u_p, offset, range_p = _on_whole(ends, np.full(k, c), np.tile(rp, (k, 1)), morph.u_p)
-    ranges = (tuple(range_p[0]) if k else tuple(rp), tuple(ends.on_q(c, rq)))
-    plans.add_morph(int(index[c]), morph, closed, order=int(order), ranges=ranges, offset=offset)
+    _add_pieces(plans, ends, index, [c], [morph], [closed], [order], np.asarray(ranges, dtype=np.float64)[None])
+
+
+def _add_pieces(plans, ends, index, pairs, morphs, closed, orders, ranges):
+    """:func:`_add_piece` of several morphs at once (their samples placed together).
+
+    Parameters
+    ----------
+    plans : PairPlans
+    ends : Ends
+    index : ndarray of int, shape (C,)
+        The batch's pairs in the drawing.
+    pairs : array_like of int, shape (G,)
+        The (local) pair of each morph.
+    morphs : list of Morph
+        G morphs; their ``u_p`` are replaced by fractions on the whole curves.
+    closed : array_like of bool, shape (G,)
+    orders : array_like of int, shape (G,)
+        Each morph's chain order within its pair.
+    ranges : ndarray, shape (G, 2, 2)
+        Each morph's arc-length ranges on the common parts of P and of Q.
+    """
+    pairs = np.asarray(pairs, dtype=np.int64)
+    counts = np.array([len(m.u_p) for m in morphs], dtype=np.int64)
+    u_p = np.concatenate([m.u_p for m in morphs]) if morphs else np.zeros(0)
+    u_p, offset, range_p = _on_whole(ends, np.repeat(pairs, counts), np.repeat(ranges[:, 0], counts, axis=0), u_p)
+    range_q = ends.on_q(pairs[:, None], ranges[:, 1])
+    stops = np.cumsum(counts)
+    for g, morph in enumerate(morphs):
+        lo, hi = stops[g] - counts[g], stops[g]
+        morph.u_p = u_p[lo:hi]
+        piece = (tuple(range_p[lo]) if hi > lo else tuple(ranges[g, 0]), tuple(range_q[g]))
+        c = int(index[pairs[g]])
+        plans.add_morph(c, morph, bool(closed[g]), order=int(orders[g]), ranges=piece, offset=offset[lo:hi])
 
 
 def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
@@ -448,9 +477,10 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
         morph, note = linear_fallback(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c], roads.reason[c])
         plans.notes[index[c]].append(note)
         _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
-    for c in np.flatnonzero(roads.kind == "near"):
-        morph = arc_length_morph(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c])
-        _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
+    near = np.flatnonzero(roads.kind == "near")
+    if len(near):
+        morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])
+        _add_pieces(plans, ends, index, near, morphs, closed[near], np.zeros(len(near)), whole_ranges[near])
     lensed = roads.kind == "lenses"
     whole = np.flatnonzero((roads.kind == "whole") | (roads.kind == "carrier"))
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)

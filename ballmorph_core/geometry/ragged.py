@@ -166,6 +166,14 @@ class Ragged:
         )
         return cls(pts, np.concatenate([[0], np.cumsum(sizes)]), np.broadcast_to(closed, (len(curves),)))
 
+    def take(self, curves):
+        """Curves ``curves`` (ndarray of int, shape (K,)) as a new batch, in that order."""
+        curves = np.asarray(curves, dtype=np.int64)
+        counts = self.n[curves]
+        owner, local = ragged_arange(counts)
+        pts = self.pts[self.offsets[curves][owner] + local]
+        return Ragged(pts, np.concatenate([[0], np.cumsum(counts)]), self.closed[curves])
+
     def curve(self, c):
         """Vertices of curve ``c``, shape (n_c, 2) (a view)."""
         return self.pts[self.offsets[c] : self.offsets[c + 1]]
