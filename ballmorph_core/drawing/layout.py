@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..geometry.ragged import ragged_arange
-from ..morphs.paths import BallPaths
+from ..morphs.base import PathMorph
+from ..morphs.paths import BallPaths, LinearPaths
 
 __all__ = ["BallRows", "Segment", "PairFrames", "Layout"]
 
@@ -157,6 +158,58 @@ def _chains(ball, segments):
     return pair, order, np.r_[ball.sizes, sizes].astype(np.int64), ranges
 
 
+def _is_straight(morph):
+    """Whether a segment's morph moves its samples along straight paths (LinearPaths)."""
+    return type(morph) is PathMorph and type(morph.paths) is LinearPaths
+
+
+@dataclass
+class _Straight:
+    """The segments moving along straight paths, joined: one evaluation for all of them (a
+    drawing's fallbacks, arc-length and own-point pairs are hundreds of small morphs).
+
+    Attributes
+    ----------
+    morph : PathMorph
+        Their kept samples' paths, segment after segment.
+    rows : ndarray of int, shape (K,)
+        Place of each sample in the frames.
+    shifted : ndarray of int, shape (J,)
+        The samples (of ``morph``) that have an offset.
+    offset : ndarray, shape (J, 2)
+        Added as ``(1 - t)`` times this to them.
+    """
+
+    morph: PathMorph
+    rows: np.ndarray
+    shifted: np.ndarray
+    offset: np.ndarray
+
+    @classmethod
+    def join(cls, items):
+        """From ``(morph, kept samples, rows, offset or None)`` of each segment; None for none."""
+        if not items:
+            return None
+        p = np.concatenate([m.paths.p[keep] for m, keep, _, _ in items])
+        q = np.concatenate([m.paths.q[keep] for m, keep, _, _ in items])
+        starts = np.cumsum([0] + [len(keep) for _, keep, _, _ in items])
+        shifted = [np.arange(a, a + len(keep)) for a, (_, keep, _, off) in zip(starts, items) if off is not None]
+        offsets = [off for _, _, _, off in items if off is not None]
+        return cls(
+            PathMorph("straight", False, LinearPaths(p, q), np.zeros(len(p)), np.zeros(len(p))),
+            np.concatenate([rows for _, _, rows, _ in items]),
+            np.concatenate(shifted) if shifted else np.zeros(0, np.int64),
+            np.concatenate(offsets) if offsets else np.zeros((0, 2)),
+        )
+
+    def write(self, frame, t):
+        """Their samples at time ``t`` into ``frame`` (shape (K_all, 2))."""
+        at = self.morph(t)
+        if len(self.shifted):
+            at[self.shifted] += (1.0 - t) * self.offset
+        frame[self.rows] = at
+
+
 class Layout:
     """The samples of every pair, laid out pair after pair and chain after chain.
 
@@ -203,12 +256,14 @@ class Layout:
         self._paths = BallPaths(ball.p[kept], ball.m[kept], ball.q[kept], kind) if kept.any() else None
         self._ball_offset = ball.offset[kept] if np.any(ball.offset[kept]) else None
         starts = np.cumsum(np.r_[n_ball, [len(s.morph.u_p) for s in segments]])
-        self._morphs = []
+        self._morphs, straight = [], []
         for seg, a in zip(segments, starts):
             kept_rows = keep[a : a + len(seg.morph.u_p)]
             local = np.flatnonzero(kept_rows)
             offset = None if seg.offset is None or not np.any(seg.offset) else seg.offset[local]
-            self._morphs.append((seg.morph, local, self.position[a : a + len(seg.morph.u_p)][kept_rows], offset))
+            item = (seg.morph, local, self.position[a : a + len(seg.morph.u_p)][kept_rows], offset)
+            (straight if _is_straight(seg.morph) else self._morphs).append(item)
+        self._straight = _Straight.join(straight)
 
     def _fractions(self, local, rng, length, owner):
         u = (rng[:, 0] + local * (rng[:, 1] - rng[:, 0])) / np.maximum(length, 1e-300)
@@ -221,6 +276,8 @@ class Layout:
             if self._paths is not None:
                 at = self._paths.at(t)
                 frames[ti, self._ball_rows] = at if self._ball_offset is None else at + (1.0 - t) * self._ball_offset
+            if self._straight is not None:
+                self._straight.write(frames[ti], t)
             for morph, keep, rows, offset in self._morphs:
                 frames[ti, rows] = morph(t)[keep] if offset is None else morph(t)[keep] + (1.0 - t) * offset
             if motions is not None:
