@@ -51,7 +51,7 @@ from ..geometry.similarity import from_complex
 from ..morphs.base import PathMorph
 from ..morphs.paths import LinearPaths
 from .ends import overhang_morph, settle_ends
-from .exact import exact_fit
+from .exact import exact_fit, may_be_exact
 from .fallbacks import (
     BALL_METHODS,
     arc_length_morphs,
@@ -658,9 +658,12 @@ def _own_points_road(plans, pairs, ready, carrier, drawing):
     own points, moved by the carrier. Returns the other ready pairs."""
     rest, found = [], []
     turn = 0.0 if drawing is None else drawing.turn
-    for c in ready:
+    maybe = may_be_exact(
+        [pairs[c].xy_a for c in ready], [pairs[c].xy_b for c in ready], [pairs[c].closed for c in ready]
+    )
+    for c, tried in zip(ready, maybe):
         pair = pairs[c]
-        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn)
+        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn) if tried else None
         if fit is None:
             rest.append(c)
         else:
