@@ -18,6 +18,12 @@ __all__ = ["Ragged", "ragged_arange", "budget_slices", "group_argmin", "unit_lef
 _EDGE_BUDGET = 2_000_000
 
 
+def _rows(a, index):
+    """``a[index]`` for an integer index array: np.take, which gathers (N, 2) rows several
+    times faster than fancy indexing does (numpy 1.26)."""
+    return np.take(a, index, axis=0)
+
+
 def ragged_arange(counts):
     """Concatenated ``arange(c)`` for every count, and the owner of each entry.
 
@@ -141,7 +147,7 @@ class Ragged:
         self.prv[first[nonempty]] = np.where(self.closed[nonempty], last[nonempty], -1)
         # Built for every internal batch (often per pair): plain ufuncs, no np.linalg.norm or
         # np.add.at (the same sums, in the same order, at a fraction of their call cost).
-        self.edge = self.pts[np.maximum(self.nxt, 0)] - self.pts
+        self.edge = _rows(self.pts, np.maximum(self.nxt, 0)) - self.pts
         self.edge[self.nxt < 0] = 0.0
         ex, ey = self.edge[:, 0], self.edge[:, 1]
         self.length_of_edge = np.sqrt(ex * ex + ey * ey)
@@ -171,7 +177,7 @@ class Ragged:
         curves = np.asarray(curves, dtype=np.int64)
         counts = self.n[curves]
         owner, local = ragged_arange(counts)
-        pts = self.pts[self.offsets[curves][owner] + local]
+        pts = _rows(self.pts, self.offsets[curves][owner] + local)
         return Ragged(pts, np.concatenate([[0], np.cumsum(counts)]), self.closed[curves])
 
     def curve(self, c):
@@ -224,13 +230,16 @@ class Ragged:
         """
         i, frac = self.locate(curve, s)
         if not smooth:
-            return self.pts[i] + frac[:, None] * self.edge[i]
+            return _rows(self.pts, i) + frac[:, None] * _rows(self.edge, i)
         j = np.maximum(self.nxt[i], 0)
-        p1, p2 = self.pts[i], self.pts[j]
+        p1, p2 = _rows(self.pts, i), _rows(self.pts, j)
         h = self.prv[i]
         k = self.nxt[j]
-        p0 = np.where((h >= 0)[:, None], self.pts[np.maximum(h, 0)], 2 * p1 - p2)
-        p3 = np.where((k >= 0)[:, None], self.pts[np.maximum(k, 0)], 2 * p2 - p1)
+        # Past an open curve's ends the missing neighbour is mirrored (only there).
+        p0, p3 = _rows(self.pts, np.maximum(h, 0)), _rows(self.pts, np.maximum(k, 0))
+        start, end = h < 0, k < 0
+        p0[start] = 2 * p1[start] - p2[start]
+        p3[end] = 2 * p2[end] - p1[end]
         return catmull_rom(p0, p1, p2, p3, frac)
 
     def resample(self, counts, smooth=True):
@@ -280,7 +289,7 @@ class Ragged:
     def signed_areas(self):
         """Shoelace area of every curve closed by its chord, shape (C,) (counter-clockwise > 0)."""
         nxt = np.where(self.nxt >= 0, self.nxt, self.offsets[:-1][self.owner])
-        a, b = self.pts, self.pts[nxt]
+        a, b = self.pts, _rows(self.pts, nxt)
         cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
         area = np.zeros(len(self.n))
         np.add.at(area, self.owner, cross)
@@ -318,7 +327,7 @@ class Ragged:
         owner, local = ragged_arange(inner)
         k_local = lo[owner] + local
         k_local = np.where(closed[owner], np.mod(k_local, np.maximum(n[owner], 1)), k_local)
-        verts = self.pts[self.offsets[curve][owner] + k_local]
+        verts = _rows(self.pts, self.offsets[curve][owner] + k_local)
         start = self.point_at(curve, s0)
         end = self.point_at(curve, np.where(lap, s1_in, s1))
         sizes = inner + 2
@@ -337,7 +346,7 @@ class Ragged:
         (one-sided at an open curve's ends), shape (N, 2)."""
         nxt = np.where(self.nxt >= 0, self.nxt, np.arange(len(self.pts)))
         prv = np.where(self.prv >= 0, self.prv, np.arange(len(self.pts)))
-        chord = self.pts[nxt] - self.pts[prv]
+        chord = _rows(self.pts, nxt) - _rows(self.pts, prv)
         return unit_left(chord)
 
     def edge_normals(self):
@@ -363,9 +372,9 @@ class Ragged:
         for sl in budget_slices(counts, _EDGE_BUDGET):
             owner, local = ragged_arange(counts[sl])
             e = e_start[sl][owner] + local
-            a = self.pts[e]
-            b = self.pts[np.where(self.nxt[e] >= 0, self.nxt[e], e_start[sl][owner])]
-            pt = points[sl][owner]
+            a = _rows(self.pts, e)
+            b = _rows(self.pts, np.where(self.nxt[e] >= 0, self.nxt[e], e_start[sl][owner]))
+            pt = _rows(points[sl], owner)
             straddle = (a[:, 1] > pt[:, 1]) != (b[:, 1] > pt[:, 1])
             with np.errstate(divide="ignore", invalid="ignore"):
                 x = a[:, 0] + (pt[:, 1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
