@@ -39,6 +39,7 @@ from ..ballmap.onemap import OneWayMap
 from ..errors import InvalidCurveError
 from ..geometry.intersections import batch_crossings
 from ..geometry.polyline import (
+    already_clean,
     as_curve,
     coarsen,
     curve_length,
@@ -62,7 +63,7 @@ from .fallbacks import (
     unsplittable,
 )
 from .layout import BallRows, Layout, PairFrames, Segment
-from .polylines import corners, polyline_morph
+from .polylines import corners, may_have_corners, polyline_morph
 from .registration import Fits, Motions, fit_pairs, identity_residual, motions, similarity_matrices
 from .splitting import cut_chains, find_events
 
@@ -122,13 +123,19 @@ def _length(curve, closed):
     return curve_length(curve, closed)
 
 
-def prepare(pair, method, spacing):
-    """Step 1: validate a pair's curves (in place); False when it can only move point by point."""
+def prepare(pair, method, spacing, clean=False):
+    """Step 1: validate a pair's curves (in place); False when it can only move point by point.
+
+    ``clean``: both curves are known to be valid as they are (:func:`prepare_pairs`): copied.
+    """
     pair.closed = pair.closed_a and pair.closed_b
     if pair.closed_a != pair.closed_b:
         pair.notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
     try:
-        pair.P, pair.Q = as_curve(pair.xy_a, "P", pair.closed), as_curve(pair.xy_b, "Q", pair.closed)
+        if clean:
+            pair.P, pair.Q = (np.array(xy, dtype=np.float64, copy=True) for xy in (pair.xy_a, pair.xy_b))
+        else:
+            pair.P, pair.Q = as_curve(pair.xy_a, "P", pair.closed), as_curve(pair.xy_b, "Q", pair.closed)
     except InvalidCurveError as exc:
         pair.notes.append(f"too few distinct points ({exc})")
         pair.P = pair.Q = None
@@ -141,6 +148,16 @@ def prepare(pair, method, spacing):
             pair.P = pair.Q = None
             return False
     return True
+
+
+def prepare_pairs(pairs, method, spacing):
+    """Step 1 for every pair: the pairs that are ready (list of int).
+
+    Curves a drawing's batch shows need no cleaning skip the per-curve validation.
+    """
+    closed = [p.closed_a and p.closed_b for p in pairs]
+    clean = already_clean([p.xy_a for p in pairs], closed) & already_clean([p.xy_b for p in pairs], closed)
+    return [c for c, pair in enumerate(pairs) if prepare(pair, method, spacing, bool(clean[c]))]
 
 
 class PairPlans:
@@ -581,7 +598,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     -------
     PairPlans
     """
-    ready = [c for c, pair in enumerate(pairs) if prepare(pair, method, spacing)]
+    ready = prepare_pairs(pairs, method, spacing)
     plans = PairPlans(pairs)
     for c, pair in enumerate(pairs):
         if pair.P is None:
@@ -620,8 +637,15 @@ def _polyline_road(plans, pairs, ready, carrier, drawing):
     """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
     straight, on the carrier. Returns the other ready pairs."""
     found, rest = [], []
-    for c in ready:
+    closed = [pairs[c].closed for c in ready]
+    maybe = may_have_corners([pairs[c].P for c in ready], closed) & may_have_corners(
+        [pairs[c].Q for c in ready], closed
+    )
+    for c, tried in zip(ready, maybe):
         pair = pairs[c]
+        if not tried:
+            rest.append(c)
+            continue
         ca, cb = corners(pair.P, pair.closed), corners(pair.Q, pair.closed)
         if ca is None or cb is None or len(ca.index) != len(cb.index):
             rest.append(c)

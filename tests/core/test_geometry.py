@@ -10,6 +10,8 @@ from ballmorph_core.ballmap.onemap import OneWayMap
 from ballmorph_core.geometry.circles import circumcircles
 from ballmorph_core.geometry.intersections import batch_crossings, crossings
 from ballmorph_core.geometry.polyline import (
+    already_clean,
+    as_curve,
     default_spacing,
     default_spacings,
     pair_scales,
@@ -211,3 +213,25 @@ def test_subcurve_keeps_the_stretch(closed):
     c = _wobbly(40, 10, closed=not closed) if not closed else _wobbly(40, 10)
     piece = subcurve(c, closed, 0.5, 1.7)
     assert np.linalg.norm(np.diff(piece, axis=0), axis=1).sum() == pytest.approx(1.2, rel=1e-9)
+
+
+@settings(max_examples=100, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), closed=st.booleans())
+def test_curves_already_clean_are_what_as_curve_returns(seed, closed):
+    rng = np.random.default_rng(seed)
+    curves = []
+    for _ in range(12):
+        xy = rng.normal(size=(int(rng.integers(0, 9)), 2)) * 10 ** rng.uniform(-3, 3)
+        kind = rng.integers(0, 6)
+        if kind == 1 and len(xy) > 2:
+            xy[2] = xy[1]  # a duplicate
+        elif kind == 2 and len(xy) > 2:
+            xy[-1] = xy[0] * (1 + 1e-12)  # a loop's closing duplicate
+        elif kind == 3 and len(xy):
+            xy[0, 1] = np.nan
+        elif kind == 4 and len(xy) > 2:
+            xy[2] = xy[1] + 1e-9 * np.ptp(xy, axis=0).max()  # at the tolerance
+        curves.append(xy)
+    for xy, clean in zip(curves, already_clean(curves, [closed] * len(curves))):
+        if clean:
+            np.testing.assert_array_equal(as_curve(xy, "P", closed), xy)
