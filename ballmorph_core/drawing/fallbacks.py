@@ -13,7 +13,7 @@ from ..errors import BallMorphError, IncompatibleCurvesError
 from ..geometry.intersections import is_simple
 from ..morphs import make_morph
 from ..morphs.base import PathMorph
-from ..morphs.linear import sample_count, uniform_correspondences
+from ..morphs.linear import sample_counts, uniform_correspondences
 from ..morphs.paths import LinearPaths
 
 __all__ = [
@@ -94,8 +94,7 @@ def arc_length_morphs(R, Q, spacing):
     list of PathMorph
     """
     closed = R.closed
-    counts = [sample_count(R.curve(c), Q.curve(c), bool(closed[c]), spacing[c], "symmetric") for c in range(len(R))]
-    found = uniform_correspondences(R, Q, counts, match_orientation=True)
+    found = uniform_correspondences(R, Q, sample_counts(R, Q, spacing), match_orientation=True)
     morphs = []
     for c, (lo, hi) in enumerate(zip(found.offsets[:-1], found.offsets[1:])):
         paths = LinearPaths(found.p[lo:hi], found.q[lo:hi])

@@ -155,7 +155,7 @@ class Ragged:
         base = np.zeros(len(self.n))
         base[nonempty] = csum[first[nonempty]]
         self.s = csum - base[self.owner]
-        self.length = np.bincount(self.owner, weights=self.length_of_edge, minlength=len(self.n))
+        self.length = self._sums(self.length_of_edge)
         self.n_edges = np.where(self.closed, self.n, np.maximum(self.n - 1, 0))
 
     def __len__(self):
@@ -277,23 +277,23 @@ class Ragged:
     def centroids(self):
         """Arc-length centroid of every curve (the vertex mean for a dot), shape (C, 2)."""
         mid = self.pts + 0.5 * self.edge
-        weight = self.length_of_edge
-        total = np.zeros((len(self.n), 2))
-        np.add.at(total, self.owner, mid * weight[:, None])
-        plain = np.zeros((len(self.n), 2))
-        np.add.at(plain, self.owner, self.pts)
+        weighted = mid * self.length_of_edge[:, None]
+        total = np.stack([self._sums(weighted[:, 0]), self._sums(weighted[:, 1])], axis=1)
+        plain = np.stack([self._sums(self.pts[:, 0]), self._sums(self.pts[:, 1])], axis=1)
         plain /= np.maximum(self.n, 1)[:, None]
         has_length = self.length > 0
         return np.where(has_length[:, None], total / np.where(has_length, self.length, 1.0)[:, None], plain)
+
+    def _sums(self, values):
+        """Per-curve sums of per-vertex values (in vertex order, as np.add.at adds), shape (C,)."""
+        return np.bincount(self.owner, weights=values, minlength=len(self.n))
 
     def signed_areas(self):
         """Shoelace area of every curve closed by its chord, shape (C,) (counter-clockwise > 0)."""
         nxt = np.where(self.nxt >= 0, self.nxt, self.offsets[:-1][self.owner])
         a, b = self.pts, _rows(self.pts, nxt)
         cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-        area = np.zeros(len(self.n))
-        np.add.at(area, self.owner, cross)
-        return 0.5 * area
+        return 0.5 * self._sums(cross)
 
     def pieces(self, curve, s0, s1):
         """Stretches of curves between arc lengths, as a new batch of open curves.

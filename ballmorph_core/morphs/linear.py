@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..ballmap.topology import shared_endpoints
-from ..geometry.polyline import curve_length, resolve_spacing, signed_area
+from ..geometry.polyline import MAX_SAMPLES, curve_length, resolve_spacing
 from ..geometry.ragged import Ragged, ragged_arange
 from .base import PathMorph, register
 from .paths import LinearPaths
@@ -22,6 +22,7 @@ __all__ = [
     "best_cyclic_alignment",
     "best_cyclic_alignments",
     "sample_count",
+    "sample_counts",
 ]
 
 
@@ -164,7 +165,7 @@ def uniform_correspondences(P, Q, counts, match_orientation=False):
         rows = first + np.arange(k)
         reverse = None
         if match_orientation:
-            reverse = np.array([(signed_area(rp.curve(c)) > 0) != (signed_area(rq.curve(c)) > 0) for c in group])
+            reverse = (rp.signed_areas()[group] > 0) != (rq.signed_areas()[group] > 0)
         shift, rev = best_cyclic_alignments(rp.pts[rows], rq.pts[rows], reverse)
         idx = (np.arange(k) + shift[:, None]) % k
         taken = first + np.where(rev[:, None], (-idx) % k, idx)
@@ -181,7 +182,28 @@ def sample_count(P, Q, closed, spacing, sampling):
     spacing = resolve_spacing(P, Q, closed, spacing)
     lengths = {"p": curve_length(P, closed), "q": curve_length(Q, closed)}
     length = lengths[sampling] if sampling in lengths else max(lengths.values())
-    return int(round(length / spacing)) + (0 if closed else 1)
+    return int(_counts(np.array([length]), spacing, np.array([closed]))[0])
+
+
+def sample_counts(P, Q, spacing):
+    """:func:`sample_count` of every pair of two batches at once, the longer curve setting it
+    ('symmetric'), shape (C,) of int.
+
+    Parameters
+    ----------
+    P, Q : Ragged
+    spacing : ndarray, shape (C,)
+        Each pair's spacing (checked by :func:`~.polyline.resolve_spacing`, which raises for
+        a pair it would give too many samples).
+    """
+    for c in np.flatnonzero(~(np.maximum(P.length, Q.length) / spacing <= MAX_SAMPLES)):
+        resolve_spacing(P.curve(c), Q.curve(c), bool(P.closed[c]), float(spacing[c]))
+    return _counts(np.maximum(P.length, Q.length), spacing, P.closed)
+
+
+def _counts(length, spacing, closed):
+    """Samples at ``spacing`` along curves of ``length`` (both endpoints for open ones)."""
+    return np.rint(length / spacing).astype(np.int64) + np.where(closed, 0, 1)
 
 
 @register("linear-interpolation")
