@@ -159,13 +159,13 @@ def uniform_correspondences(P, Q, counts, match_orientation=False):
             span = slice(offsets[c], offsets[c + 1])
             order[span], u_q[span] = order[span][::-1], 1.0 - u[span]
     loops = np.flatnonzero(closed)
+    if match_orientation and len(loops):
+        turned = (rp.signed_areas() > 0) != (rq.signed_areas() > 0)
     for k in np.unique(rp.n[loops]):
         group = loops[rp.n[loops] == k]
         first = offsets[group][:, None]
         rows = first + np.arange(k)
-        reverse = None
-        if match_orientation:
-            reverse = (rp.signed_areas()[group] > 0) != (rq.signed_areas()[group] > 0)
+        reverse = turned[group] if match_orientation else None
         shift, rev = best_cyclic_alignments(rp.pts[rows], rq.pts[rows], reverse)
         idx = (np.arange(k) + shift[:, None]) % k
         taken = first + np.where(rev[:, None], (-idx) % k, idx)
