@@ -301,8 +301,10 @@ def coarsen(curves, spacing=None):
     Ragged
         ``curves`` itself when none is that dense.
     """
-    if spacing is None and not np.any(curves.n > 2 * (COARSEN_RATIO * DEFAULT_SAMPLES_MIN + 1)):
-        return curves  # no default spacing is coarser than length / DEFAULT_SAMPLES_MIN
+    # A default spacing is at most twice the mean edge (half the edges are at least the median)
+    # or length / DEFAULT_SAMPLES_MAX: a curve is that dense only with more points than this.
+    if spacing is None and not np.any(curves.n > 2 * COARSEN_RATIO * DEFAULT_SAMPLES_MAX):
+        return curves
     own = default_spacings(curves) if spacing is None else np.full(len(curves), float(spacing))
     wanted = np.ceil(COARSEN_RATIO * curves.length / own).astype(np.int64) + 1
     dense = curves.n > 2 * wanted
