@@ -71,8 +71,20 @@ class Ends:
     def on_p(self, pair, s):
         """Arc lengths on R of arc lengths ``s`` on the common parts of ``pair`` (same shapes)."""
         pair, s = np.broadcast_arrays(np.asarray(pair, dtype=np.int64), np.asarray(s, dtype=np.float64))
-        u = self._fraction(pair.ravel(), s.ravel()).reshape(s.shape)
+        return self._on_p(pair, self._fraction(pair.ravel(), s.ravel()).reshape(s.shape))
+
+    def place(self, pair, s):
+        """:meth:`on_p` and :meth:`offsets` of the same samples, from one location on the
+        common parts: arc lengths on R, shape (K,), and offsets, shape (K, 2)."""
+        pair = np.asarray(pair, dtype=np.int64)
+        u = self._fraction(pair, np.asarray(s, dtype=np.float64))
+        return self._on_p(pair, u), self._offsets(pair, u)
+
+    def _on_p(self, pair, u):
         return self.keep_p[pair, 0] + u * (self.keep_p[pair, 1] - self.keep_p[pair, 0])
+
+    def _offsets(self, pair, u):
+        return -((1 - u)[:, None] * self.gap[pair, 0] + u[:, None] * self.gap[pair, 1])
 
     def on_q(self, pair, s):
         """Arc lengths on Q of arc lengths ``s`` on the common parts of ``pair``."""
@@ -92,8 +104,7 @@ class Ends:
         pair = np.asarray(pair, dtype=np.int64)
         if not len(pair):
             return np.zeros((0, 2))
-        u = self._fraction(pair, np.asarray(s, dtype=np.float64))
-        return -((1 - u)[:, None] * self.gap[pair, 0] + u[:, None] * self.gap[pair, 1])
+        return self._offsets(pair, self._fraction(pair, np.asarray(s, dtype=np.float64)))
 
 
 def _ends_onto(A, B, which, reach):

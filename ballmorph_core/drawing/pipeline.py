@@ -318,14 +318,13 @@ def _ball_rows(chains, maps, index, good, ends):
     p, m, q = (np.concatenate([getattr(rows, f), overlap.pts]) for f in ("src", "m", "dst"))
     chain, kept = chain[order], np.flatnonzero(good | chains.static)
     first = np.searchsorted(chains.pair, chains.pair[kept])
-    local = chains.pair[chain]
-    u_p, offset, _ = _on_whole(ends, local, chains.range_p[chain], u_p[order])
+    u_p, offset, on_whole = _on_whole(ends, chains.pair, chains.range_p, u_p[order], chain)
     owner = chains.pair[kept]
     return BallRows(
         pair=index[owner],
         order=kept - first,
         sizes=np.bincount(chain, minlength=len(chains))[kept],
-        range_p=ends.on_p(owner[:, None], chains.range_p[kept]),
+        range_p=on_whole[kept],
         range_q=ends.on_q(owner[:, None], chains.range_q[kept]),
         static=chains.static[kept],
         u_p=u_p,
@@ -337,7 +336,7 @@ def _ball_rows(chains, maps, index, good, ends):
     )
 
 
-def _on_whole(ends, pair, range_p, u_p):
+def _on_whole(ends, pair, range_p, u_p, chain):
     """Samples at fractions ``u_p`` of chains at ``range_p`` on the common parts, placed on the
     whole registered curves: their fractions of the chains' ranges there, the offsets undoing
     the displacement, and those ranges.
@@ -345,20 +344,25 @@ def _on_whole(ends, pair, range_p, u_p):
     Parameters
     ----------
     ends : Ends
-    pair : ndarray of int, shape (K,)
-    range_p : ndarray, shape (K, 2)
-        Each sample's chain's range on its common part.
+    pair : ndarray of int, shape (G,)
+        Each chain's pair.
+    range_p : ndarray, shape (G, 2)
+        Each chain's range on its pair's common part.
     u_p : ndarray, shape (K,)
+    chain : ndarray of int, shape (K,)
+        Each sample's chain.
 
     Returns
     -------
-    u_p, offset, range_p : ndarrays, shapes (K,), (K, 2), (K, 2)
+    u_p, offset, range_p : ndarrays, shapes (K,), (K, 2), (G, 2)
     """
-    s = range_p[:, 0] + u_p * (range_p[:, 1] - range_p[:, 0])
-    on_whole = ends.on_p(pair[:, None], np.c_[range_p, s])
-    span = on_whole[:, 1] - on_whole[:, 0]
-    u = np.divide(on_whole[:, 2] - on_whole[:, 0], span, out=u_p.astype(np.float64), where=np.abs(span) > 0)
-    return u, ends.offsets(pair, s), on_whole[:, :2]
+    s = range_p[chain, 0] + u_p * (range_p[chain, 1] - range_p[chain, 0])
+    ranges = ends.on_p(pair[:, None], range_p)
+    at, offset = ends.place(pair[chain], s)
+    start = ranges[chain, 0]
+    span = ranges[chain, 1] - start
+    u = np.divide(at - start, span, out=u_p.astype(np.float64), where=np.abs(span) > 0)
+    return u, offset, ranges
 
 
 def _add_piece(plans, ends, index, c, morph, closed, order, ranges):
@@ -389,13 +393,13 @@ def _add_pieces(plans, ends, index, pairs, morphs, closed, orders, ranges):
     pairs = np.asarray(pairs, dtype=np.int64)
     counts = np.array([len(m.u_p) for m in morphs], dtype=np.int64)
     u_p = np.concatenate([m.u_p for m in morphs]) if morphs else np.zeros(0)
-    u_p, offset, range_p = _on_whole(ends, np.repeat(pairs, counts), np.repeat(ranges[:, 0], counts, axis=0), u_p)
+    u_p, offset, range_p = _on_whole(ends, pairs, ranges[:, 0], u_p, np.repeat(np.arange(len(pairs)), counts))
     range_q = ends.on_q(pairs[:, None], ranges[:, 1])
     stops = np.cumsum(counts)
     for g, morph in enumerate(morphs):
         lo, hi = stops[g] - counts[g], stops[g]
         morph.u_p = u_p[lo:hi]
-        piece = (tuple(range_p[lo]) if hi > lo else tuple(ranges[g, 0]), tuple(range_q[g]))
+        piece = (tuple(range_p[g]) if hi > lo else tuple(ranges[g, 0]), tuple(range_q[g]))
         c = int(index[pairs[g]])
         plans.add_morph(c, morph, bool(closed[g]), order=int(orders[g]), ranges=piece, offset=offset[lo:hi])
 
