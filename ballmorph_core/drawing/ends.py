@@ -187,23 +187,48 @@ def _merge(parts, whole, keep):
 
 
 class _SlidingPaths:
-    """Points sliding along a curve at constant speed into (or out of) one point of it, all
-    carried by ``t`` times a vector (the displacement of the end they are attached to)."""
+    """Points sliding along curves at constant speed into (or out of) one point of them, all
+    carried by ``t`` times a vector (the displacement of the end they are attached to).
 
-    def __init__(self, curve, s, attach, towards, grow):
-        self._rg = Ragged.from_list([curve], [False])
-        self._s, self._attach, self._grow = s, float(attach), bool(grow)
-        self._towards = np.asarray(towards, dtype=np.float64)
+    Parameters
+    ----------
+    curves : Ragged
+        Open curves.
+    curve : ndarray of int, shape (K,)
+        Each point's curve.
+    s, attach : ndarray, shape (K,)
+        Each point's arc length at ``t = 0`` (``t = 1`` when growing) and where it joins.
+    towards : ndarray, shape (K, 2)
+    grow : ndarray of bool, shape (K,)
+        Growing runs the shrinking backwards in time.
+    """
+
+    def __init__(self, curves, curve, s, attach, towards, grow):
+        self._rg, self._curve, self._s, self._attach = curves, curve, s, attach
+        self._towards, self._grow = towards, grow
+
+    @classmethod
+    def join(cls, parts):
+        """Many of them (``(paths, kept points)`` each) as one: one evaluation for them all."""
+        curves = Ragged.from_list([paths._rg.pts for paths, _ in parts], False)
+        ends = np.cumsum([0] + [len(paths._rg) for paths, _ in parts])
+        columns = (
+            np.concatenate([first + paths._curve[keep] for first, (paths, keep) in zip(ends, parts)]),
+            *(np.concatenate([getattr(paths, name)[keep] for paths, keep in parts]) for name in ("_s", "_attach")),
+            np.concatenate([paths._towards[keep] for paths, keep in parts]).reshape(-1, 2),
+            np.concatenate([paths._grow[keep] for paths, keep in parts]),
+        )
+        return cls(curves, *columns)
 
     def __len__(self):
         return len(self._s)
 
     def at(self, t):
         t = float(t)
-        time = 1.0 - t if self._grow else t  # growing runs the shrinking backwards in time
+        time = np.where(self._grow, 1.0 - t, t)
         along = self._s + time * (self._attach - self._s)
-        points = self._rg.point_at(np.zeros(len(along), np.int64), along)
-        return points + (t - 1.0 if self._grow else t) * self._towards
+        points = self._rg.point_at(self._curve, along)
+        return points + np.where(self._grow, t - 1.0, t)[:, None] * self._towards
 
     @property
     def start(self):
@@ -244,4 +269,12 @@ def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
     count = max(int(np.ceil((s1 - s0) / max(spacing, 1e-300))) + 1, 2)
     s = np.linspace(s0, s1, count)
     u = np.linspace(0.0, 1.0, count)
-    return PathMorph("overhang", False, _SlidingPaths(curve, s, attach, towards, grow), u, u.copy())
+    paths = _SlidingPaths(
+        Ragged.from_list([curve], [False]),
+        np.zeros(count, np.int64),
+        s,
+        np.full(count, float(attach)),
+        np.broadcast_to(np.asarray(towards, dtype=np.float64), (count, 2)),
+        np.full(count, bool(grow)),
+    )
+    return PathMorph("overhang", False, paths, u, u.copy())
