@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..geometry.projection import nearest_within
-from ..geometry.ragged import Ragged
+from ..geometry.ragged import Ragged, ragged_arange
 from ..morphs.base import PathMorph
 
 __all__ = ["ALONG", "Ends", "settle_ends", "overhang_morph"]
@@ -182,8 +182,13 @@ def settle_ends(R, Q, scale, opened, trim=None):
 
 def _merge(parts, whole, keep):
     """``parts`` with the curves ``keep`` replaced by those of ``whole`` (Ragged)."""
-    curves = [whole.curve(c) if keep[c] else parts.curve(c) for c in range(len(whole))]
-    return Ragged.from_list(curves, whole.closed)
+    counts = np.where(keep, whole.n, parts.n)
+    owner, local = ragged_arange(counts)
+    mine = keep[owner]
+    pts = np.empty((len(owner), 2))
+    pts[mine] = np.take(whole.pts, whole.offsets[owner[mine]] + local[mine], axis=0)
+    pts[~mine] = np.take(parts.pts, parts.offsets[owner[~mine]] + local[~mine], axis=0)
+    return Ragged(pts, np.concatenate([[0], np.cumsum(counts)]), whole.closed)
 
 
 class _SlidingPaths:

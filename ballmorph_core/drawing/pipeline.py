@@ -329,9 +329,9 @@ def _ball_rows(chains, maps, index, good, ends):
         static=chains.static[kept],
         u_p=u_p,
         u_q=u_q[order],
-        p=p[order],
-        m=m[order],
-        q=q[order],
+        p=np.take(p, order, axis=0),
+        m=np.take(m, order, axis=0),
+        q=np.take(q, order, axis=0),
         offset=offset,
     )
 
@@ -465,7 +465,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     for c, own in enumerate(given or []):
         if own is not None:
             _spread_motions(motion, own, np.array([c]))
-    pts = np.einsum("kij,kj->ki", motion.A[P.owner], P.pts) + motion.b[P.owner]
+    pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
     return motion, R, identity_residual(R, Q)
 
