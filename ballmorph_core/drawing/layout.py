@@ -171,8 +171,16 @@ class _Rows:
     def __init__(self, rows):
         rows = np.asarray(rows, dtype=np.int64)
         run = len(rows) > 0 and np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows)))
+        self._rows = rows
         self._slice = slice(int(rows[0]), int(rows[0]) + len(rows)) if run else None
         self._flat = None if run else (2 * rows[:, None] + np.arange(2)).ravel()
+
+    def __len__(self):
+        return len(self._rows)
+
+    def read(self, frame):
+        """``frame[rows]``, shape (K, 2)."""
+        return frame[self._slice] if self._slice is not None else np.take(frame, self._rows, axis=0)
 
     def write(self, frame, values):
         """``frame[rows] = values`` (frame: C-contiguous, shape (K_all, 2))."""
@@ -199,15 +207,15 @@ class _Joined:
         Their kept samples' paths, segment after segment.
     rows : _Rows
         Place of each sample in the frames.
-    shifted : ndarray of int, shape (J,)
-        The samples (of ``morph``) that have an offset.
+    shifted : _Rows
+        The samples (of ``morph``) that have an offset (J of them).
     offset : ndarray, shape (J, 2)
         Added as ``(1 - t)`` times this to them.
     """
 
     morph: PathMorph
     rows: _Rows
-    shifted: np.ndarray
+    shifted: _Rows
     offset: np.ndarray
 
     @classmethod
@@ -220,7 +228,7 @@ class _Joined:
         return cls(
             PathMorph("joined", False, paths, np.zeros(starts[-1]), np.zeros(starts[-1])),
             _Rows(np.concatenate([rows for _, _, rows, _ in items])),
-            np.concatenate(shifted) if shifted else np.zeros(0, np.int64),
+            _Rows(np.concatenate(shifted) if shifted else np.zeros(0, np.int64)),
             np.concatenate(offsets) if offsets else np.zeros((0, 2)),
         )
 
@@ -228,7 +236,7 @@ class _Joined:
         """Their samples at time ``t`` into ``frame`` (shape (K_all, 2))."""
         at = self.morph(t)
         if len(self.shifted):
-            at[self.shifted] += (1.0 - t) * self.offset
+            self.shifted.write(at, self.shifted.read(at) + (1.0 - t) * self.offset)
         self.rows.write(frame, at)
 
 
