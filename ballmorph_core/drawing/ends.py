@@ -107,10 +107,11 @@ class Ends:
         return self._offsets(pair, self._fraction(pair, np.asarray(s, dtype=np.float64)))
 
 
-def _ends_onto(A, B, which, reach):
-    """Where the first (``which=0``) or last ends of A lie along B: arc length on B, distance."""
-    ends = A.pts[A.offsets[:-1]] if which == 0 else A.pts[A.offsets[1:] - 1]
-    dist, edge, frac = nearest_within(ends, np.arange(len(A)), B, reach)
+def _ends_onto(A, B, which, reach, rows):
+    """Where the first (``which=0``) or last ends of curves ``rows`` of A lie along B: arc
+    length on B, distance (shapes (K,); ``reach`` per curve of A)."""
+    ends = np.take(A.pts, A.offsets[rows] if which == 0 else A.offsets[rows + 1] - 1, axis=0)
+    dist, edge, frac = nearest_within(ends, rows, B, reach[rows])
     return B.s[edge] + frac * B.length_of_edge[edge], dist
 
 
@@ -125,16 +126,19 @@ def _trims(R, Q, scale, trim):
     n = len(R)
     keep_p, keep_q = np.c_[np.zeros(n), R.length], np.c_[np.zeros(n), Q.length]
     end_tol, reach = tol.SHARED_ENDPOINT * scale, ALONG * scale
+    rows = np.flatnonzero(trim)  # only their ends are searched (none for loops)
     for which in (0, 1):
-        s_q, d_q = _ends_onto(R, Q, which, reach)  # R's end along Q: Q overhangs
-        s_r, d_r = _ends_onto(Q, R, which, reach)  # Q's end along R: R overhangs
-        q_over, q_depth = _along(s_q, d_q, Q.length, end_tol, which)
-        r_over, r_depth = _along(s_r, d_r, R.length, end_tol, which)
+        if not len(rows):
+            break
+        s_q, d_q = _ends_onto(R, Q, which, reach, rows)  # R's end along Q: Q overhangs
+        s_r, d_r = _ends_onto(Q, R, which, reach, rows)  # Q's end along R: R overhangs
+        q_over, q_depth = _along(s_q, d_q, Q.length[rows], end_tol[rows], which)
+        r_over, r_depth = _along(s_r, d_r, R.length[rows], end_tol[rows], which)
         # Both ends along the other (the strokes overlap there): the shallower trim.
-        trim_q = trim & q_over & (~r_over | (q_depth <= r_depth))
-        trim_r = trim & r_over & ~trim_q
-        keep_q[trim_q, which] = s_q[trim_q]
-        keep_p[trim_r, which] = s_r[trim_r]
+        trim_q = q_over & (~r_over | (q_depth <= r_depth))
+        trim_r = r_over & ~trim_q
+        keep_q[rows[trim_q], which] = s_q[trim_q]
+        keep_p[rows[trim_r], which] = s_r[trim_r]
     # A trim that leaves no common part would morph nothing: keep those pairs whole.
     empty = (keep_p[:, 1] - keep_p[:, 0] <= end_tol) | (keep_q[:, 1] - keep_q[:, 0] <= end_tol)
     keep_p[empty], keep_q[empty] = np.c_[np.zeros(n), R.length][empty], np.c_[np.zeros(n), Q.length][empty]
