@@ -246,7 +246,11 @@ def choose_roads(R, Q, events, coincident, near, carrier, scale):
     end_eps = tol.SHARED_ENDPOINT * scale
     first = np.linalg.norm(R.pts[R.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
     last = np.linalg.norm(R.pts[R.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
-    nested = Q.contains(R.pts[R.offsets[:-1]], np.arange(n)) | R.contains(Q.pts[Q.offsets[:-1]], np.arange(n))
+    # Whether loops lie one inside the other: asked of the whole pairs only.
+    nested = np.zeros(n, dtype=bool)
+    ask = np.flatnonzero((kind == "whole") & ~coincident)
+    inside_q = Q.contains(np.take(R.pts, R.offsets[ask], axis=0), ask)
+    nested[ask] = inside_q | R.contains(np.take(Q.pts, Q.offsets[ask], axis=0), ask)
     for c in range(n):
         if coincident[c]:
             kind[c] = "carrier"
