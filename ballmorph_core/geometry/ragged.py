@@ -139,22 +139,27 @@ class Ragged:
         self.n = np.diff(self.offsets)
         self.owner = np.repeat(np.arange(len(self.n)), self.n)
         first, last = self.offsets[:-1], self.offsets[1:] - 1
-        idx = np.arange(n_pts)
-        self.nxt = idx + 1
-        self.prv = idx - 1
+        self.nxt = np.arange(1, n_pts + 1)
+        self.prv = np.arange(-1, n_pts - 1)
         nonempty = self.n > 0
         self.nxt[last[nonempty]] = np.where(self.closed[nonempty], first[nonempty], -1)
         self.prv[first[nonempty]] = np.where(self.closed[nonempty], last[nonempty], -1)
-        # Built for every internal batch (often per pair): plain ufuncs, no np.linalg.norm or
-        # np.add.at (the same sums, in the same order, at a fraction of their call cost).
-        self.edge = _rows(self.pts, np.maximum(self.nxt, 0)) - self.pts
-        self.edge[self.nxt < 0] = 0.0
+        # Built for every internal batch (often per pair): plain ufuncs in place, no
+        # np.linalg.norm or np.add.at (the same sums, in the same order, at a fraction of their
+        # call and allocation cost).
+        self.edge = _rows(self.pts, np.maximum(self.nxt, 0))
+        self.edge -= self.pts
+        self.edge[last[nonempty & ~self.closed]] = 0.0  # an open curve's last vertex starts no edge
         ex, ey = self.edge[:, 0], self.edge[:, 1]
-        self.length_of_edge = np.sqrt(ex * ex + ey * ey)
-        csum = np.cumsum(self.length_of_edge) - self.length_of_edge
+        self.length_of_edge = ex * ex
+        self.length_of_edge += ey * ey
+        np.sqrt(self.length_of_edge, out=self.length_of_edge)
+        csum = np.cumsum(self.length_of_edge)
+        csum -= self.length_of_edge
         base = np.zeros(len(self.n))
         base[nonempty] = csum[first[nonempty]]
-        self.s = csum - base[self.owner]
+        csum -= base[self.owner]
+        self.s = csum
         self.length = self._sums(self.length_of_edge)
         self.n_edges = np.where(self.closed, self.n, np.maximum(self.n - 1, 0))
 
