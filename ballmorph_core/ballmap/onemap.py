@@ -84,4 +84,11 @@ class OneWayMap:
 
 
 def _rows(values, rows):
-    return None if values is None else values[rows]
+    """``values[rows]`` by np.compress / np.take (several times faster on (K, 2) rows)."""
+    if values is None:
+        return None
+    if isinstance(rows, np.ndarray) and rows.dtype == bool and rows.shape == values.shape[:1]:
+        return np.compress(rows, values, axis=0)
+    if isinstance(rows, np.ndarray) and rows.dtype.kind in "iu":
+        return np.take(values, rows, axis=0)
+    return values[rows]  # a slice, a list

@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..geometry.projection import nearest_within
-from ..geometry.ragged import Ragged
+from ..geometry.ragged import Ragged, ragged_arange
 from ..morphs.base import PathMorph
 
 __all__ = ["ALONG", "Ends", "settle_ends", "overhang_morph"]
@@ -71,8 +71,20 @@ class Ends:
     def on_p(self, pair, s):
         """Arc lengths on R of arc lengths ``s`` on the common parts of ``pair`` (same shapes)."""
         pair, s = np.broadcast_arrays(np.asarray(pair, dtype=np.int64), np.asarray(s, dtype=np.float64))
-        u = self._fraction(pair.ravel(), s.ravel()).reshape(s.shape)
+        return self._on_p(pair, self._fraction(pair.ravel(), s.ravel()).reshape(s.shape))
+
+    def place(self, pair, s):
+        """:meth:`on_p` and :meth:`offsets` of the same samples, from one location on the
+        common parts: arc lengths on R, shape (K,), and offsets, shape (K, 2)."""
+        pair = np.asarray(pair, dtype=np.int64)
+        u = self._fraction(pair, np.asarray(s, dtype=np.float64))
+        return self._on_p(pair, u), self._offsets(pair, u)
+
+    def _on_p(self, pair, u):
         return self.keep_p[pair, 0] + u * (self.keep_p[pair, 1] - self.keep_p[pair, 0])
+
+    def _offsets(self, pair, u):
+        return -((1 - u)[:, None] * self.gap[pair, 0] + u[:, None] * self.gap[pair, 1])
 
     def on_q(self, pair, s):
         """Arc lengths on Q of arc lengths ``s`` on the common parts of ``pair``."""
@@ -92,14 +104,14 @@ class Ends:
         pair = np.asarray(pair, dtype=np.int64)
         if not len(pair):
             return np.zeros((0, 2))
-        u = self._fraction(pair, np.asarray(s, dtype=np.float64))
-        return -((1 - u)[:, None] * self.gap[pair, 0] + u[:, None] * self.gap[pair, 1])
+        return self._offsets(pair, self._fraction(pair, np.asarray(s, dtype=np.float64)))
 
 
-def _ends_onto(A, B, which, reach):
-    """Where the first (``which=0``) or last ends of A lie along B: arc length on B, distance."""
-    ends = A.pts[A.offsets[:-1]] if which == 0 else A.pts[A.offsets[1:] - 1]
-    dist, edge, frac = nearest_within(ends, np.arange(len(A)), B, reach)
+def _ends_onto(A, B, which, reach, rows):
+    """Where the first (``which=0``) or last ends of curves ``rows`` of A lie along B: arc
+    length on B, distance (shapes (K,); ``reach`` per curve of A)."""
+    ends = np.take(A.pts, A.offsets[rows] if which == 0 else A.offsets[rows + 1] - 1, axis=0)
+    dist, edge, frac = nearest_within(ends, rows, B, reach[rows])
     return B.s[edge] + frac * B.length_of_edge[edge], dist
 
 
@@ -114,16 +126,19 @@ def _trims(R, Q, scale, trim):
     n = len(R)
     keep_p, keep_q = np.c_[np.zeros(n), R.length], np.c_[np.zeros(n), Q.length]
     end_tol, reach = tol.SHARED_ENDPOINT * scale, ALONG * scale
+    rows = np.flatnonzero(trim)  # only their ends are searched (none for loops)
     for which in (0, 1):
-        s_q, d_q = _ends_onto(R, Q, which, reach)  # R's end along Q: Q overhangs
-        s_r, d_r = _ends_onto(Q, R, which, reach)  # Q's end along R: R overhangs
-        q_over, q_depth = _along(s_q, d_q, Q.length, end_tol, which)
-        r_over, r_depth = _along(s_r, d_r, R.length, end_tol, which)
+        if not len(rows):
+            break
+        s_q, d_q = _ends_onto(R, Q, which, reach, rows)  # R's end along Q: Q overhangs
+        s_r, d_r = _ends_onto(Q, R, which, reach, rows)  # Q's end along R: R overhangs
+        q_over, q_depth = _along(s_q, d_q, Q.length[rows], end_tol[rows], which)
+        r_over, r_depth = _along(s_r, d_r, R.length[rows], end_tol[rows], which)
         # Both ends along the other (the strokes overlap there): the shallower trim.
-        trim_q = trim & q_over & (~r_over | (q_depth <= r_depth))
-        trim_r = trim & r_over & ~trim_q
-        keep_q[trim_q, which] = s_q[trim_q]
-        keep_p[trim_r, which] = s_r[trim_r]
+        trim_q = q_over & (~r_over | (q_depth <= r_depth))
+        trim_r = r_over & ~trim_q
+        keep_q[rows[trim_q], which] = s_q[trim_q]
+        keep_p[rows[trim_r], which] = s_r[trim_r]
     # A trim that leaves no common part would morph nothing: keep those pairs whole.
     empty = (keep_p[:, 1] - keep_p[:, 0] <= end_tol) | (keep_q[:, 1] - keep_q[:, 0] <= end_tol)
     keep_p[empty], keep_q[empty] = np.c_[np.zeros(n), R.length][empty], np.c_[np.zeros(n), Q.length][empty]
@@ -171,28 +186,58 @@ def settle_ends(R, Q, scale, opened, trim=None):
 
 def _merge(parts, whole, keep):
     """``parts`` with the curves ``keep`` replaced by those of ``whole`` (Ragged)."""
-    curves = [whole.curve(c) if keep[c] else parts.curve(c) for c in range(len(whole))]
-    return Ragged.from_list(curves, whole.closed)
+    counts = np.where(keep, whole.n, parts.n)
+    owner, local = ragged_arange(counts)
+    mine = keep[owner]
+    pts = np.empty((len(owner), 2))
+    pts[mine] = np.take(whole.pts, whole.offsets[owner[mine]] + local[mine], axis=0)
+    pts[~mine] = np.take(parts.pts, parts.offsets[owner[~mine]] + local[~mine], axis=0)
+    return Ragged(pts, np.concatenate([[0], np.cumsum(counts)]), whole.closed)
 
 
 class _SlidingPaths:
-    """Points sliding along a curve at constant speed into (or out of) one point of it, all
-    carried by ``t`` times a vector (the displacement of the end they are attached to)."""
+    """Points sliding along curves at constant speed into (or out of) one point of them, all
+    carried by ``t`` times a vector (the displacement of the end they are attached to).
 
-    def __init__(self, curve, s, attach, towards, grow):
-        self._rg = Ragged.from_list([curve], [False])
-        self._s, self._attach, self._grow = s, float(attach), bool(grow)
-        self._towards = np.asarray(towards, dtype=np.float64)
+    Parameters
+    ----------
+    curves : Ragged
+        Open curves.
+    curve : ndarray of int, shape (K,)
+        Each point's curve.
+    s, attach : ndarray, shape (K,)
+        Each point's arc length at ``t = 0`` (``t = 1`` when growing) and where it joins.
+    towards : ndarray, shape (K, 2)
+    grow : ndarray of bool, shape (K,)
+        Growing runs the shrinking backwards in time.
+    """
+
+    def __init__(self, curves, curve, s, attach, towards, grow):
+        self._rg, self._curve, self._s, self._attach = curves, curve, s, attach
+        self._towards, self._grow = towards, grow
+
+    @classmethod
+    def join(cls, parts):
+        """Many of them (``(paths, kept points)`` each) as one: one evaluation for them all."""
+        curves = Ragged.from_list([paths._rg.pts for paths, _ in parts], False)
+        ends = np.cumsum([0] + [len(paths._rg) for paths, _ in parts])
+        columns = (
+            np.concatenate([first + paths._curve[keep] for first, (paths, keep) in zip(ends, parts)]),
+            *(np.concatenate([getattr(paths, name)[keep] for paths, keep in parts]) for name in ("_s", "_attach")),
+            np.concatenate([paths._towards[keep] for paths, keep in parts]).reshape(-1, 2),
+            np.concatenate([paths._grow[keep] for paths, keep in parts]),
+        )
+        return cls(curves, *columns)
 
     def __len__(self):
         return len(self._s)
 
     def at(self, t):
         t = float(t)
-        time = 1.0 - t if self._grow else t  # growing runs the shrinking backwards in time
+        time = np.where(self._grow, 1.0 - t, t)
         along = self._s + time * (self._attach - self._s)
-        points = self._rg.point_at(np.zeros(len(along), np.int64), along)
-        return points + (t - 1.0 if self._grow else t) * self._towards
+        points = self._rg.point_at(self._curve, along)
+        return points + np.where(self._grow, t - 1.0, t)[:, None] * self._towards
 
     @property
     def start(self):
@@ -233,4 +278,12 @@ def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
     count = max(int(np.ceil((s1 - s0) / max(spacing, 1e-300))) + 1, 2)
     s = np.linspace(s0, s1, count)
     u = np.linspace(0.0, 1.0, count)
-    return PathMorph("overhang", False, _SlidingPaths(curve, s, attach, towards, grow), u, u.copy())
+    paths = _SlidingPaths(
+        Ragged.from_list([curve], [False]),
+        np.zeros(count, np.int64),
+        s,
+        np.full(count, float(attach)),
+        np.broadcast_to(np.asarray(towards, dtype=np.float64), (count, 2)),
+        np.full(count, bool(grow)),
+    )
+    return PathMorph("overhang", False, paths, u, u.copy())

@@ -18,11 +18,16 @@ import numpy as np
 
 from ..geometry.similarity import as_complex
 
-__all__ = ["EXACT", "ExactFit", "exact_fit"]
+__all__ = ["EXACT", "ExactFit", "exact_fit", "may_be_exact"]
 
 #: Largest point residual of an exact pair, relative to its size or its coordinates' magnitude
 #: (float32 keys round at about 6e-8 of the magnitude).
 EXACT = 1e-6
+
+
+#: :func:`may_be_exact` keeps a pair whose least-squares residual is within this fraction of its
+#: squared size of the exact limit: far above the round-off of the closed form it uses.
+MAY_BE_EXACT_SLACK = 1e-9
 
 
 @dataclass
@@ -98,3 +103,46 @@ def exact_fit(xy_a, xy_b, closed, similarity=True, turn=0.0):
         if worst <= limit:
             return ExactFit(a, b, int(shift))
     return None
+
+
+def may_be_exact(xy_a, xy_b, closed):
+    """Which pairs :func:`exact_fit` may fit, every pair of a drawing at once (a cheap necessary
+    condition: the others need not be tried one by one).
+
+    A fit within ``EXACT`` at every point leaves a summed squared residual of at most ``N``
+    times the limit squared, and no similarity (nor the identity) leaves less than the
+    least-squares one: ``sum |pb|^2 - |sum conj(pa) pb|^2 / sum |pa|^2`` for centred points,
+    at its best start for loops (the cross-correlation's largest magnitude, by FFT for all
+    starts and all loops of a point count at once).
+
+    Parameters
+    ----------
+    xy_a, xy_b : list of ndarray, shapes (N_i, 2), (M_i, 2)
+    closed : array_like of bool, shape (C,)
+
+    Returns
+    -------
+    ndarray of bool, shape (C,)
+    """
+    closed = np.asarray(closed, dtype=bool).reshape(-1)
+    n = np.array([len(a) for a in xy_a], dtype=np.int64)
+    maybe = np.zeros(len(n), dtype=bool)
+    same = (n == np.array([len(b) for b in xy_b], dtype=np.int64)) & (n >= 2)
+    for k, loop in {(int(n[c]), bool(closed[c])) for c in np.flatnonzero(same)}:
+        group = np.flatnonzero(same & (n == k) & (closed == loop))
+        a = np.stack([xy_a[c] for c in group]).astype(np.float64)
+        za, zb = as_complex(a), as_complex(np.stack([xy_b[c] for c in group]).astype(np.float64))
+        magnitude = np.maximum(
+            np.maximum(np.abs(za).max(axis=1), np.abs(zb).max(axis=1)), np.ptp(a, axis=1).max(axis=1)
+        )
+        limit = EXACT * np.maximum(magnitude, 1e-300)
+        pa, pb = za - za.mean(axis=1, keepdims=True), zb - zb.mean(axis=1, keepdims=True)
+        norm_a, norm_b = (np.abs(pa) ** 2).sum(axis=1), (np.abs(pb) ** 2).sum(axis=1)
+        if loop:
+            corr = np.abs(np.fft.ifft(np.conj(np.fft.fft(pa, axis=1)) * np.fft.fft(pb, axis=1), axis=1)).max(axis=1)
+        else:
+            corr = np.abs((np.conj(pa) * pb).sum(axis=1))
+        residual = norm_b - corr**2 / np.where(norm_a > 0, norm_a, 1.0)
+        slack = MAY_BE_EXACT_SLACK * (norm_a + norm_b)
+        maybe[group] = (norm_a <= 0) | (residual <= k * limit**2 + slack)
+    return maybe

@@ -13,7 +13,7 @@ from ..errors import BallMorphError, IncompatibleCurvesError
 from ..geometry.intersections import is_simple
 from ..morphs import make_morph
 from ..morphs.base import PathMorph
-from ..morphs.linear import sample_count, uniform_correspondence
+from ..morphs.linear import sample_counts, uniform_correspondences
 from ..morphs.paths import LinearPaths
 
 __all__ = [
@@ -22,7 +22,7 @@ __all__ = [
     "short",
     "chain_fallback",
     "linear_fallback",
-    "arc_length_morph",
+    "arc_length_morphs",
     "unsplittable",
     "comparison_morph",
     "point_motion",
@@ -76,16 +76,30 @@ def linear_fallback(P, Q, closed, spacing, reason):
     return make_morph(P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing), f"{reason}: {FALLBACK_METHOD} used"
 
 
-def arc_length_morph(R, Q, closed, spacing):
+def arc_length_morphs(R, Q, spacing):
     """Registered curves that nearly coincide, matched by arc length with straight paths
-    between them (the carrier does the motion): ``'arc-length'`` (PathMorph).
+    between them (the carrier does the motion): one ``'arc-length'`` PathMorph per pair.
 
     Loops are aligned by the cyclic shift that moves their samples least, in the direction they
-    have (the stroke matching made it the same).
+    have (the stroke matching made it the same). Every pair is resampled and aligned at once.
+
+    Parameters
+    ----------
+    R, Q : Ragged
+        Curve ``c`` of each is a pair (the same closed flags).
+    spacing : ndarray, shape (C,)
+
+    Returns
+    -------
+    list of PathMorph
     """
-    count = sample_count(R, Q, closed, spacing, "symmetric")
-    p, q, u_p, u_q = uniform_correspondence(R, Q, closed, count, match_orientation=True)
-    return PathMorph("arc-length", closed, LinearPaths(p, q), u_p, u_q)
+    closed = R.closed
+    found = uniform_correspondences(R, Q, sample_counts(R, Q, spacing), match_orientation=True)
+    morphs = []
+    for c, (lo, hi) in enumerate(zip(found.offsets[:-1], found.offsets[1:])):
+        paths = LinearPaths(found.p[lo:hi], found.q[lo:hi])
+        morphs.append(PathMorph("arc-length", bool(closed[c]), paths, found.u_p[lo:hi], found.u_q[lo:hi]))
+    return morphs
 
 
 def unsplittable(P, Q, closed, why):

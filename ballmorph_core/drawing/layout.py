@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..geometry.ragged import ragged_arange
+from ..morphs.base import PathMorph
 from ..morphs.paths import BallPaths
 
 __all__ = ["BallRows", "Segment", "PairFrames", "Layout"]
@@ -157,6 +158,88 @@ def _chains(ball, segments):
     return pair, order, np.r_[ball.sizes, sizes].astype(np.int64), ranges
 
 
+class _Rows:
+    """Where a block of samples goes in a frame: a slice when the rows run in order (the
+    common case: a whole drawing of one road), else flat indices for np.put (fancy assignment
+    of (K, 2) rows is several times slower in numpy 1.26).
+
+    Parameters
+    ----------
+    rows : ndarray of int, shape (K,)
+    """
+
+    def __init__(self, rows):
+        rows = np.asarray(rows, dtype=np.int64)
+        run = len(rows) > 0 and np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows)))
+        self._rows = rows
+        self._slice = slice(int(rows[0]), int(rows[0]) + len(rows)) if run else None
+        self._flat = None if run else (2 * rows[:, None] + np.arange(2)).ravel()
+
+    def __len__(self):
+        return len(self._rows)
+
+    def read(self, frame):
+        """``frame[rows]``, shape (K, 2)."""
+        return frame[self._slice] if self._slice is not None else np.take(frame, self._rows, axis=0)
+
+    def write(self, frame, values):
+        """``frame[rows] = values`` (frame: C-contiguous, shape (K_all, 2))."""
+        if self._slice is not None:
+            frame[self._slice] = values
+        else:
+            np.put(frame.reshape(-1), self._flat, values)
+
+
+def _joinable(morph):
+    """Whether a segment's samples travel along paths whose class joins many (``join``)."""
+    return type(morph) is PathMorph and hasattr(type(morph.paths), "join")
+
+
+@dataclass
+class _Joined:
+    """Segments whose paths are of one joinable class (straight paths of the fallbacks,
+    arc-length and own-point pairs; overhangs sliding along their strokes), joined: one
+    evaluation for all of them instead of one per segment (hundreds of small morphs).
+
+    Attributes
+    ----------
+    morph : PathMorph
+        Their kept samples' paths, segment after segment.
+    rows : _Rows
+        Place of each sample in the frames.
+    shifted : _Rows
+        The samples (of ``morph``) that have an offset (J of them).
+    offset : ndarray, shape (J, 2)
+        Added as ``(1 - t)`` times this to them.
+    """
+
+    morph: PathMorph
+    rows: _Rows
+    shifted: _Rows
+    offset: np.ndarray
+
+    @classmethod
+    def join(cls, items):
+        """From ``(morph, kept samples, rows, offset or None)`` of each segment (one paths class)."""
+        paths = type(items[0][0].paths).join([(m.paths, keep) for m, keep, _, _ in items])
+        starts = np.cumsum([0] + [len(keep) for _, keep, _, _ in items])
+        shifted = [np.arange(a, a + len(keep)) for a, (_, keep, _, off) in zip(starts, items) if off is not None]
+        offsets = [off for _, _, _, off in items if off is not None]
+        return cls(
+            PathMorph("joined", False, paths, np.zeros(starts[-1]), np.zeros(starts[-1])),
+            _Rows(np.concatenate([rows for _, _, rows, _ in items])),
+            _Rows(np.concatenate(shifted) if shifted else np.zeros(0, np.int64)),
+            np.concatenate(offsets) if offsets else np.zeros((0, 2)),
+        )
+
+    def write(self, frame, t):
+        """Their samples at time ``t`` into ``frame`` (shape (K_all, 2))."""
+        at = self.morph(t)
+        if len(self.shifted):
+            self.shifted.write(at, self.shifted.read(at) + (1.0 - t) * self.offset)
+        self.rows.write(frame, at)
+
+
 class Layout:
     """The samples of every pair, laid out pair after pair and chain after chain.
 
@@ -199,16 +282,21 @@ class Layout:
         self.pair_of = owner
         n_ball = len(ball.u_p)
         kept = keep[:n_ball]
-        self._ball_rows = self.position[:n_ball][kept]
+        self._ball_rows = _Rows(self.position[:n_ball][kept])
         self._paths = BallPaths(ball.p[kept], ball.m[kept], ball.q[kept], kind) if kept.any() else None
         self._ball_offset = ball.offset[kept] if np.any(ball.offset[kept]) else None
         starts = np.cumsum(np.r_[n_ball, [len(s.morph.u_p) for s in segments]])
-        self._morphs = []
+        self._morphs, joinable = [], {}
         for seg, a in zip(segments, starts):
             kept_rows = keep[a : a + len(seg.morph.u_p)]
             local = np.flatnonzero(kept_rows)
             offset = None if seg.offset is None or not np.any(seg.offset) else seg.offset[local]
-            self._morphs.append((seg.morph, local, self.position[a : a + len(seg.morph.u_p)][kept_rows], offset))
+            item = (seg.morph, local, self.position[a : a + len(seg.morph.u_p)][kept_rows], offset)
+            if _joinable(seg.morph):
+                joinable.setdefault(type(seg.morph.paths), []).append(item)
+            else:
+                self._morphs.append(item)
+        self._joined = [_Joined.join(items) for items in joinable.values()]
 
     def _fractions(self, local, rng, length, owner):
         u = (rng[:, 0] + local * (rng[:, 1] - rng[:, 0])) / np.maximum(length, 1e-300)
@@ -220,7 +308,11 @@ class Layout:
         for ti, t in enumerate(times):
             if self._paths is not None:
                 at = self._paths.at(t)
-                frames[ti, self._ball_rows] = at if self._ball_offset is None else at + (1.0 - t) * self._ball_offset
+                if self._ball_offset is not None:
+                    at = at + (1.0 - t) * self._ball_offset
+                self._ball_rows.write(frames[ti], at)
+            for joined in self._joined:
+                joined.write(frames[ti], t)
             for morph, keep, rows, offset in self._morphs:
                 frames[ti, rows] = morph(t)[keep] if offset is None else morph(t)[keep] + (1.0 - t) * offset
             if motions is not None:

@@ -39,6 +39,7 @@ from ..ballmap.onemap import OneWayMap
 from ..errors import InvalidCurveError
 from ..geometry.intersections import batch_crossings
 from ..geometry.polyline import (
+    already_clean,
     as_curve,
     coarsen,
     curve_length,
@@ -51,10 +52,10 @@ from ..geometry.similarity import from_complex
 from ..morphs.base import PathMorph
 from ..morphs.paths import LinearPaths
 from .ends import overhang_morph, settle_ends
-from .exact import exact_fit
+from .exact import exact_fit, may_be_exact
 from .fallbacks import (
     BALL_METHODS,
-    arc_length_morph,
+    arc_length_morphs,
     chain_fallback,
     comparison_morph,
     linear_fallback,
@@ -62,7 +63,7 @@ from .fallbacks import (
     unsplittable,
 )
 from .layout import BallRows, Layout, PairFrames, Segment
-from .polylines import corners, polyline_morph
+from .polylines import corners, may_have_corners, polyline_morph
 from .registration import Fits, Motions, fit_pairs, identity_residual, motions, similarity_matrices
 from .splitting import cut_chains, find_events
 
@@ -122,13 +123,19 @@ def _length(curve, closed):
     return curve_length(curve, closed)
 
 
-def prepare(pair, method, spacing):
-    """Step 1: validate a pair's curves (in place); False when it can only move point by point."""
+def prepare(pair, method, spacing, clean=False):
+    """Step 1: validate a pair's curves (in place); False when it can only move point by point.
+
+    ``clean``: both curves are known to be valid as they are (:func:`prepare_pairs`): copied.
+    """
     pair.closed = pair.closed_a and pair.closed_b
     if pair.closed_a != pair.closed_b:
         pair.notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
     try:
-        pair.P, pair.Q = as_curve(pair.xy_a, "P", pair.closed), as_curve(pair.xy_b, "Q", pair.closed)
+        if clean:
+            pair.P, pair.Q = (np.array(xy, dtype=np.float64, copy=True) for xy in (pair.xy_a, pair.xy_b))
+        else:
+            pair.P, pair.Q = as_curve(pair.xy_a, "P", pair.closed), as_curve(pair.xy_b, "Q", pair.closed)
     except InvalidCurveError as exc:
         pair.notes.append(f"too few distinct points ({exc})")
         pair.P = pair.Q = None
@@ -141,6 +148,16 @@ def prepare(pair, method, spacing):
             pair.P = pair.Q = None
             return False
     return True
+
+
+def prepare_pairs(pairs, method, spacing):
+    """Step 1 for every pair: the pairs that are ready (list of int).
+
+    Curves a drawing's batch shows need no cleaning skip the per-curve validation.
+    """
+    closed = [p.closed_a and p.closed_b for p in pairs]
+    clean = already_clean([p.xy_a for p in pairs], closed) & already_clean([p.xy_b for p in pairs], closed)
+    return [c for c, pair in enumerate(pairs) if prepare(pair, method, spacing, bool(clean[c]))]
 
 
 class PairPlans:
@@ -229,7 +246,11 @@ def choose_roads(R, Q, events, coincident, near, carrier, scale):
     end_eps = tol.SHARED_ENDPOINT * scale
     first = np.linalg.norm(R.pts[R.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
     last = np.linalg.norm(R.pts[R.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
-    nested = Q.contains(R.pts[R.offsets[:-1]], np.arange(n)) | R.contains(Q.pts[Q.offsets[:-1]], np.arange(n))
+    # Whether loops lie one inside the other: asked of the whole pairs only.
+    nested = np.zeros(n, dtype=bool)
+    ask = np.flatnonzero((kind == "whole") & ~coincident)
+    inside_q = Q.contains(np.take(R.pts, R.offsets[ask], axis=0), ask)
+    nested[ask] = inside_q | R.contains(np.take(Q.pts, Q.offsets[ask], axis=0), ask)
     for c in range(n):
         if coincident[c]:
             kind[c] = "carrier"
@@ -300,26 +321,25 @@ def _ball_rows(chains, maps, index, good, ends):
     p, m, q = (np.concatenate([getattr(rows, f), overlap.pts]) for f in ("src", "m", "dst"))
     chain, kept = chain[order], np.flatnonzero(good | chains.static)
     first = np.searchsorted(chains.pair, chains.pair[kept])
-    local = chains.pair[chain]
-    u_p, offset, _ = _on_whole(ends, local, chains.range_p[chain], u_p[order])
+    u_p, offset, on_whole = _on_whole(ends, chains.pair, chains.range_p, u_p[order], chain)
     owner = chains.pair[kept]
     return BallRows(
         pair=index[owner],
         order=kept - first,
         sizes=np.bincount(chain, minlength=len(chains))[kept],
-        range_p=ends.on_p(owner[:, None], chains.range_p[kept]),
+        range_p=on_whole[kept],
         range_q=ends.on_q(owner[:, None], chains.range_q[kept]),
         static=chains.static[kept],
         u_p=u_p,
         u_q=u_q[order],
-        p=p[order],
-        m=m[order],
-        q=q[order],
+        p=np.take(p, order, axis=0),
+        m=np.take(m, order, axis=0),
+        q=np.take(q, order, axis=0),
         offset=offset,
     )
 
 
-def _on_whole(ends, pair, range_p, u_p):
+def _on_whole(ends, pair, range_p, u_p, chain):
     """Samples at fractions ``u_p`` of chains at ``range_p`` on the common parts, placed on the
     whole registered curves: their fractions of the chains' ranges there, the offsets undoing
     the displacement, and those ranges.
@@ -327,30 +347,64 @@ def _on_whole(ends, pair, range_p, u_p):
     Parameters
     ----------
     ends : Ends
-    pair : ndarray of int, shape (K,)
-    range_p : ndarray, shape (K, 2)
-        Each sample's chain's range on its common part.
+    pair : ndarray of int, shape (G,)
+        Each chain's pair.
+    range_p : ndarray, shape (G, 2)
+        Each chain's range on its pair's common part.
     u_p : ndarray, shape (K,)
+    chain : ndarray of int, shape (K,)
+        Each sample's chain.
 
     Returns
     -------
-    u_p, offset, range_p : ndarrays, shapes (K,), (K, 2), (K, 2)
+    u_p, offset, range_p : ndarrays, shapes (K,), (K, 2), (G, 2)
     """
-    s = range_p[:, 0] + u_p * (range_p[:, 1] - range_p[:, 0])
-    on_whole = ends.on_p(pair[:, None], np.c_[range_p, s])
-    span = on_whole[:, 1] - on_whole[:, 0]
-    u = np.divide(on_whole[:, 2] - on_whole[:, 0], span, out=u_p.astype(np.float64), where=np.abs(span) > 0)
-    return u, ends.offsets(pair, s), on_whole[:, :2]
+    s = range_p[chain, 0] + u_p * (range_p[chain, 1] - range_p[chain, 0])
+    ranges = ends.on_p(pair[:, None], range_p)
+    at, offset = ends.place(pair[chain], s)
+    start = ranges[chain, 0]
+    span = ranges[chain, 1] - start
+    u = np.divide(at - start, span, out=u_p.astype(np.float64), where=np.abs(span) > 0)
+    return u, offset, ranges
 
 
 def _add_piece(plans, ends, index, c, morph, closed, order, ranges):
     """A morph of chain ``order`` of (local) pair ``c`` whose pieces lie at ``ranges`` along
     the common parts: placed on the whole curves, its samples' displacement undone."""
-    rp, rq = np.asarray(ranges[0], dtype=np.float64), np.asarray(ranges[1], dtype=np.float64)
-    k = len(morph.u_p)
-    morph.u_p, offset, range_p = _on_whole(ends, np.full(k, c), np.tile(rp, (k, 1)), morph.u_p)
-    ranges = (tuple(range_p[0]) if k else tuple(rp), tuple(ends.on_q(c, rq)))
-    plans.add_morph(int(index[c]), morph, closed, order=int(order), ranges=ranges, offset=offset)
+    _add_pieces(plans, ends, index, [c], [morph], [closed], [order], np.asarray(ranges, dtype=np.float64)[None])
+
+
+def _add_pieces(plans, ends, index, pairs, morphs, closed, orders, ranges):
+    """:func:`_add_piece` of several morphs at once (their samples placed together).
+
+    Parameters
+    ----------
+    plans : PairPlans
+    ends : Ends
+    index : ndarray of int, shape (C,)
+        The batch's pairs in the drawing.
+    pairs : array_like of int, shape (G,)
+        The (local) pair of each morph.
+    morphs : list of Morph
+        G morphs; their ``u_p`` are replaced by fractions on the whole curves.
+    closed : array_like of bool, shape (G,)
+    orders : array_like of int, shape (G,)
+        Each morph's chain order within its pair.
+    ranges : ndarray, shape (G, 2, 2)
+        Each morph's arc-length ranges on the common parts of P and of Q.
+    """
+    pairs = np.asarray(pairs, dtype=np.int64)
+    counts = np.array([len(m.u_p) for m in morphs], dtype=np.int64)
+    u_p = np.concatenate([m.u_p for m in morphs]) if morphs else np.zeros(0)
+    u_p, offset, range_p = _on_whole(ends, pairs, ranges[:, 0], u_p, np.repeat(np.arange(len(pairs)), counts))
+    range_q = ends.on_q(pairs[:, None], ranges[:, 1])
+    stops = np.cumsum(counts)
+    for g, morph in enumerate(morphs):
+        lo, hi = stops[g] - counts[g], stops[g]
+        morph.u_p = u_p[lo:hi]
+        piece = (tuple(range_p[g]) if hi > lo else tuple(ranges[g, 0]), tuple(range_q[g]))
+        c = int(index[pairs[g]])
+        plans.add_morph(c, morph, bool(closed[g]), order=int(orders[g]), ranges=piece, offset=offset[lo:hi])
 
 
 def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
@@ -414,7 +468,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     for c, own in enumerate(given or []):
         if own is not None:
             _spread_motions(motion, own, np.array([c]))
-    pts = np.einsum("kij,kj->ki", motion.A[P.owner], P.pts) + motion.b[P.owner]
+    pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
     return motion, R, identity_residual(R, Q)
 
@@ -447,9 +501,10 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
         morph, note = linear_fallback(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c], roads.reason[c])
         plans.notes[index[c]].append(note)
         _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
-    for c in np.flatnonzero(roads.kind == "near"):
-        morph = arc_length_morph(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c])
-        _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
+    near = np.flatnonzero(roads.kind == "near")
+    if len(near):
+        morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])
+        _add_pieces(plans, ends, index, near, morphs, closed[near], np.zeros(len(near)), whole_ranges[near])
     lensed = roads.kind == "lenses"
     whole = np.flatnonzero((roads.kind == "whole") | (roads.kind == "carrier"))
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
@@ -550,7 +605,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     -------
     PairPlans
     """
-    ready = [c for c, pair in enumerate(pairs) if prepare(pair, method, spacing)]
+    ready = prepare_pairs(pairs, method, spacing)
     plans = PairPlans(pairs)
     for c, pair in enumerate(pairs):
         if pair.P is None:
@@ -589,8 +644,15 @@ def _polyline_road(plans, pairs, ready, carrier, drawing):
     """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
     straight, on the carrier. Returns the other ready pairs."""
     found, rest = [], []
-    for c in ready:
+    closed = [pairs[c].closed for c in ready]
+    maybe = may_have_corners([pairs[c].P for c in ready], closed) & may_have_corners(
+        [pairs[c].Q for c in ready], closed
+    )
+    for c, tried in zip(ready, maybe):
         pair = pairs[c]
+        if not tried:
+            rest.append(c)
+            continue
         ca, cb = corners(pair.P, pair.closed), corners(pair.Q, pair.closed)
         if ca is None or cb is None or len(ca.index) != len(cb.index):
             rest.append(c)
@@ -627,9 +689,12 @@ def _own_points_road(plans, pairs, ready, carrier, drawing):
     own points, moved by the carrier. Returns the other ready pairs."""
     rest, found = [], []
     turn = 0.0 if drawing is None else drawing.turn
-    for c in ready:
+    maybe = may_be_exact(
+        [pairs[c].xy_a for c in ready], [pairs[c].xy_b for c in ready], [pairs[c].closed for c in ready]
+    )
+    for c, tried in zip(ready, maybe):
         pair = pairs[c]
-        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn)
+        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn) if tried else None
         if fit is None:
             rest.append(c)
         else:

@@ -16,10 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..geometry.ragged import Ragged
 from ..morphs.base import PathMorph
 from ..morphs.paths import LinearPaths
 
-__all__ = ["STRAIGHT", "RUN_OFF", "FEW", "Corners", "corners", "polyline_morph"]
+__all__ = ["STRAIGHT", "RUN_OFF", "FEW", "Corners", "corners", "may_have_corners", "polyline_morph"]
 
 #: A vertex turning by at most this (radians) lies on a straight edge (float32 keys: about 1e-7).
 STRAIGHT = 1e-4
@@ -28,6 +29,9 @@ STRAIGHT = 1e-4
 RUN_OFF = 1e-6
 #: A polyline has at most this many corners, or most of its vertices on straight runs.
 FEW = 12
+#: :func:`may_have_corners` counts corners at STRAIGHT give or take this fraction of it, so
+#: round-off never makes it drop a curve :func:`corners` would take.
+CORNER_MARGIN = 1e-6
 
 
 @dataclass
@@ -101,6 +105,34 @@ def corners(xy, closed):
     edges = np.linalg.norm((np.roll(xy, -1, axis=0) if closed else xy[1:]) - xy[: len(xy) if closed else -1], axis=1)
     s = np.r_[0.0, np.cumsum(edges)]
     return Corners(np.flatnonzero(corner), s[: len(xy)] / s[-1])
+
+
+def may_have_corners(curves, closed):
+    """Which curves :func:`corners` may find a polyline in, all at once: those whose count of
+    vertices turning by more than ``STRAIGHT`` (within ``CORNER_MARGIN`` either way) could pass
+    its corner-count test. The others are not polylines; only these need :func:`corners`.
+
+    Parameters
+    ----------
+    curves : list of ndarray, shape (N_i, 2)
+        Distinct consecutive points, at least two.
+    closed : array_like of bool, shape (C,)
+
+    Returns
+    -------
+    ndarray of bool, shape (C,)
+    """
+    rg = Ragged.from_list(curves, closed)
+    idx = np.arange(len(rg.pts))
+    prev = np.take(rg.pts, np.where(rg.prv >= 0, rg.prv, idx), axis=0)
+    nxt = np.take(rg.pts, np.where(rg.nxt >= 0, rg.nxt, idx), axis=0)
+    d0, d1 = rg.pts - prev, nxt - rg.pts
+    cross = d0[:, 0] * d1[:, 1] - d0[:, 1] * d1[:, 0]
+    turn = np.abs(np.arctan2(cross, np.einsum("ij,ij->i", d0, d1)))
+    end = (rg.prv < 0) | (rg.nxt < 0)  # an open stroke's ends are corners
+    most = np.bincount(rg.owner[end | (turn > STRAIGHT * (1.0 - CORNER_MARGIN))], minlength=len(rg))
+    least = np.bincount(rg.owner[end | (turn > STRAIGHT * (1.0 + CORNER_MARGIN))], minlength=len(rg))
+    return (most >= np.where(rg.closed, 3, 2)) & ((least <= FEW) | (least <= rg.n // 3))
 
 
 def _edges(c, n, closed):

@@ -14,6 +14,7 @@ from .ragged import Ragged, unit_left
 
 __all__ = [
     "as_curve",
+    "already_clean",
     "coarsen",
     "scale_of",
     "edges",
@@ -47,6 +48,10 @@ DEFAULT_SAMPLES_MAX = 2000
 #: Coordinates beyond this magnitude are rejected: their squares (lengths, disk radii)
 #: would overflow float64.
 MAX_COORDINATE = 1e150
+
+#: :func:`already_clean` calls a curve clean only with its points this much (relative) farther
+#: apart than the duplicate tolerance: round-off never makes it disagree with :func:`as_curve`.
+CLEAN_MARGIN = 1e-9
 
 #: Most samples a spacing may put along one curve; a smaller spacing is rejected rather than
 #: exhausting memory.
@@ -112,6 +117,54 @@ def as_curve(points, name="P", closed=False, min_points=2):
         kind = "loop" if closed else "stroke"
         raise InvalidCurveError(f"{name}: a {kind} needs at least {need} distinct points, got {len(arr)}")
     return arr
+
+
+def already_clean(curves, closed):
+    """Which curves :func:`as_curve` would return as they are (a float64 copy), all at once:
+    finite, small enough, no consecutive duplicates (nor a loop's closing one), enough points.
+
+    The same tests as :func:`as_curve`, with ``CLEAN_MARGIN`` to spare at the duplicate-point
+    tolerance, so a curve it would clean or reject is never called clean; those (and any within
+    the margin) go through :func:`as_curve` one by one.
+
+    Parameters
+    ----------
+    curves : list of array_like, shape (N_i, 2)
+    closed : array_like of bool, shape (C,)
+
+    Returns
+    -------
+    ndarray of bool, shape (C,)
+    """
+    closed = np.asarray(closed, dtype=bool).reshape(-1)
+    arrays = [np.asarray(c) for c in curves]
+    shaped = np.array(
+        [a.dtype.kind in "fiu" and a.ndim == 2 and a.shape[1:] == (2,) and len(a) >= 2 for a in arrays], dtype=bool
+    )
+    clean = np.zeros(len(arrays), dtype=bool)
+    which = np.flatnonzero(shaped)
+    if not len(which):
+        return clean
+    sizes = np.array([len(arrays[c]) for c in which], dtype=np.int64)
+    pts = np.concatenate([arrays[c] for c in which]).astype(np.float64, copy=False)
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    ends = starts + sizes - 1
+    finite = np.logical_and.reduceat(np.isfinite(pts).all(axis=1), starts)
+    small = np.maximum.reduceat(np.abs(np.where(np.isfinite(pts), pts, 0.0)).max(axis=1), starts) <= MAX_COORDINATE
+    span = np.maximum.reduceat(pts, starts) - np.minimum.reduceat(pts, starts)
+    eps = tol.COINCIDENT * np.maximum(span.max(axis=1), 1e-300) * (1.0 + CLEAN_MARGIN)
+    d = np.diff(pts, axis=0)
+    step = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
+    owner = np.repeat(np.arange(len(which)), sizes)[1:]
+    inner = np.ones(len(step), dtype=bool)
+    inner[starts[1:] - 1] = False  # the step from one curve to the next
+    duplicate = np.bincount(owner[inner & ~(step > eps[owner])], minlength=len(which)) > 0
+    loop = closed[which]
+    g = pts[ends] - pts[starts]
+    closing = np.sqrt(g[:, 0] * g[:, 0] + g[:, 1] * g[:, 1]) <= eps
+    enough = sizes >= np.where(loop, 3, 2)
+    clean[which] = finite & small & ~duplicate & ~(loop & closing) & enough
+    return clean
 
 
 def scale_of(*curves):
@@ -248,8 +301,10 @@ def coarsen(curves, spacing=None):
     Ragged
         ``curves`` itself when none is that dense.
     """
-    if spacing is None and not np.any(curves.n > 2 * (COARSEN_RATIO * DEFAULT_SAMPLES_MIN + 1)):
-        return curves  # no default spacing is coarser than length / DEFAULT_SAMPLES_MIN
+    # A default spacing is at most twice the mean edge (half the edges are at least the median)
+    # or length / DEFAULT_SAMPLES_MAX: a curve is that dense only with more points than this.
+    if spacing is None and not np.any(curves.n > 2 * COARSEN_RATIO * DEFAULT_SAMPLES_MAX):
+        return curves
     own = default_spacings(curves) if spacing is None else np.full(len(curves), float(spacing))
     wanted = np.ceil(COARSEN_RATIO * curves.length / own).astype(np.int64) + 1
     dense = curves.n > 2 * wanted

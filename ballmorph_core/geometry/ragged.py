@@ -18,6 +18,12 @@ __all__ = ["Ragged", "ragged_arange", "budget_slices", "group_argmin", "unit_lef
 _EDGE_BUDGET = 2_000_000
 
 
+def _rows(a, index):
+    """``a[index]`` for an integer index array: np.take, which gathers (N, 2) rows several
+    times faster than fancy indexing does (numpy 1.26)."""
+    return np.take(a, index, axis=0)
+
+
 def ragged_arange(counts):
     """Concatenated ``arange(c)`` for every count, and the owner of each entry.
 
@@ -133,22 +139,28 @@ class Ragged:
         self.n = np.diff(self.offsets)
         self.owner = np.repeat(np.arange(len(self.n)), self.n)
         first, last = self.offsets[:-1], self.offsets[1:] - 1
-        idx = np.arange(n_pts)
-        self.nxt = idx + 1
-        self.prv = idx - 1
+        self.nxt = np.arange(1, n_pts + 1)
+        self.prv = np.arange(-1, n_pts - 1)
         nonempty = self.n > 0
         self.nxt[last[nonempty]] = np.where(self.closed[nonempty], first[nonempty], -1)
         self.prv[first[nonempty]] = np.where(self.closed[nonempty], last[nonempty], -1)
-        has_edge = self.nxt >= 0
-        self.edge = np.where(has_edge[:, None], self.pts[np.maximum(self.nxt, 0)] - self.pts, 0.0)
-        self.length_of_edge = np.linalg.norm(self.edge, axis=1)
-        csum = np.cumsum(self.length_of_edge) - self.length_of_edge
-        start = csum[first[nonempty]] if n_pts else np.zeros(0)
+        # Built for every internal batch (often per pair): plain ufuncs in place, no
+        # np.linalg.norm or np.add.at (the same sums, in the same order, at a fraction of their
+        # call and allocation cost).
+        self.edge = _rows(self.pts, np.maximum(self.nxt, 0))
+        self.edge -= self.pts
+        self.edge[last[nonempty & ~self.closed]] = 0.0  # an open curve's last vertex starts no edge
+        ex, ey = self.edge[:, 0], self.edge[:, 1]
+        self.length_of_edge = ex * ex
+        self.length_of_edge += ey * ey
+        np.sqrt(self.length_of_edge, out=self.length_of_edge)
+        csum = np.cumsum(self.length_of_edge)
+        csum -= self.length_of_edge
         base = np.zeros(len(self.n))
-        base[nonempty] = start
-        self.s = csum - base[self.owner]
-        self.length = np.zeros(len(self.n))
-        np.add.at(self.length, self.owner, self.length_of_edge)
+        base[nonempty] = csum[first[nonempty]]
+        csum -= base[self.owner]
+        self.s = csum
+        self.length = self._sums(self.length_of_edge)
         self.n_edges = np.where(self.closed, self.n, np.maximum(self.n - 1, 0))
 
     def __len__(self):
@@ -164,6 +176,14 @@ class Ragged:
             else np.zeros((0, 2))
         )
         return cls(pts, np.concatenate([[0], np.cumsum(sizes)]), np.broadcast_to(closed, (len(curves),)))
+
+    def take(self, curves):
+        """Curves ``curves`` (ndarray of int, shape (K,)) as a new batch, in that order."""
+        curves = np.asarray(curves, dtype=np.int64)
+        counts = self.n[curves]
+        owner, local = ragged_arange(counts)
+        pts = _rows(self.pts, self.offsets[curves][owner] + local)
+        return Ragged(pts, np.concatenate([[0], np.cumsum(counts)]), self.closed[curves])
 
     def curve(self, c):
         """Vertices of curve ``c``, shape (n_c, 2) (a view)."""
@@ -215,13 +235,16 @@ class Ragged:
         """
         i, frac = self.locate(curve, s)
         if not smooth:
-            return self.pts[i] + frac[:, None] * self.edge[i]
+            return _rows(self.pts, i) + frac[:, None] * _rows(self.edge, i)
         j = np.maximum(self.nxt[i], 0)
-        p1, p2 = self.pts[i], self.pts[j]
+        p1, p2 = _rows(self.pts, i), _rows(self.pts, j)
         h = self.prv[i]
         k = self.nxt[j]
-        p0 = np.where((h >= 0)[:, None], self.pts[np.maximum(h, 0)], 2 * p1 - p2)
-        p3 = np.where((k >= 0)[:, None], self.pts[np.maximum(k, 0)], 2 * p2 - p1)
+        # Past an open curve's ends the missing neighbour is mirrored (only there).
+        p0, p3 = _rows(self.pts, np.maximum(h, 0)), _rows(self.pts, np.maximum(k, 0))
+        start, end = h < 0, k < 0
+        p0[start] = 2 * p1[start] - p2[start]
+        p3[end] = 2 * p2[end] - p1[end]
         return catmull_rom(p0, p1, p2, p3, frac)
 
     def resample(self, counts, smooth=True):
@@ -259,23 +282,23 @@ class Ragged:
     def centroids(self):
         """Arc-length centroid of every curve (the vertex mean for a dot), shape (C, 2)."""
         mid = self.pts + 0.5 * self.edge
-        weight = self.length_of_edge
-        total = np.zeros((len(self.n), 2))
-        np.add.at(total, self.owner, mid * weight[:, None])
-        plain = np.zeros((len(self.n), 2))
-        np.add.at(plain, self.owner, self.pts)
+        weighted = mid * self.length_of_edge[:, None]
+        total = np.stack([self._sums(weighted[:, 0]), self._sums(weighted[:, 1])], axis=1)
+        plain = np.stack([self._sums(self.pts[:, 0]), self._sums(self.pts[:, 1])], axis=1)
         plain /= np.maximum(self.n, 1)[:, None]
         has_length = self.length > 0
         return np.where(has_length[:, None], total / np.where(has_length, self.length, 1.0)[:, None], plain)
 
+    def _sums(self, values):
+        """Per-curve sums of per-vertex values (in vertex order, as np.add.at adds), shape (C,)."""
+        return np.bincount(self.owner, weights=values, minlength=len(self.n))
+
     def signed_areas(self):
         """Shoelace area of every curve closed by its chord, shape (C,) (counter-clockwise > 0)."""
         nxt = np.where(self.nxt >= 0, self.nxt, self.offsets[:-1][self.owner])
-        a, b = self.pts, self.pts[nxt]
+        a, b = self.pts, _rows(self.pts, nxt)
         cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-        area = np.zeros(len(self.n))
-        np.add.at(area, self.owner, cross)
-        return 0.5 * area
+        return 0.5 * self._sums(cross)
 
     def pieces(self, curve, s0, s1):
         """Stretches of curves between arc lengths, as a new batch of open curves.
@@ -309,7 +332,7 @@ class Ragged:
         owner, local = ragged_arange(inner)
         k_local = lo[owner] + local
         k_local = np.where(closed[owner], np.mod(k_local, np.maximum(n[owner], 1)), k_local)
-        verts = self.pts[self.offsets[curve][owner] + k_local]
+        verts = _rows(self.pts, self.offsets[curve][owner] + k_local)
         start = self.point_at(curve, s0)
         end = self.point_at(curve, np.where(lap, s1_in, s1))
         sizes = inner + 2
@@ -328,7 +351,7 @@ class Ragged:
         (one-sided at an open curve's ends), shape (N, 2)."""
         nxt = np.where(self.nxt >= 0, self.nxt, np.arange(len(self.pts)))
         prv = np.where(self.prv >= 0, self.prv, np.arange(len(self.pts)))
-        chord = self.pts[nxt] - self.pts[prv]
+        chord = _rows(self.pts, nxt) - _rows(self.pts, prv)
         return unit_left(chord)
 
     def edge_normals(self):
@@ -354,9 +377,9 @@ class Ragged:
         for sl in budget_slices(counts, _EDGE_BUDGET):
             owner, local = ragged_arange(counts[sl])
             e = e_start[sl][owner] + local
-            a = self.pts[e]
-            b = self.pts[np.where(self.nxt[e] >= 0, self.nxt[e], e_start[sl][owner])]
-            pt = points[sl][owner]
+            a = _rows(self.pts, e)
+            b = _rows(self.pts, np.where(self.nxt[e] >= 0, self.nxt[e], e_start[sl][owner]))
+            pt = _rows(points[sl], owner)
             straddle = (a[:, 1] > pt[:, 1]) != (b[:, 1] > pt[:, 1])
             with np.errstate(divide="ignore", invalid="ignore"):
                 x = a[:, 0] + (pt[:, 1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])

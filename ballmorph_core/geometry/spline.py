@@ -34,20 +34,33 @@ def catmull_rom(p0, p1, p2, p3, frac):
         and overshoot on unevenly spaced points.
     """
     floor = tol.ROUNDOFF  # repeated control points: keep the knots distinct
-    d01 = np.maximum(np.linalg.norm(p1 - p0, axis=1) ** 0.5, floor)
-    d12 = np.maximum(np.linalg.norm(p2 - p1, axis=1) ** 0.5, floor)
-    d23 = np.maximum(np.linalg.norm(p3 - p2, axis=1) ** 0.5, floor)
-    t1 = d01[:, None]
-    t2 = t1 + d12[:, None]
-    t3 = t2 + d23[:, None]
-    t = t1 + frac[:, None] * d12[:, None]
+    # Coordinate by coordinate on contiguous (K,) arrays: broadcasting (K, 1) knots against
+    # (K, 2) points runs numpy's inner loops two elements long. The same operations in the same
+    # order: the same bits.
+    (x0, y0), (x1, y1), (x2, y2), (x3, y3) = (
+        (np.ascontiguousarray(p[:, 0]), np.ascontiguousarray(p[:, 1])) for p in (p0, p1, p2, p3)
+    )
+    t1 = np.maximum(_distance(x0, y0, x1, y1) ** 0.5, floor)
+    d12 = np.maximum(_distance(x1, y1, x2, y2) ** 0.5, floor)
+    t2 = t1 + d12
+    t3 = t2 + np.maximum(_distance(x2, y2, x3, y3) ** 0.5, floor)
+    t = t1 + frac * d12
     # Barry-Goldman pyramid (t0 = 0).
-    a1 = ((t1 - t) * p0 + t * p1) / t1
-    a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1)
-    a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2)
-    b1 = ((t2 - t) * a1 + t * a2) / t2
-    b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
-    return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
+    out = np.empty((len(t), 2))
+    for k, (c0, c1, c2, c3) in enumerate(((x0, x1, x2, x3), (y0, y1, y2, y3))):
+        a1 = ((t1 - t) * c0 + t * c1) / t1
+        a2 = ((t2 - t) * c1 + (t - t1) * c2) / (t2 - t1)
+        a3 = ((t3 - t) * c2 + (t - t2) * c3) / (t3 - t2)
+        b1 = ((t2 - t) * a1 + t * a2) / t2
+        b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
+        out[:, k] = ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
+    return out
+
+
+def _distance(xa, ya, xb, yb):
+    """Distances between points given by coordinates, shape (K,) (as np.linalg.norm sums them)."""
+    dx, dy = xb - xa, yb - ya
+    return np.sqrt(dx * dx + dy * dy)
 
 
 def subdivide(curve, closed, steps=1):

@@ -156,6 +156,11 @@ class LinearPaths(_Endpoints):
         self.p = np.asarray(p, dtype=np.float64)
         self.q = np.asarray(q, dtype=np.float64)
 
+    @classmethod
+    def join(cls, parts):
+        """Many of them (``(paths, kept samples)`` each) as one: one evaluation for them all."""
+        return cls(*(np.concatenate([getattr(paths, end)[keep] for paths, keep in parts]) for end in "pq"))
+
     def lengths(self):
         """Shape (K,)."""
         return np.linalg.norm(self.q - self.p, axis=1)

@@ -5,10 +5,12 @@ import importlib
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from shapes import circle
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.exact import exact_fit
+from ballmorph_core.drawing.exact import exact_fit, may_be_exact
 
 HOUSE = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.5, 1.5), (0.0, 1.0)])
 
@@ -79,3 +81,27 @@ def test_a_bug_in_the_own_points_road_sends_its_pairs_down_the_ball_road(monkeyp
     result = bm.inbetween(key, key, [0.5])
     assert result.pairs[0].method == "polyline"  # the next road took it
     np.testing.assert_allclose(result.frames[0].positions, key.positions, atol=1e-12)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    n=st.integers(2, 40),
+    closed=st.booleans(),
+    turn=st.floats(-3.1, 3.1),
+    scale=st.floats(0.05, 20.0),
+    shift=st.integers(0, 39),
+    noise=st.sampled_from([0.0, 1e-9, 1e-7, 1e-3]),
+    far=st.sampled_from([0.0, 1e3]),
+    seed=st.integers(0, 2**31 - 1),
+)
+def test_the_batched_prefilter_keeps_every_pair_exact_fit_fits(n, closed, turn, scale, shift, noise, far, seed):
+    rng = np.random.default_rng(seed)
+    xy = rng.normal(size=(n, 2)) + far
+    b = similar(xy, scale * np.exp(1j * turn), 0.3 - 0.1j) + noise * rng.normal(size=(n, 2))
+    b = np.roll(b, -shift % n if closed else 0, axis=0).astype(np.float32).astype(np.float64)
+    pairs = [(xy, b), (xy, xy), (xy, rng.normal(size=(n, 2)))]
+    maybe = may_be_exact([p for p, _ in pairs], [q for _, q in pairs], [closed] * 3)
+    for (p, q), kept in zip(pairs, maybe):
+        for similarity in (True, False):
+            if exact_fit(p, q, closed, similarity=similarity) is not None:
+                assert kept

@@ -10,6 +10,10 @@ from ballmorph_core.ballmap.onemap import OneWayMap
 from ballmorph_core.geometry.circles import circumcircles
 from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, self_crossings
 from ballmorph_core.geometry.polyline import (
+    COARSEN_RATIO,
+    already_clean,
+    as_curve,
+    coarsen,
     default_spacing,
     default_spacings,
     pair_scales,
@@ -270,3 +274,41 @@ def test_subcurve_keeps_the_stretch(closed):
     c = _wobbly(40, 10, closed=not closed) if not closed else _wobbly(40, 10)
     piece = subcurve(c, closed, 0.5, 1.7)
     assert np.linalg.norm(np.diff(piece, axis=0), axis=1).sum() == pytest.approx(1.2, rel=1e-9)
+
+
+@settings(max_examples=100, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), closed=st.booleans())
+def test_curves_already_clean_are_what_as_curve_returns(seed, closed):
+    rng = np.random.default_rng(seed)
+    curves = []
+    for _ in range(12):
+        xy = rng.normal(size=(int(rng.integers(0, 9)), 2)) * 10 ** rng.uniform(-3, 3)
+        kind = rng.integers(0, 6)
+        if kind == 1 and len(xy) > 2:
+            xy[2] = xy[1]  # a duplicate
+        elif kind == 2 and len(xy) > 2:
+            xy[-1] = xy[0] * (1 + 1e-12)  # a loop's closing duplicate
+        elif kind == 3 and len(xy):
+            xy[0, 1] = np.nan
+        elif kind == 4 and len(xy) > 2:
+            xy[2] = xy[1] + 1e-9 * np.ptp(xy, axis=0).max()  # at the tolerance
+        curves.append(xy)
+    for xy, clean in zip(curves, already_clean(curves, [closed] * len(curves))):
+        if clean:
+            np.testing.assert_array_equal(as_curve(xy, "P", closed), xy)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_coarsen_skips_only_curves_no_default_spacing_finds_dense(seed):
+    rng = np.random.default_rng(seed)
+    curves = []
+    for n in (2, 3, 50, 400, 3000, 15999, 16000):
+        # Edge lengths far from even: a few long edges, many tiny ones (the median is tiny).
+        steps = np.where(rng.random(n) < 0.3, 1.0, 1e-6) * rng.random(n)
+        curves.append(np.cumsum(np.c_[steps, rng.normal(scale=1e-9, size=n)], axis=0))
+    batch = Ragged.from_list(curves, rng.random(len(curves)) < 0.5)
+    wanted = np.ceil(COARSEN_RATIO * batch.length / default_spacings(batch)).astype(np.int64) + 1
+    assert not np.any(batch.n > 2 * wanted)
+    assert coarsen(batch) is batch
+    dense = Ragged.from_list([circle(1.0, 40_000)], [True])
+    assert len(coarsen(dense).pts) < 40_000

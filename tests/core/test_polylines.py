@@ -1,10 +1,12 @@
 """Polylines morph corner to corner with straight edges (drawing/polylines.py)."""
 
 import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from shapes import circle
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.polylines import corners
+from ballmorph_core.drawing.polylines import corners, may_have_corners
 
 HOUSE = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.5, 1.5), (0.0, 1.0)])
 HOUSE_B = np.array([(0.0, 0.0), (1.0, 0.0), (1.05, 1.0), (0.6, 1.65), (0.0, 1.0)])
@@ -74,3 +76,27 @@ def test_polylines_with_other_corner_counts_take_the_ball_road():
         bm.StrokeSet.from_strokes([HOUSE], [True]), bm.StrokeSet.from_strokes([square], [True]), [0.5]
     )
     assert not result.pairs[0].method.startswith("polyline")
+
+
+@settings(max_examples=100, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), closed=st.booleans())
+def test_the_batched_corner_count_keeps_every_polyline(seed, closed):
+    rng = np.random.default_rng(seed)
+    curves = []
+    for _ in range(10):
+        k = int(rng.integers(3 if closed else 2, 16))
+        corner_pts = rng.normal(size=(k, 2))
+        if rng.random() < 0.5:  # a polyline: straight runs between the corners
+            steps = rng.integers(1, 5, k)
+            ends = np.roll(corner_pts, -1, axis=0) if closed else np.r_[corner_pts[1:], corner_pts[-1:]]
+            parts = [
+                a + np.linspace(0, 1, m, endpoint=False)[:, None] * (b - a) for a, b, m in zip(corner_pts, ends, steps)
+            ]
+            xy = np.concatenate(parts if closed else parts[:-1] + [corner_pts[-1:]])
+        else:
+            xy = corner_pts
+        curves.append(xy)
+    maybe = may_have_corners(curves, [closed] * len(curves))
+    for xy, kept in zip(curves, maybe):
+        if corners(xy, closed) is not None:
+            assert kept
