@@ -48,11 +48,7 @@ from ..geometry.polyline import (
     resolve_spacing,
 )
 from ..geometry.ragged import Ragged
-from ..geometry.similarity import from_complex
-from ..morphs.base import PathMorph
-from ..morphs.paths import LinearPaths
 from .ends import overhang_morph, settle_ends
-from .exact import exact_fit, may_be_exact
 from .fallbacks import (
     BALL_METHODS,
     arc_length_morphs,
@@ -62,9 +58,10 @@ from .fallbacks import (
     point_motion,
     unsplittable,
 )
-from .layout import BallRows, Layout, PairFrames, Segment
-from .polylines import corners, may_have_corners, polyline_morph
-from .registration import Fits, Motions, fit_pairs, identity_residual, motions, similarity_matrices
+from .layout import BallRows
+from .pairplans import PairPlans
+from .point_roads import guarded, own_points_road, polyline_road
+from .registration import Motions, fit_pairs, identity_residual, motions
 from .splitting import cut_chains, find_events
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
@@ -158,74 +155,6 @@ def prepare_pairs(pairs, method, spacing):
     closed = [p.closed_a and p.closed_b for p in pairs]
     clean = already_clean([p.xy_a for p in pairs], closed) & already_clean([p.xy_b for p in pairs], closed)
     return [c for c, pair in enumerate(pairs) if prepare(pair, method, spacing, bool(clean[c]))]
-
-
-class PairPlans:
-    """The plan of every pair of a drawing: laid-out samples, carriers, reports.
-
-    Built by :func:`plan_pairs`; :meth:`frames` evaluates it at any times.
-
-    Attributes
-    ----------
-    used : list of str
-        The morphs each pair's chains used, and its carrier.
-    notes : list of list of str
-        What each pair's report says (fallbacks, splits).
-    closed : ndarray of bool, shape (C,)
-    """
-
-    def __init__(self, pairs):
-        n = len(pairs)
-        self.segments, self.ball, self.used, self.notes = [], [], [""] * n, [list(p.notes) for p in pairs]
-        self.closed, self.joined = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
-        self.lengths = np.ones((n, 2))
-        self.motions, self.layout = None, None
-
-    def add_morph(self, c, morph, closed, lengths=(1.0, 1.0), order=0, ranges=None, offset=None):
-        """A morph for (a chain of) pair ``c``; ``ranges`` are its pieces' arc lengths on the pair
-        (default: the whole pair, of ``lengths``); ``offset`` see :class:`~.layout.Segment`."""
-        if ranges is None:
-            self.closed[c], self.lengths[c] = closed, lengths
-            ranges = ((0.0, self.lengths[c, 0]), (0.0, self.lengths[c, 1]))
-        self.segments.append(Segment(c, order, *ranges, morph=morph, offset=offset))
-
-    def drop(self, pairs, notes_kept):
-        """Forget what was planned for ``pairs`` (keeping their first ``notes_kept[c]`` notes)."""
-        self.segments = [s for s in self.segments if s.pair not in pairs]
-        self.ball = [rows.without(pairs) for rows in self.ball]
-        for c in pairs:
-            del self.notes[c][notes_kept[c] :]
-
-    def finish(self, kind="circular"):
-        """Name each pair's morphs and lay the segments out (step 8)."""
-        ball = _joined(self.ball)
-        methods = [set() for _ in self.used]
-        for seg in self.segments:
-            methods[seg.pair].add(seg.morph.method)
-        for c, static in zip(ball.pair, ball.static):
-            methods[c].add("static" if static else f"{kind}-ball")
-        for c, names in enumerate(methods):
-            self.used[c] = "+".join(sorted(names))
-            if self.motions is not None and self.motions.moving[c]:
-                self.used[c] += f" on a {self.motions.kind} carrier"
-        self.layout = Layout(ball, self.segments, self.closed, self.joined, self.lengths, kind)
-        self.segments = self.ball = None
-        return self
-
-    def frames(self, times):
-        """Every pair's in-betweens at ``times`` (PairFrames)."""
-        times = np.asarray(times, dtype=np.float64).reshape(-1)
-        frames = self.layout.evaluate(times, self.motions)
-        return PairFrames(
-            frames, self.layout.offsets, self.layout.u_a, self.layout.u_b, self.closed, self.used, self.notes
-        )
-
-
-def _joined(parts):
-    """One BallRows from several (the ball road's batches)."""
-    if not parts:
-        return BallRows.empty()
-    return BallRows(*(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(BallRows)))
 
 
 @dataclass
@@ -467,7 +396,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
         motion = motions(P, fits, carrier, scale, ~_handled_directly(P, Q, scale) & ~still, drawing)
     for c, own in enumerate(given or []):
         if own is not None:
-            _spread_motions(motion, own, np.array([c]))
+            motion.put(np.array([c]), own)
     pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
     return motion, R, identity_residual(R, Q)
@@ -565,14 +494,6 @@ def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing=Non
     return Motions(*(np.concatenate([getattr(m, name) for m in parts]) for name in names), parts[-1].kind)
 
 
-def _spread_motions(out, motion, index):
-    """A batch's motions written into the drawing's (``out``, Motions) at pairs ``index``."""
-    for f in fields(Motions):
-        if f.name != "kind":
-            getattr(out, f.name)[index] = getattr(motion, f.name)
-    out.kind = motion.kind
-
-
 def _comparison_road(plans, pairs, ready, method, spacing):
     """The paper's comparison morphs, pair by pair, each with its fallback."""
     if not ready:
@@ -618,107 +539,13 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     # Pieces of hinted pairs share their pair's carrier: only the ball road takes them.
     pieces = [c for c in ready if pairs[c].motion is not None]
     ready = [c for c in ready if pairs[c].motion is None]
-    for road in (_own_points_road, _polyline_road):
-        ready = _guarded(road, plans, pairs, ready, carrier, drawing)
+    for road in (own_points_road, polyline_road):
+        ready = guarded(road, plans, pairs, ready, carrier, drawing)
     ready = sorted(ready + pieces)
     if ready:
         motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing)
-        _spread_motions(plans.motions, motions, np.asarray(ready))
+        plans.motions.put(np.asarray(ready), motions)
     return plans.finish(kind)
-
-
-def _guarded(road, plans, pairs, ready, carrier, drawing):
-    """A road for the pairs it takes; should it fail (a bug), it takes none of them and every
-    ready pair goes on to the ball road, which has its own pair-by-pair isolation."""
-    kept = {c: len(plans.notes[c]) for c in ready}
-    motions_before = plans.motions.take(np.arange(len(pairs)))
-    try:
-        return road(plans, pairs, ready, carrier, drawing)
-    except Exception:  # the ball road plans them instead, and reports anything it cannot do
-        plans.drop(set(ready), kept)
-        plans.motions = motions_before
-        return ready
-
-
-def _polyline_road(plans, pairs, ready, carrier, drawing):
-    """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
-    straight, on the carrier. Returns the other ready pairs."""
-    found, rest = [], []
-    closed = [pairs[c].closed for c in ready]
-    maybe = may_have_corners([pairs[c].P for c in ready], closed) & may_have_corners(
-        [pairs[c].Q for c in ready], closed
-    )
-    for c, tried in zip(ready, maybe):
-        pair = pairs[c]
-        if not tried:
-            rest.append(c)
-            continue
-        ca, cb = corners(pair.P, pair.closed), corners(pair.Q, pair.closed)
-        if ca is None or cb is None or len(ca.index) != len(cb.index):
-            rest.append(c)
-        else:
-            found.append((c, ca, cb))
-    if not found:
-        return rest
-    index = np.array([c for c, _, _ in found])
-    P = Ragged.from_list([pairs[c].P for c in index], [pairs[c].closed for c in index])
-    Q = Ragged.from_list([pairs[c].Q for c in index], P.closed)
-    scale = pair_scales(P, Q)
-    kind = "rigid" if carrier == "rigid" else "similarity"
-    if carrier == "none":
-        motion = Motions.identity(len(index), kind)
-    else:
-        fits = fit_pairs(P, Q, turn=0.0 if drawing is None else drawing.turn)
-        still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
-            np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
-        )
-        motion = motions(P, fits, kind, scale, ~still, drawing)
-    _spread_motions(plans.motions, motion, index)
-    for k, (c, ca, cb) in enumerate(found):
-        pair = pairs[c]
-
-        def register_a(pts, k=k):
-            return pts @ motion.A[k].T + motion.b[k] if motion.moving[k] else pts
-
-        plans.add_morph(c, polyline_morph(pair.P, ca, pair.Q, cb, pair.closed, register_a), pair.closed, pair.lengths)
-    return rest
-
-
-def _own_points_road(plans, pairs, ready, carrier, drawing):
-    """Pairs whose points match one for one under a similarity (see :mod:`.exact`): the key's
-    own points, moved by the carrier. Returns the other ready pairs."""
-    rest, found = [], []
-    turn = 0.0 if drawing is None else drawing.turn
-    maybe = may_be_exact(
-        [pairs[c].xy_a for c in ready], [pairs[c].xy_b for c in ready], [pairs[c].closed for c in ready]
-    )
-    for c, tried in zip(ready, maybe):
-        pair = pairs[c]
-        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn) if tried else None
-        if fit is None:
-            rest.append(c)
-        else:
-            found.append((c, fit))
-    if not found:
-        return rest
-    index = np.array([c for c, _ in found])
-    P = Ragged.from_list([pairs[c].xy_a for c in index], [pairs[c].closed for c in index])
-    a = np.array([fit.a for _, fit in found])
-    b = np.array([fit.b for _, fit in found])
-    Q = Ragged.from_list([pairs[c].xy_b for c in index], P.closed)
-    scale = pair_scales(P, Q)
-    still = (np.abs(a - 1.0) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale)
-    fits = Fits(similarity_matrices(a), from_complex(b), np.zeros(len(index)))
-    kind = "rigid" if carrier == "rigid" else "similarity"
-    motion = motions(P, fits, kind, scale, ~still & (carrier != "none"), drawing)
-    _spread_motions(plans.motions, motion, index)
-    for k, (c, fit) in enumerate(found):
-        pair = pairs[c]
-        moved = pair.xy_a @ motion.A[k].T + motion.b[k] if motion.moving[k] else pair.xy_a
-        order = (np.arange(len(pair.xy_b)) + fit.shift) % len(pair.xy_b)
-        morph = PathMorph("own points", pair.closed, LinearPaths(moved, pair.xy_b[order]), pair.u_a, pair.u_b[order])
-        plans.add_morph(c, morph, pair.closed, pair.lengths)
-    return rest
 
 
 class PairMorph:

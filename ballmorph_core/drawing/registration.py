@@ -474,6 +474,12 @@ class Motions:
             self.kind,
         )
 
+    def put(self, rows, motions):
+        """Another batch's motions (Motions) written in at pairs ``rows``, its kind taken too."""
+        for name in ("A", "b", "theta", "stretch", "pivot", "moving"):
+            getattr(self, name)[rows] = getattr(motions, name)
+        self.kind = motions.kind
+
     @classmethod
     def identity(cls, n, kind="similarity"):
         eye = np.tile(np.eye(2), (n, 1, 1))

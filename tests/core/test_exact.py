@@ -71,12 +71,12 @@ def test_a_copy_far_from_the_origin_is_exact_to_float32_rounding():
 
 
 def test_a_bug_in_the_own_points_road_sends_its_pairs_down_the_ball_road(monkeypatch):
-    pipeline = importlib.import_module("ballmorph_core.drawing.pipeline")
+    roads = importlib.import_module("ballmorph_core.drawing.point_roads")
 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("simulated core bug")
 
-    monkeypatch.setattr(pipeline, "exact_fit", broken)
+    monkeypatch.setattr(roads, "exact_fit", broken)
     key = bm.StrokeSet.from_strokes([HOUSE], cyclic=[True])
     result = bm.inbetween(key, key, [0.5])
     assert result.pairs[0].method == "polyline"  # the next road took it

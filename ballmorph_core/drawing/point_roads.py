@@ -1,0 +1,111 @@
+"""The roads that keep the keys' own points (before the ball road): pairs whose points match one
+for one under a similarity (:mod:`.exact`) and polylines with as many corners
+(:mod:`.polylines`), each on its carrier, each guarded so that a failure sends its pairs on."""
+
+import numpy as np
+
+from .. import tolerances as tol
+from ..geometry.polyline import pair_scales
+from ..geometry.ragged import Ragged
+from ..geometry.similarity import from_complex
+from ..morphs.base import PathMorph
+from ..morphs.paths import LinearPaths
+from .exact import exact_fit, may_be_exact
+from .polylines import corners, may_have_corners, polyline_morph
+from .registration import Fits, Motions, fit_pairs, motions, similarity_matrices
+
+__all__ = ["guarded", "own_points_road", "polyline_road"]
+
+
+def guarded(road, plans, pairs, ready, carrier, drawing):
+    """A road for the pairs it takes; should it fail (a bug), it takes none of them and every
+    ready pair goes on to the ball road, which has its own pair-by-pair isolation."""
+    kept = {c: len(plans.notes[c]) for c in ready}
+    motions_before = plans.motions.take(np.arange(len(pairs)))
+    try:
+        return road(plans, pairs, ready, carrier, drawing)
+    except Exception:  # the ball road plans them instead, and reports anything it cannot do
+        plans.drop(set(ready), kept)
+        plans.motions = motions_before
+        return ready
+
+
+def polyline_road(plans, pairs, ready, carrier, drawing):
+    """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
+    straight, on the carrier. Returns the other ready pairs."""
+    found, rest = [], []
+    closed = [pairs[c].closed for c in ready]
+    maybe = may_have_corners([pairs[c].P for c in ready], closed) & may_have_corners(
+        [pairs[c].Q for c in ready], closed
+    )
+    for c, tried in zip(ready, maybe):
+        pair = pairs[c]
+        if not tried:
+            rest.append(c)
+            continue
+        ca, cb = corners(pair.P, pair.closed), corners(pair.Q, pair.closed)
+        if ca is None or cb is None or len(ca.index) != len(cb.index):
+            rest.append(c)
+        else:
+            found.append((c, ca, cb))
+    if not found:
+        return rest
+    index = np.array([c for c, _, _ in found])
+    P = Ragged.from_list([pairs[c].P for c in index], [pairs[c].closed for c in index])
+    Q = Ragged.from_list([pairs[c].Q for c in index], P.closed)
+    scale = pair_scales(P, Q)
+    kind = "rigid" if carrier == "rigid" else "similarity"
+    if carrier == "none":
+        motion = Motions.identity(len(index), kind)
+    else:
+        fits = fit_pairs(P, Q, turn=0.0 if drawing is None else drawing.turn)
+        still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
+            np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
+        )
+        motion = motions(P, fits, kind, scale, ~still, drawing)
+    plans.motions.put(index, motion)
+    for k, (c, ca, cb) in enumerate(found):
+        pair = pairs[c]
+
+        def register_a(pts, k=k):
+            return pts @ motion.A[k].T + motion.b[k] if motion.moving[k] else pts
+
+        plans.add_morph(c, polyline_morph(pair.P, ca, pair.Q, cb, pair.closed, register_a), pair.closed, pair.lengths)
+    return rest
+
+
+def own_points_road(plans, pairs, ready, carrier, drawing):
+    """Pairs whose points match one for one under a similarity (see :mod:`.exact`): the key's
+    own points, moved by the carrier. Returns the other ready pairs."""
+    rest, found = [], []
+    turn = 0.0 if drawing is None else drawing.turn
+    maybe = may_be_exact(
+        [pairs[c].xy_a for c in ready], [pairs[c].xy_b for c in ready], [pairs[c].closed for c in ready]
+    )
+    for c, tried in zip(ready, maybe):
+        pair = pairs[c]
+        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn) if tried else None
+        if fit is None:
+            rest.append(c)
+        else:
+            found.append((c, fit))
+    if not found:
+        return rest
+    index = np.array([c for c, _ in found])
+    P = Ragged.from_list([pairs[c].xy_a for c in index], [pairs[c].closed for c in index])
+    a = np.array([fit.a for _, fit in found])
+    b = np.array([fit.b for _, fit in found])
+    Q = Ragged.from_list([pairs[c].xy_b for c in index], P.closed)
+    scale = pair_scales(P, Q)
+    still = (np.abs(a - 1.0) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale)
+    fits = Fits(similarity_matrices(a), from_complex(b), np.zeros(len(index)))
+    kind = "rigid" if carrier == "rigid" else "similarity"
+    motion = motions(P, fits, kind, scale, ~still & (carrier != "none"), drawing)
+    plans.motions.put(index, motion)
+    for k, (c, fit) in enumerate(found):
+        pair = pairs[c]
+        moved = pair.xy_a @ motion.A[k].T + motion.b[k] if motion.moving[k] else pair.xy_a
+        order = (np.arange(len(pair.xy_b)) + fit.shift) % len(pair.xy_b)
+        morph = PathMorph("own points", pair.closed, LinearPaths(moved, pair.xy_b[order]), pair.u_a, pair.u_b[order])
+        plans.add_morph(c, morph, pair.closed, pair.lengths)
+    return rest
