@@ -31,6 +31,10 @@ __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
 #: reported as non-planar.
 PLANARITY = 1e-3
 
+#: In-betweens are evaluated a few times at once: about this many samples x times per chunk
+#: (16 MiB of staged 2D frames), however big the drawing.
+EVALUATE_SAMPLES = 1_000_000
+
 
 def inbetween(key_a, key_b, times, *options, **named):
     """In-between drawings of two keys: ``plan_inbetween(key_a, key_b, ...).evaluate(times)``.
@@ -250,6 +254,24 @@ class InbetweenPlan:
             self.messages.append(Message("INFO", f"{len(forced)} stroke pair(s) joined by hints"))
         return sorted(matched), drawing
 
+    def _frames(self, times, finite_only=True):
+        """The pairs' frames at ``times`` (PairFrames) and the in-betweens (list of StrokeSet);
+        ``(None, None)`` if some pair is not finite there and ``finite_only``."""
+        raw, marks = self.pieces.merge(self.pairs.frames(times))
+        parts = _finite(raw, self.strokes, times)
+        if finite_only and parts is not raw:
+            return None, None
+        # The second key's fractions are along its stroke as morphed: read them back as drawn.
+        parts.u_b = _as_drawn(parts, self.strokes)
+        along = self._sources(parts)
+        frames = assemble_frames(parts, self, times)
+        if self.has_hints:
+            for frame in frames:
+                _mark_hints(frame, marks)
+        if self.joined:
+            frames = [cut_frame(f, self._windows(parts, along, t)) for f, t in zip(frames, times)]
+        return parts, frames
+
     def _sources(self, parts):
         """Every sample's key strokes and fractions along them as drawn (``parts.stroke_a``,
         ``stroke_b``, ``u_a``, ``u_b``), the joined pieces read back piece by piece; returns the
@@ -302,8 +324,17 @@ class InbetweenPlan:
         """
         times = _check_times(times)
         result = InbetweenResult(frames=[], messages=list(self.messages))
-        parts, marks = self.pieces.merge(self.pairs.frames(times))
-        parts = _finite(parts, self.strokes, times)
+        # A few times at once: one chunk's samples are staged, not every frame's (their 3D
+        # frames are what the result keeps). Should a chunk turn out not finite, every time is
+        # taken at once, so that the pairs' reports are the same whatever the chunking.
+        step = max(1, EVALUATE_SAMPLES // max(self.pairs.layout.offsets[-1], 1))
+        chunks = [times[i : i + step] for i in range(0, len(times), step)] or [times]
+        for chunk in chunks:
+            parts, frames = self._frames(chunk)
+            if parts is None:
+                parts, result.frames = self._frames(times, finite_only=False)
+                break
+            result.frames += frames
         for k, (a, b, flip) in enumerate(self.strokes):
             _report_pair(result, a, b, flip, parts.used[k], parts.notes[k])
             if k in self.joined:  # the other pieces of a line drawn in pieces: part of this pair
@@ -314,15 +345,6 @@ class InbetweenPlan:
                     result.pairs.append(PairReport(stroke_a, stroke_b, f"piece of the line of stroke {whole}"))
         for h in self.held:
             _report_unmatched(result, h.index, h.from_a, self.unmatched)
-        # The second key's fractions are along its stroke as morphed: read them back as drawn.
-        parts.u_b = _as_drawn(parts, self.strokes)
-        along = self._sources(parts)
-        result.frames = assemble_frames(parts, self, times)
-        if self.has_hints:
-            for frame in result.frames:
-                _mark_hints(frame, marks)
-        if self.joined:
-            result.frames = [cut_frame(f, self._windows(parts, along, t)) for f, t in zip(result.frames, times)]
         result.messages.extend(self.planarity)
         return result
 

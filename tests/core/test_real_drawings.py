@@ -351,3 +351,45 @@ def test_a_bug_in_the_batched_road_stops_only_its_pair(monkeypatch):
     assert all(m.startswith(("circular-ball", "own points")) for m in others) and any("ball" in m for m in others)
     texts = [m.text for m in result.messages if m.level == "WARNING"]
     assert any("circular-ball morph failed (ZeroDivisionError: simulated core bug" in t for t in texts), texts
+
+
+def test_evaluating_a_few_times_at_a_time_changes_nothing(monkeypatch):
+    """A plan evaluates its times in chunks (plan.EVALUATE_SAMPLES): one time per chunk gives
+    the same in-betweens and reports, bit for bit, on every golden drawing (hints, splits,
+    fallbacks, every method)."""
+    import golden_cases
+
+    plan_module = importlib.import_module("ballmorph_core.drawing.plan")
+    times = np.linspace(0.0, 1.0, 7)
+    for _name, key_a, key_b, options in golden_cases.cases():
+        plan = bm.plan_inbetween(key_a, key_b, **options)
+        whole = plan.evaluate(times)
+        with monkeypatch.context() as patch:
+            patch.setattr(plan_module, "EVALUATE_SAMPLES", 1)
+            chunked = plan.evaluate(times)
+        _same_drawing(chunked, whole)
+
+
+def test_a_pair_not_finite_at_some_times_only_is_reported_as_when_evaluated_at_once(monkeypatch):
+    """A chunk whose frames are not finite sends every time through the point-by-point motion
+    together, so the report does not depend on how the times were chunked."""
+    plan_module = importlib.import_module("ballmorph_core.drawing.plan")
+    key_a, key_b = _drawing_4_and_5()
+    plan = bm.plan_inbetween(key_a, key_b)
+    real = type(plan.pairs).frames
+
+    def late_nan(self, times):
+        parts = real(self, times)
+        late = np.asarray(times) > 0.6
+        parts.frames[late, parts.offsets[0] : parts.offsets[1]] = np.nan
+        return parts
+
+    monkeypatch.setattr(type(plan.pairs), "frames", late_nan)
+    times = np.linspace(0.0, 1.0, 6)
+    whole = plan.evaluate(times)
+    monkeypatch.setattr(plan_module, "EVALUATE_SAMPLES", 1)
+    chunked = plan.evaluate(times)
+    _same_drawing(chunked, whole)
+    assert chunked.pairs[0].method == "straight point motion"
+    assert "non-finite" in chunked.pairs[0].reason
+    assert all(np.isfinite(f.positions).all() for f in chunked.frames)
