@@ -166,6 +166,25 @@ class _Discrete:
         return points, curves
 
 
+class _Mix:
+    """Per-sample values at time ``t``, block of columns by block: the first key's own columns
+    where the keys agree (shared by every frame), ``(1 - t) a + t b`` where they differ.
+
+    ``va``, ``vb``: shape (K, W); ``differ``: shape (W,) of bool."""
+
+    def __init__(self, va, vb, differ, t):
+        self.va, self.vb, self.differ, self.t = va, vb, differ, t
+
+    def block(self, lo, hi):
+        """Columns ``lo:hi``, shape (K, hi - lo)."""
+        a, d = self.va[:, lo:hi], np.flatnonzero(self.differ[lo:hi])
+        if not len(d):
+            return a
+        out = a.copy()
+        out[:, d] = (1 - self.t) * a[:, d] + self.t * self.vb[:, lo:hi][:, d]
+        return out
+
+
 def assemble_frames(parts, plan, times):
     """One StrokeSet per time from every pair's frames and the strokes without a partner.
 
@@ -195,26 +214,23 @@ def assemble_frames(parts, plan, times):
     origin = np.c_[index_a, index_b].astype(np.int64).reshape(-1, 2)
     # Attributes the two keys agree on (often radius, opacity, colour and the offset from the
     # plane) are shared by every frame, not mixed: a redo of a big drawing is mostly this loop.
+    # Each block (depth, radius, opacity, colour, extras) is mixed only where it differs.
     differ = np.any(va != vb, axis=0)
-    va_d, vb_d = va[:, differ], vb[:, differ]
     depth = va[:, 0] if np.any(va[:, 0]) else None
     out = []
     for ti, t in enumerate(times):
-        mix = va
-        if differ.any():
-            mix = va.copy()
-            mix[:, differ] = (1 - t) * va_d + t * vb_d
-            depth = mix[:, 0] if differ[0] else depth
+        mix = _Mix(va, vb, differ, t)
+        depth = mix.block(0, 1)[:, 0] if differ[0] else depth
         points, curves = discrete.at(t)
-        points.update(extras.from_columns(mix[:, _BASE:]))
+        points.update(extras.from_columns(mix.block(_BASE, va.shape[1])))
         drawing = StrokeSet(
             positions=plane.to_3d(parts.frames[ti], depth),
             offsets=parts.offsets,
             cyclic=parts.closed,
             material_index=mat_a if t < 0.5 else mat_b,
-            radius=mix[:, 1],
-            opacity=mix[:, 2],
-            vertex_color=mix[:, 3:_BASE],
+            radius=mix.block(1, 2)[:, 0],
+            opacity=mix.block(2, 3)[:, 0],
+            vertex_color=mix.block(3, _BASE),
             origin=origin,
             point_attributes=points,
             curve_attributes=curves,
