@@ -4,15 +4,13 @@
 batch, within a reach, through a k-d tree over the edges (long edges cut into pieces, so a
 scribble's edges spanning the whole drawing do not make every query a candidate of every
 edge); built once, it answers batch after batch (a fit iterating over the same curves).
-With no bound known in advance, :class:`PolylineProjector` first takes each query's distance
-to the nearest vertex (a k-d tree) plus half the longest edge as its reach: the closest point
-lies within it.
+It needs no reach to be quick: a query's bound shrinks to the nearest far corner of its
+curve's boxes as it descends, so :class:`PolylineProjector` asks it with none.
 """
 
 import numpy as np
 
 from .. import tolerances as tol
-from .polyline import scale_of
 from .ragged import Ragged, ragged_arange
 from .spatial import PointTree
 
@@ -174,9 +172,7 @@ class PolylineProjector:
     def __init__(self, curve, closed):
         self.curves = Ragged.from_list([np.asarray(curve, dtype=np.float64)], [bool(closed)])
         self.n_edges = int(self.curves.n_edges[0])
-        self._half_edge = 0.5 * float(self.curves.length_of_edge.max(initial=0.0))
-        self._slack = tol.COINCIDENT * scale_of(self.curves.pts)
-        self._tree = PointTree(self.curves.pts)
+        self._search = NearestEdges(self.curves)
 
     def nearest(self, points):
         """Edge and fraction along it of the closest point, for each query.
@@ -192,8 +188,7 @@ class PolylineProjector:
             The closest point is ``curve[edge] + frac * (curve[edge + 1] - curve[edge])``.
         """
         x = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-        reach = np.sqrt(self._tree.nearest_d2(x) + self._half_edge**2) * (1.0 + 1e-9) + self._slack
-        _, edge, frac = nearest_within(x, np.zeros(len(x), dtype=np.int64), self.curves, reach)
+        _, edge, frac = self._search.within(x, np.zeros(len(x), dtype=np.int64), np.inf)
         return edge, frac
 
     def foot(self, edge, frac):
