@@ -32,7 +32,7 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..geometry.polyline import signed_area
-from ..geometry.projection import nearest_within
+from ..geometry.projection import NearestEdges
 from ..geometry.ragged import Ragged
 from ..geometry.similarity import Similarity, as_complex, from_complex
 
@@ -329,6 +329,8 @@ def _sliding_fits(xp, Q, index, starts, size):
     length_q = np.repeat(Q.length[index], k)
     reach = SLIDE_REACH * np.repeat(size, k)
     cols = np.arange(k)
+    # Q stays put through every start and iteration: its search is built once.
+    search = NearestEdges(Q)
     for a, b in starts:
         a, b = np.array(a, dtype=complex), np.array(b, dtype=complex)
         d, w, s_q = np.full((L, k), np.inf), np.zeros((L, k)), np.zeros(L * k)
@@ -343,7 +345,7 @@ def _sliding_fits(xp, Q, index, starts, size):
             # which bounds the search as the fit settles (the same answer, found sooner; fmin: a
             # query that found nothing keeps its reach).
             bound = reach[q] if step == 0 else np.fmin(reach[q], np.abs(z - foot[q]) * (1.0 + 1e-9) + 1e-300)
-            dist, edge, frac = nearest_within(from_complex(z), owner[q], Q, bound)
+            dist, edge, frac = search.within(from_complex(z), owner[q], bound)
             s_q[q] = Q.s[edge] + frac * Q.length_of_edge[edge]
             inner = np.isfinite(dist) & (s_q[q] > end_eps[q]) & (s_q[q] < length_q[q] - end_eps[q])
             d[active] = np.where(inner, dist, np.inf).reshape(-1, k)

@@ -1,36 +1,32 @@
 """Closest points on polylines, for many query points at once.
 
-:func:`nearest_within` is the one search: every query against the edges of its own curve of a
-batch, within a reach, through the uniform grid of :func:`~.spatial.box_pairs` (long edges cut
-into pieces, the reach widened step by step, so a scribble's edges spanning the whole drawing
-do not make every query a candidate of every edge). With no bound known in advance,
-:class:`PolylineProjector` first takes each query's distance to the nearest vertex (a k-d tree)
-plus half the longest edge as its reach: the closest point lies within it.
+:class:`NearestEdges` is the one search: every query against the edges of its own curve of a
+batch, within a reach, through a k-d tree over the edges (long edges cut into pieces, so a
+scribble's edges spanning the whole drawing do not make every query a candidate of every
+edge); built once, it answers batch after batch (a fit iterating over the same curves).
+It needs no reach to be quick: a query's bound shrinks to the nearest far corner of its
+curve's boxes as it descends, so :class:`PolylineProjector` asks it with none.
 """
 
 import numpy as np
 
 from .. import tolerances as tol
-from .polyline import scale_of
 from .ragged import Ragged, ragged_arange
-from .spatial import PointTree, box_pairs
+from .spatial import PointTree
 
-__all__ = ["nearest_within", "PolylineProjector", "distances_to_polyline"]
+__all__ = ["NearestEdges", "nearest_within", "PolylineProjector", "distances_to_polyline"]
 
-#: Queries searched at once: the grid search's candidates are sparse, but a query far from its
-#: curve has a large reach; this bounds the candidates of such queries.
+#: Queries searched at once: a query far from its curve has a large reach and, until its bound
+#: shrinks, many candidates; this bounds the candidates held at once.
 _QUERY_CHUNK = 20_000
 
-#: A uniform grid needs boxes about as small as its cells, and a scribble's edges each span the
-#: whole drawing: edges are searched as pieces no longer than the side of one cell per edge of
-#: the curves' bounding box, but never more than this many pieces per edge on average.
+#: Boxes are small only if edges are: a scribble's edges each span the whole drawing, so edges
+#: are searched as pieces no longer than the side of one square per edge of the curves'
+#: bounding box, but never more than this many pieces per edge on average.
 _PIECES_PER_EDGE = 8
 
-#: Queries search within this many piece lengths first (or their reach, if smaller), then
-#: within ``_WIDEN`` times more until they find their curve or reach their reach: a query
-#: with a large reach but its curve close by never looks at the far edges.
-_FIRST_REACH = 0.5
-_WIDEN = 4.0
+#: Pieces per leaf of the k-d tree.
+_LEAF_PIECES = 8
 
 
 def _pieces(a, d):
@@ -47,8 +43,6 @@ def _pieces(a, d):
         together they hold their edge).
     edge : ndarray of int, shape (M,)
         The edge (row of ``a``) of each piece.
-    piece : float
-        The longest a piece may be.
     """
     lo, hi = np.minimum(a, a + d), np.maximum(a, a + d)
     corner_lo, corner_hi = lo.min(axis=0), hi.max(axis=0)
@@ -58,7 +52,7 @@ def _pieces(a, d):
     piece = max(np.sqrt(width * height / n), max(width, height) / n, length.sum() / (_PIECES_PER_EDGE * n), 1e-300)
     count = np.maximum(np.ceil(length / piece), 1).astype(np.int64)
     if (count == 1).all():
-        return np.concatenate([lo, hi], axis=1), np.arange(n), piece
+        return np.concatenate([lo, hi], axis=1), np.arange(n)
     edge, k = ragged_arange(count)
     t0, t1 = k / count[edge], (k + 1) / count[edge]
     p0, p1 = a[edge] + t0[:, None] * d[edge], a[edge] + t1[:, None] * d[edge]
@@ -67,72 +61,97 @@ def _pieces(a, d):
     # Uncut edges keep their exact boxes.
     whole = count[edge] == 1
     boxes[whole] = np.concatenate([lo, hi], axis=1)[edge[whole]]
-    return boxes, edge, piece
+    return boxes, edge
 
 
-def nearest_within(points, owner, curves, reach):
-    """The closest point of each query's curve, among edges within ``reach`` of the query.
+class NearestEdges:
+    """The edges of a batch of curves, ready for :meth:`within` to be asked again and again.
 
     Parameters
     ----------
-    points : ndarray, shape (K, 2)
-    owner : ndarray of int, shape (K,)
-        The curve of ``curves`` each query is projected on.
     curves : Ragged
-    reach : float or ndarray, shape (K,)
-        May be infinite.
-
-    Returns
-    -------
-    dist : ndarray, shape (K,)
-        ``inf`` where the curve lies farther than the reach.
-    edge : ndarray of int, shape (K,)
-        Global first-vertex index of the closest edge (ties: the lower one); 0 where none.
-    frac : ndarray, shape (K,)
-        The closest point is ``curves.pts[edge] + frac * curves.edge[edge]``.
 
     Notes
     -----
-    A query that finds an edge within a smaller reach has found its closest edge (a nearer one
-    lies within that reach too), so widening the search step by step gives the same answer as
-    searching the whole reach at once.
+    A k-d tree over the pieces of :func:`_pieces`, one root per curve (a query meets only its
+    own curve's edges), split at the pieces' centres: its boxes stay small even where the
+    curve's runs of edges do not (a scribble's), and a query's reach shrinks to the nearest
+    far corner as it descends.
     """
-    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-    dist, edge, frac = np.full(len(points), np.inf), np.zeros(len(points), np.int64), np.zeros(len(points))
-    e = np.flatnonzero(curves.nxt >= 0)
-    if len(points) == 0 or len(e) == 0:
-        return dist, edge, frac
-    # No edge of a curve lies farther than the far corner of its bounding box: a bound for any reach.
-    box = curves.boxes()[owner]
-    corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
-    reach = np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
-    a, d = curves.pts[e], curves.edge[e]
-    piece_boxes, piece_edge, piece = _pieces(a, d)
-    r_all = np.minimum(reach, _FIRST_REACH * piece)
-    todo = np.arange(len(points))
-    while len(todo):
-        found = np.zeros(len(todo), dtype=bool)
-        for start in range(0, len(todo), _QUERY_CHUNK):
-            rows = todo[start : start + _QUERY_CHUNK]
-            x, r = points[rows], r_all[rows][:, None]
-            i, p = box_pairs(np.concatenate([x - r, x + r], axis=1), piece_boxes)
-            j = piece_edge[p]
-            keep = curves.owner[e[j]] == owner[rows][i]
-            i, j = i[keep], j[keep]
+
+    def __init__(self, curves):
+        self.curves = curves
+        self.e = np.flatnonzero(curves.nxt >= 0)
+        self.a, self.d = curves.pts[self.e], curves.edge[self.e]
+        if len(self.e) == 0:
+            return
+        boxes, self.piece_edge = _pieces(self.a, self.d)
+        # Edges come curve after curve, and so do their pieces.
+        groups = np.searchsorted(curves.owner[self.e[self.piece_edge]], np.arange(len(curves.offsets)))
+        self.tree = PointTree(boxes[:, :2], _LEAF_PIECES, highs=boxes[:, 2:], groups=groups)
+        self.extent = float(np.abs(boxes).max())
+
+    def within(self, points, owner, reach):
+        """The closest point of each query's curve, among edges within ``reach`` of the query.
+
+        Parameters
+        ----------
+        points : ndarray, shape (K, 2)
+        owner : ndarray of int, shape (K,)
+            The curve each query is projected on.
+        reach : float or ndarray, shape (K,)
+            May be infinite.
+
+        Returns
+        -------
+        dist : ndarray, shape (K,)
+            ``inf`` where the curve lies farther than the reach.
+        edge : ndarray of int, shape (K,)
+            Global first-vertex index of the closest edge (ties: the lower one); 0 where none.
+        frac : ndarray, shape (K,)
+            The closest point is ``curves.pts[edge] + frac * curves.edge[edge]``.
+        """
+        points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+        owner = np.asarray(owner, dtype=np.int64).reshape(-1)
+        dist, edge, frac = np.full(len(points), np.inf), np.zeros(len(points), np.int64), np.zeros(len(points))
+        if len(points) == 0 or len(self.e) == 0:
+            return dist, edge, frac
+        # No edge of a curve lies farther than the far corner of its bounding box: a bound for any reach.
+        box = self.curves.boxes()[owner]
+        corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
+        reach = np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
+        a, d = self.a, self.d
+        # Distances computed at these coordinates err by round-off: no candidate is lost to it.
+        slack = tol.ROUNDOFF * max(self.extent, float(np.abs(points).max()))
+        for start in range(0, len(points), _QUERY_CHUNK):
+            rows = np.arange(start, min(start + _QUERY_CHUNK, len(points)))
+            x = points[rows]
+            i, p = self.tree.nearest_candidates(x, reach[rows], owner[rows], slack)
+            if not len(i):
+                continue
+            j = self.piece_edge[p]
             ee = np.einsum("ij,ij->i", d[j], d[j])
             f = np.divide(np.einsum("ij,ij->i", x[i] - a[j], d[j]), ee, out=np.zeros_like(ee), where=ee > 0)
             f = np.clip(f, 0, 1)
             d2 = np.sum(np.square(a[j] + f[:, None] * d[j] - x[i]), axis=1)
-            order = np.lexsort((j, d2, i))
-            first = order[np.r_[True, i[order][1:] != i[order][:-1]]] if len(order) else order
-            # A nearer edge would lie within reach too: the best candidate within reach is the closest.
-            first = first[d2[first] <= np.square(r[i[first], 0])]
+            # Candidates come query by query: keep each query's least distance, then the lowest
+            # edge at it (pieces of one edge repeat it: any of them).
+            run = np.flatnonzero(np.r_[True, i[1:] != i[:-1]])
+            run_size = np.diff(np.r_[run, len(i)])
+            best = d2 == np.repeat(np.minimum.reduceat(d2, run), run_size)
+            best &= j == np.repeat(np.minimum.reduceat(np.where(best, j, len(a)), run), run_size)
+            first = np.flatnonzero(best)
+            first = first[np.r_[True, i[first][1:] != i[first][:-1]]]
+            # Every edge within the bound is a candidate, so the best one is the closest.
+            first = first[d2[first] <= np.square(reach[rows][i[first]])]
             hit = rows[i[first]]
-            dist[hit], edge[hit], frac[hit] = np.sqrt(d2[first]), e[j[first]], f[first]
-            found[start + i[first]] = True
-        todo = todo[~found & (r_all[todo] < reach[todo])]
-        r_all[todo] = np.minimum(r_all[todo] * _WIDEN, reach[todo])
-    return dist, edge, frac
+            dist[hit], edge[hit], frac[hit] = np.sqrt(d2[first]), self.e[j[first]], f[first]
+        return dist, edge, frac
+
+
+def nearest_within(points, owner, curves, reach):
+    """:meth:`NearestEdges.within` of a search built for this one call (same parameters)."""
+    return NearestEdges(curves).within(points, owner, reach)
 
 
 class PolylineProjector:
@@ -153,9 +172,7 @@ class PolylineProjector:
     def __init__(self, curve, closed):
         self.curves = Ragged.from_list([np.asarray(curve, dtype=np.float64)], [bool(closed)])
         self.n_edges = int(self.curves.n_edges[0])
-        self._half_edge = 0.5 * float(self.curves.length_of_edge.max(initial=0.0))
-        self._slack = tol.COINCIDENT * scale_of(self.curves.pts)
-        self._tree = PointTree(self.curves.pts)
+        self._search = NearestEdges(self.curves)
 
     def nearest(self, points):
         """Edge and fraction along it of the closest point, for each query.
@@ -171,8 +188,7 @@ class PolylineProjector:
             The closest point is ``curve[edge] + frac * (curve[edge + 1] - curve[edge])``.
         """
         x = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-        reach = np.sqrt(self._tree.nearest_d2(x) + self._half_edge**2) * (1.0 + 1e-9) + self._slack
-        _, edge, frac = nearest_within(x, np.zeros(len(x), dtype=np.int64), self.curves, reach)
+        _, edge, frac = self._search.within(x, np.zeros(len(x), dtype=np.int64), np.inf)
         return edge, frac
 
     def foot(self, edge, frac):

@@ -160,13 +160,21 @@ def _box_reach(boxes, centres):
 
 
 class PointTree:
-    """A balanced k-d tree over points, queried for all disks at once.
+    """A balanced k-d tree over points (or small boxes), queried for all disks at once.
 
     Parameters
     ----------
     points : ndarray, shape (N, 2)
+        The points, or the low corners of the boxes when ``highs`` is given.
     leaf_size : int
         Points per leaf at most.
+    highs : ndarray, shape (N, 2), optional
+        The boxes' high corners: the tree then holds boxes, split at their centres.
+    groups : ndarray of int, shape (C + 1,), optional
+        Group ``c`` is ``points[groups[c]:groups[c + 1]]``: each group is a tree of its own
+        (root ``c`` of level 0), so a query that names its group never meets the others.
+        Groups and boxes are for :meth:`nearest_candidates`: the other queries start from root
+        0 and measure to the points (or the boxes' centres).
 
     Notes
     -----
@@ -176,11 +184,20 @@ class PointTree:
     inside it, so only nodes crossing a disk's boundary are refined.
     """
 
-    def __init__(self, points, leaf_size=8):
+    def __init__(self, points, leaf_size=8, highs=None, groups=None):
         self.points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         n = len(self.points)
+        self.lows = self.points
+        self.highs = self.points if highs is None else np.asarray(highs, dtype=np.float64).reshape(-1, 2)
+        if highs is not None:
+            # Boxes split at their centres (points are their own centres).
+            self.points = 0.5 * (self.lows + self.highs)
         perm = np.arange(n)
-        starts, ends = np.array([0]), np.array([n])
+        if groups is None:
+            starts, ends = np.array([0]), np.array([n])
+        else:
+            groups = np.asarray(groups, dtype=np.int64)
+            starts, ends = groups[:-1], groups[1:]
         self.levels = []
         while True:
             boxes = self._boxes(perm, starts, ends)
@@ -196,18 +213,21 @@ class PointTree:
             starts = np.stack([starts, mids], axis=1).ravel()
             ends = np.stack([mids, ends], axis=1).ravel()
         self.perm = perm
+        # Leaves' items as boxes, for nearest_candidates (points need no copy).
+        self.item_boxes = None if highs is None else np.concatenate([self.lows, self.highs], axis=1)
 
     def _boxes(self, perm, starts, ends):
         if len(perm) == 0:
             return np.full((len(starts), 4), np.nan)
-        pts = self.points[perm]
+        lows, highs = self.lows[perm], self.highs[perm]
         nonempty = ends > starts
         boxes = np.full((len(starts), 4), np.nan)
+        # Nodes tile perm, so reduceat over the non-empty ones' starts takes exactly each node.
         idx = starts[nonempty]
-        boxes[nonempty, 0] = np.minimum.reduceat(pts[:, 0], idx)
-        boxes[nonempty, 1] = np.minimum.reduceat(pts[:, 1], idx)
-        boxes[nonempty, 2] = np.maximum.reduceat(pts[:, 0], idx)
-        boxes[nonempty, 3] = np.maximum.reduceat(pts[:, 1], idx)
+        boxes[nonempty, 0] = np.minimum.reduceat(lows[:, 0], idx)
+        boxes[nonempty, 1] = np.minimum.reduceat(lows[:, 1], idx)
+        boxes[nonempty, 2] = np.maximum.reduceat(highs[:, 0], idx)
+        boxes[nonempty, 3] = np.maximum.reduceat(highs[:, 1], idx)
         return boxes
 
     def _descend(self, depth, q, node):
@@ -247,6 +267,57 @@ class PointTree:
         best = np.full(k, np.inf)
         np.minimum.at(best, pq, np.sum(np.square(self.points[pts] - x[pq]), axis=1))
         return best
+
+    def nearest_candidates(self, x, reach, group, slack=0.0):
+        """Items that may hold the closest point of its group to each query, within a reach.
+
+        Parameters
+        ----------
+        x : ndarray, shape (K, 2)
+        reach : ndarray, shape (K,)
+            Items farther than this are not candidates.
+        group : ndarray of int, shape (K,)
+            The group (see ``groups``) each query searches.
+        slack : float
+            Added to every bound: an exact distance computed by the caller may fall short of
+            the true one by round-off.
+
+        Returns
+        -------
+        query, item : ndarray of int, shape (M,)
+            Sorted by query. Among them is every item of the query's group whose box lies
+            within ``reach`` and within the nearest far corner of the group's boxes (each plus
+            slack): the closest item within reach is.
+
+        Notes
+        -----
+        Like :meth:`nearest_d2`: every non-empty box holds an item within its far corner, so
+        the nearest far corner among a query's nodes bounds its closest distance; nodes (and
+        at last items) beyond the bound are dropped level by level.
+        """
+        x = np.asarray(x, dtype=np.float64).reshape(-1, 2)
+        k = len(x)
+        q, node = np.arange(k), np.asarray(group, dtype=np.int64)
+        limit = np.asarray(reach, dtype=np.float64) + slack
+        for depth, (_, _, boxes) in enumerate(self.levels):
+            q, node = self._nearer(x, q, node, boxes[node], limit, slack)
+            q, node = self._descend(depth, q, node)
+        q, item = self._leaf_points(q, node)
+        boxes = np.tile(self.points[item], 2) if self.item_boxes is None else self.item_boxes[item]
+        q, item = self._nearer(x, q, item, boxes, limit, slack)
+        return q, item
+
+    @staticmethod
+    def _nearer(x, q, node, boxes, limit, slack):
+        """The (query, node) pairs, sorted by query, whose box lies within the query's bound."""
+        # An empty node's NaNs: fmin passes them over, and NaN <= bound drops the node.
+        near2, far2 = _box_reach(boxes, x[q])
+        bound = limit.copy()
+        if len(q):
+            first = np.flatnonzero(np.r_[True, q[1:] != q[:-1]])
+            bound[q[first]] = np.fmin(bound[q[first]], np.sqrt(np.fmin.reduceat(far2, first)) + slack)
+        keep = near2 <= np.square(bound[q])
+        return q[keep], node[keep]
 
     def within(self, centres, radii, first_only=False):
         """Points strictly inside disks.

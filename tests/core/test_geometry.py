@@ -24,7 +24,7 @@ from ballmorph_core.geometry.polyline import (
     scale_of,
     subcurve,
 )
-from ballmorph_core.geometry.projection import PolylineProjector, distances_to_polyline, nearest_within
+from ballmorph_core.geometry.projection import NearestEdges, PolylineProjector, distances_to_polyline, nearest_within
 from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange
 from ballmorph_core.geometry.spatial import CurveTree, PointTree, box_pair_chunks, box_pairs
 
@@ -189,6 +189,55 @@ def test_nearest_edge_on_long_edges_matches_brute_force(seed, reach):
     np.testing.assert_allclose(near[np.isfinite(near)], brute[np.isfinite(near)], atol=1e-12)
     feet = curve[edge] + frac[:, None] * (curve[np.minimum(edge + 1, len(curve) - 1)] - curve[edge])
     np.testing.assert_allclose(np.linalg.norm(feet - queries, axis=1)[np.isfinite(near)], near[np.isfinite(near)])
+
+
+def _nearest_edges_brute(points, owner, curves, reach):
+    # Every edge of the query's curve, measured as the search measures it; ties to the lower edge.
+    e = np.flatnonzero(curves.nxt >= 0)
+    dist, edge, frac = np.full(len(points), np.inf), np.zeros(len(points), np.int64), np.zeros(len(points))
+    for k, x in enumerate(points):
+        j = e[curves.owner[e] == owner[k]]
+        a, d = curves.pts[j], curves.edge[j]
+        ee = np.einsum("ij,ij->i", d, d)
+        f = np.divide(np.einsum("ij,ij->i", x - a, d), ee, out=np.zeros_like(ee), where=ee > 0)
+        f = np.clip(f, 0, 1)
+        d2 = np.sum(np.square(a + f[:, None] * d - x), axis=1)
+        best = np.lexsort((j, d2))[0]
+        if len(j) and d2[best] <= reach[k] ** 2:
+            dist[k], edge[k], frac[k] = np.sqrt(d2[best]), j[best], f[best]
+    return dist, edge, frac
+
+
+@given(st.integers(0, 2**32 - 1), st.sampled_from(["wobbly", "scribble", "mixed"]))
+@settings(max_examples=30, deadline=None)
+def test_nearest_edges_match_brute_force_edge_and_fraction(seed, kind):
+    # The same edge and fraction as measuring every edge (not just the same distance), for
+    # batches of curves, searched twice with one NearestEdges (as the sliding fit does).
+    rng = np.random.default_rng(seed)
+    curves = []
+    for c in range(rng.integers(1, 5)):
+        n = int(rng.integers(2, 120))
+        if kind == "scribble" or (kind == "mixed" and c % 2):
+            pts = rng.random((n, 2)) + c * 0.3
+        else:
+            pts = np.cumsum(rng.normal(0, 0.05, (n, 2)), axis=0)
+        if rng.random() < 0.3:
+            pts[rng.integers(n)] = pts[0]  # a repeated vertex: zero-length edges, exact ties
+        curves.append(pts)
+    batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
+    search = NearestEdges(batch)
+    for _ in range(2):
+        owner = rng.integers(0, len(curves), 60)
+        on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 2, 60)]
+        points = np.where(rng.random((60, 1)) < 0.2, on_vertex, rng.uniform(-0.5, 1.5, (60, 2)))
+        reach = rng.choice([0.01, 0.1, 0.5, np.inf], 60)
+        got = search.within(points, owner, reach)
+        want = _nearest_edges_brute(points, owner, batch, reach)
+        for g, w in zip(got, want):
+            np.testing.assert_array_equal(g, w)
+    one = nearest_within(points, owner, batch, reach)
+    for g, w in zip(one, want):
+        np.testing.assert_array_equal(g, w)
 
 
 @given(st.integers(0, 2**32 - 1), st.booleans())
