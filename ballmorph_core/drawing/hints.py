@@ -16,7 +16,7 @@ on exactly one point, that point's image.
   out of order along a pair (the longest run in order is kept).
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -268,6 +268,7 @@ class Pieces:
 
     def __init__(self, curves, pairs, hinted, carrier, drawing, make_curves):
         self.groups, self.curves = [], []
+        self.plain = not hinted  # no pair is cut: merging is the identity
         for k, pc in enumerate(curves):
             if k not in hinted:
                 self.groups.append(_Group(len(self.curves), 1, [(0.0, 1.0)], [(0.0, 1.0)], [0, 0], pc.closed_a))
@@ -289,6 +290,11 @@ class Pieces:
         Consecutive pieces share their breakpoint (kept once); a loop's last piece ends where
         its first starts.
         """
+        if self.plain:  # the same frames (not copied), the same notes once each
+            notes = [list(dict.fromkeys(n)) for n in parts.notes]
+            # The fractions are the plan's own arrays, and the caller rewrites them in place.
+            fractions = {"u_a": parts.u_a.copy(), "u_b": parts.u_b.copy()}
+            return replace(parts, used=list(parts.used), notes=notes, **fractions), []
         frames, u_a, u_b, used, notes, closed, marks = [], [], [], [], [], [], []
         start = 0
         for g in self.groups:

@@ -41,9 +41,11 @@ def ink_lengths(strokes):
     count = len(offsets) - 1
     if len(positions) < 2:
         return np.zeros(count)
-    edges = np.linalg.norm(np.diff(positions, axis=0), axis=1)  # edge i joins points i and i + 1
-    owner = np.searchsorted(offsets, np.arange(len(edges)), side="right") - 1
-    inside = owner == np.searchsorted(offsets, np.arange(1, len(positions)), side="right") - 1
+    step = np.diff(positions, axis=0)
+    edges = np.sqrt(np.square(step).sum(axis=1))  # edge i joins points i and i + 1
+    point_owner = np.repeat(np.arange(count), np.diff(offsets))
+    owner = point_owner[:-1]
+    inside = owner == point_owner[1:]
     lengths = np.bincount(owner[inside], edges[inside], minlength=count).astype(np.float64)
     closing = strokes.cyclic & (strokes.sizes > 2)
     first, last = offsets[:-1][closing], offsets[1:][closing] - 1
