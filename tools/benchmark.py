@@ -896,7 +896,6 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv):
         f"- Blender (bpy) {info['bpy']}, Python {info['python']}, numpy {info['numpy']}",
         f"- Date: {info['date']}; code: commit {info['commit']}",
         f"- Whole run: {wall / 60:.1f} min",
-        "",
         "- Threads: one. The add-on starts no worker threads, so its default is that single thread.",
         "",
         "## Goals (issue 14)",
