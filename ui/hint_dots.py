@@ -10,6 +10,7 @@ drawing nothing in background mode (no GPU). Blender 4.5 and 5.0 both have the b
 import bpy
 
 from ..operators.hints import MARKS
+from . import overlay
 
 __all__ = ["draw", "installed", "register", "unregister"]
 
@@ -72,16 +73,9 @@ def installed():
 
 def register():
     global _handle
-    if _handle is None:
-        _handle = bpy.types.SpaceView3D.draw_handler_add(draw, (), "WINDOW", "POST_PIXEL")
-    if _edited not in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.append(_edited)
+    _handle = overlay.install(_handle, draw, "POST_PIXEL", _edited)
 
 
 def unregister():
     global _handle
-    if _handle is not None:
-        bpy.types.SpaceView3D.draw_handler_remove(_handle, "WINDOW")
-        _handle = None
-    if _edited in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.remove(_edited)
+    _handle = overlay.remove(_handle, _edited)

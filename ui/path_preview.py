@@ -16,6 +16,7 @@ import numpy as np
 
 from ..ballmorph_core import pair_colors
 from ..operators.preview import PREVIEW
+from . import overlay
 
 __all__ = ["draw", "installed", "sync", "toggled", "register", "unregister"]
 
@@ -85,19 +86,12 @@ def installed():
 
 def _install():
     global _handle
-    if _handle is None:
-        _handle = bpy.types.SpaceView3D.draw_handler_add(draw, (), "WINDOW", "POST_VIEW")
-    if _edited not in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.append(_edited)
+    _handle = overlay.install(_handle, draw, "POST_VIEW", _edited)
 
 
 def _remove():
     global _handle, _batch
-    if _handle is not None:
-        bpy.types.SpaceView3D.draw_handler_remove(_handle, "WINDOW")
-        _handle = None
-    if _edited in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.remove(_edited)
+    _handle = overlay.remove(_handle, _edited)
     _batch = (None, None)
     PREVIEW.clear()
 
