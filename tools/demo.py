@@ -23,6 +23,7 @@ import importlib
 import os
 import sys
 import tempfile
+from contextlib import contextmanager
 
 import bpy
 import matplotlib
@@ -58,6 +59,26 @@ def enable_addon():
 
 def _raise(exc):
     raise exc
+
+
+@contextmanager
+def addon_session():
+    """Blender's factory settings and the add-on enabled from this checkout for the block,
+    disabled after it (bpy may hang at exit with operators or handlers registered)."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    enable_addon()
+    try:
+        yield
+    finally:
+        addon_utils.disable(MODULE, default_set=True)
+
+
+def save_figure(fig, path):
+    """A matplotlib figure laid out, written to ``path`` at the pictures' resolution, closed."""
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    print(f"wrote {path}")
 
 
 def material(name, rgb):
@@ -102,8 +123,7 @@ def add_key(obj, number, strokes, cyclic, materials, radius):
 
 
 def build_scene():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    module = enable_addon()
+    """The five shots' keys (inside :func:`addon_session`): list of (object, frame, options)."""
     ink = material("Ink", (0.05, 0.05, 0.08))
     red = material("Apple red", (0.75, 0.1, 0.1))
     brown = material("Stem", (0.35, 0.2, 0.05))
@@ -145,7 +165,7 @@ def build_scene():
     # Every option given: the scene remembers the previous shot's (By Index matching).
     options = {"method": "CIRCULAR_BALL", "easing_type": "SINE", "easing": "EASE_IN_OUT", "matching": "AUTO"}
     shots.append((obj, 2, options))
-    return module, shots
+    return shots
 
 
 def run_shots(shots):
@@ -209,24 +229,19 @@ def contact_sheet(shots, path, columns=6):
             ax.set_aspect("equal")
             ax.axis("off")
     fig.suptitle("Ball-morph In-between: keys (black in the onion skin) and the in-betweens the add-on wrote")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path)
 
 
 def main():
     os.makedirs(OUT, exist_ok=True)
-    module, shots = build_scene()
-    try:
+    with addon_session():
+        shots = build_scene()
         run_shots(shots)
         blend = os.path.join(OUT, "demo.blend")
         bpy.context.preferences.filepaths.save_version = 0  # no demo.blend1 backups
         bpy.ops.wm.save_as_mainfile(filepath=blend)
+        print(f"wrote {blend}")
         contact_sheet(shots, os.path.join(OUT, "demo.png"))
-        print(f"wrote {blend}\nwrote {os.path.join(OUT, 'demo.png')}")
-    finally:
-        addon_utils.disable(MODULE, default_set=True)  # bpy may hang at exit with operators registered
-    del module
     return 0
 
 

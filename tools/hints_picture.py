@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from demo import MODULE, OUT, add_key, addon_utils, enable_addon, material, new_shot
+from demo import MODULE, OUT, add_key, addon_session, material, new_shot, save_figure
 
 PICTURE = os.path.join(OUT, "hints.png")
 FIRST, LAST = 1, 9
@@ -106,9 +106,7 @@ def _draw(ax, obj, title, marks):
 
 def main(path=PICTURE):
     os.makedirs(OUT, exist_ok=True)
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    module = enable_addon()
-    try:
+    with addon_session():
         plain, hinted = _scene("Wheel", 0.0, False), _scene("Wheel hinted", 3.0, True)
         hint_marks = importlib.import_module(f"{MODULE}.operators.hints").MARKS
         bpy.context.view_layer.objects.active = hinted
@@ -126,13 +124,7 @@ def main(path=PICTURE):
             marks,
         )
         fig.suptitle("Correspondence hints: the point with hint k travels to the point with hint k", fontsize=10)
-        fig.tight_layout()
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
-        print(f"wrote {path}")
-    finally:
-        addon_utils.disable(MODULE, default_set=True)  # bpy may hang at exit with operators registered
-    del module
+        save_figure(fig, path)
     return 0
 
 

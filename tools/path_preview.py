@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from demo import MODULE, OUT, addon_utils, build_scene
+from demo import MODULE, OUT, addon_session, build_scene, save_figure
 
 PICTURE = os.path.join(OUT, "path_preview.png")
 
@@ -74,8 +74,8 @@ def draw_shot(ax, obj, frame, options, core):
 
 def main(path=PICTURE):
     os.makedirs(OUT, exist_ok=True)
-    module, shots = build_scene()  # keys only: the shots are not in-betweened
-    try:
+    with addon_session():
+        shots = build_scene()  # keys only: the shots are not in-betweened
         bpy.context.scene.ballmorph_inbetween.path_preview = True  # installs the draw handler
         core = importlib.import_module(f"{MODULE}.ballmorph_core")
         fig, axes = plt.subplots(1, len(shots), figsize=(2.9 * len(shots), 3.4))
@@ -86,13 +86,7 @@ def main(path=PICTURE):
             "(one colour per pair; dots on the first key)",
             fontsize=10,
         )
-        fig.tight_layout()
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
-        print(f"wrote {path}")
-    finally:
-        addon_utils.disable(MODULE, default_set=True)  # bpy may hang at exit with handlers installed
-    del module
+        save_figure(fig, path)
     return 0
 
 
