@@ -37,7 +37,6 @@ from .. import tolerances as tol
 from ..ballmap.correspondence import map_batch
 from ..ballmap.onemap import OneWayMap
 from ..errors import InvalidCurveError
-from ..geometry.intersections import batch_crossings
 from ..geometry.polyline import (
     already_clean,
     as_curve,
@@ -48,6 +47,7 @@ from ..geometry.polyline import (
     resolve_spacing,
 )
 from ..geometry.ragged import Ragged
+from .carrier_choice import carrier_motions, note_shape_changes
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
@@ -61,7 +61,7 @@ from .fallbacks import (
 from .layout import BallRows
 from .pairplans import PairPlans
 from .point_roads import guarded, own_points_road, polyline_road
-from .registration import Motions, fit_pairs, identity_residual, motions
+from .registration import Motions, identity_residual
 from .splitting import cut_chains, find_events
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
@@ -355,25 +355,11 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
     return good
 
 
-def _handled_directly(P, Q, scale):
-    """Pairs the ball-morph follows as they are drawn: strokes sharing both endpoints, loops one
-    inside the other without crossing (paper configurations 2 and 1)."""
-    n, closed = len(P), P.closed
-    end_eps = tol.SHARED_ENDPOINT * scale
-    first = np.linalg.norm(P.pts[P.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
-    last = np.linalg.norm(P.pts[P.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
-    inside = P.contains(Q.pts[Q.offsets[:-1]], np.arange(n)) | Q.contains(P.pts[P.offsets[:-1]], np.arange(n))
-    nested = closed & inside
-    if nested.any():
-        cx = batch_crossings(P, Q, scale, nested)
-        nested &= np.bincount(cx.pair, minlength=n) == 0
-    return (~closed & first & last) | nested
-
-
 def register(P, Q, carrier, scale, drawing=None, given=None):
     """Step 2: each pair's registration and carrier (see :mod:`.registration`).
 
-    Pairs the ball-morph follows as drawn (and every pair with carrier 'none') get none;
+    Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
+    :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
     ``drawing`` (a DrawingMotion) is the keys' overall motion, the prior of symmetric shapes;
     ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
 
@@ -384,22 +370,17 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
         The registered P.
     residual : ndarray, shape (C,)
         RMS distance left between the registered P and Q (uniform samples).
+    shape_change : ndarray, shape (C,)
+        Loops left without a carrier because they changed shape (:mod:`.carrier_choice`):
+        the fraction of their distance the registration left; NaN for the other pairs.
     """
-    n = len(P)
-    if carrier == "none":
-        motion = Motions.identity(n)
-    else:
-        fits = fit_pairs(P, Q, turn=0.0 if drawing is None else drawing.turn)
-        still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
-            np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
-        )
-        motion = motions(P, fits, carrier, scale, ~_handled_directly(P, Q, scale) & ~still, drawing)
+    motion, kept = carrier_motions(P, Q, carrier, scale, drawing)
     for c, own in enumerate(given or []):
         if own is not None:
             motion.put(np.array([c]), own)
     pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
-    return motion, R, identity_residual(R, Q)
+    return motion, R, identity_residual(R, Q), kept
 
 
 def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
@@ -410,7 +391,8 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
-    motions, R, residual = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    motions, R, residual, shape_change = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    note_shape_changes(plans.notes, index, motions, shape_change)
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
     h = default_spacings(R, Q) if spacing is None else np.full(len(index), float(spacing))

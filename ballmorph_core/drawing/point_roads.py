@@ -10,9 +10,10 @@ from ..geometry.ragged import Ragged
 from ..geometry.similarity import from_complex
 from ..morphs.base import PathMorph
 from ..morphs.paths import LinearPaths
+from .carrier_choice import carrier_motions, note_shape_changes
 from .exact import exact_fit, may_be_exact
 from .polylines import corners, may_have_corners, polyline_morph
-from .registration import Fits, Motions, fit_pairs, motions, similarity_matrices
+from .registration import Fits, motions, similarity_matrices
 
 __all__ = ["guarded", "own_points_road", "polyline_road"]
 
@@ -54,15 +55,8 @@ def polyline_road(plans, pairs, ready, carrier, drawing):
     P = Ragged.from_list([pairs[c].P for c in index], [pairs[c].closed for c in index])
     Q = Ragged.from_list([pairs[c].Q for c in index], P.closed)
     scale = pair_scales(P, Q)
-    kind = "rigid" if carrier == "rigid" else "similarity"
-    if carrier == "none":
-        motion = Motions.identity(len(index), kind)
-    else:
-        fits = fit_pairs(P, Q, turn=0.0 if drawing is None else drawing.turn)
-        still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
-            np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
-        )
-        motion = motions(P, fits, kind, scale, ~still, drawing)
+    motion, shape_change = carrier_motions(P, Q, carrier, scale, drawing)
+    note_shape_changes(plans.notes, index, motion, shape_change)
     plans.motions.put(index, motion)
     for k, (c, ca, cb) in enumerate(found):
         pair = pairs[c]

@@ -1,0 +1,198 @@
+"""Which pairs get a carrier motion (the *register* step's choice, issue 11).
+
+A carrier is for a pair that *moved*: turned, swung, travelled, grew. The ball-morph alone
+follows two kinds of pairs as they are drawn, and they get none:
+
+- pairs the paper's configurations take directly: strokes sharing both endpoints, loops one
+  inside the other without crossing (configurations 2 and 1);
+- loops that overlap (at least ``OVERLAPPING`` of one lies inside the other) and whose
+  registration explains little of their difference: the closest-point distance between the
+  registered loops is still more than ``SHAPE_CHANGE`` of what it was before. Such a pair
+  changed its *shape* where it lies (a glyph's outline growing bolder, a blob bulging out on
+  one side), and a carrier would only bend every point's path by a turn and a scale that
+  belong to no motion of the drawing. Loops side by side keep their carrier however badly it
+  fits: the ball-morph cannot take one onto the other without it. Open strokes keep theirs
+  too: without one, strokes that do not share their endpoints cannot be ball-morphed at all.
+"""
+
+import numpy as np
+
+from .. import tolerances as tol
+from ..geometry.intersections import batch_crossings
+from ..geometry.projection import NearestEdges
+from ..geometry.ragged import Ragged
+from .registration import Motions, fit_pairs, identity_residual, motions
+
+__all__ = [
+    "SHAPE_CHANGE",
+    "OVERLAPPING",
+    "carrier_motions",
+    "note_shape_changes",
+    "handled_directly",
+    "closest_distance",
+    "inside_fraction",
+    "shape_changes",
+]
+
+#: A loop's registration that leaves more than this fraction of the loops' closest-point
+#: distance explains little of it: the loops changed shape rather than moved (no carrier).
+#: A moved, turned or scaled copy leaves about nothing; a glyph's outline at another weight
+#: leaves 75-140 % (its registration only shrinks it into the middle of the bolder stroke).
+SHAPE_CHANGE = 0.5
+
+#: A fit whose RMS sample residual is below this fraction of the samples' distance as drawn
+#: (both by the best cyclic shift) explains the change: a cheap screen before the closest-point
+#: distances. On the glyphs and scenes measured the closest-point ratio is never below about
+#: 0.7 of the samples' one where it exceeds ``SHAPE_CHANGE``, so this keeps a margin of 1.4.
+SCREEN = 0.25
+
+#: Loops overlap when at least this fraction of one's outline lies inside the other.
+OVERLAPPING = 0.5
+
+#: Uniform samples per curve for the closest-point distances and the overlap.
+DISTANCE_SAMPLES = 128
+
+
+def handled_directly(P, Q, scale):
+    """Pairs the ball-morph follows as they are drawn: strokes sharing both endpoints, loops
+    one inside the other without crossing (paper configurations 2 and 1), shape (C,) of bool.
+
+    Parameters
+    ----------
+    P, Q : Ragged
+        The pairs' curves, as drawn.
+    scale : ndarray, shape (C,)
+    """
+    n, closed = len(P), P.closed
+    end_eps = tol.SHARED_ENDPOINT * scale
+    first = np.linalg.norm(P.pts[P.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
+    last = np.linalg.norm(P.pts[P.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
+    inside = P.contains(Q.pts[Q.offsets[:-1]], np.arange(n)) | Q.contains(P.pts[P.offsets[:-1]], np.arange(n))
+    nested = closed & inside
+    if nested.any():
+        cx = batch_crossings(P, Q, scale, nested)
+        nested &= np.bincount(cx.pair, minlength=n) == 0
+    return (~closed & first & last) | nested
+
+
+def closest_distance(P, Q):
+    """Symmetric RMS closest-point distance between each P and its Q, shape (C,).
+
+    Uniform samples of each curve are projected on the other curve (the nearest point of its
+    edges), both ways: unlike a sample-to-sample distance it does not depend on where the
+    curves start or how their lengths are shared out.
+
+    Parameters
+    ----------
+    P, Q : Ragged
+        Same number of curves.
+    """
+    n = len(P)
+    total = np.zeros(n)
+    for a, b in ((P, Q), (Q, P)):
+        samples = a.resample(np.full(n, DISTANCE_SAMPLES), smooth=False)
+        dist, _, _ = NearestEdges(b).within(samples.pts, samples.owner, np.inf)
+        total += np.bincount(samples.owner, np.square(dist), minlength=n) / np.bincount(samples.owner, minlength=n)
+    return np.sqrt(total / 2.0)
+
+
+def inside_fraction(P, Q):
+    """Fraction of each loop P's outline (uniform samples) inside its loop Q, shape (C,)."""
+    samples = P.resample(np.full(len(P), DISTANCE_SAMPLES), smooth=False)
+    inside = Q.contains(samples.pts, samples.owner)
+    return np.bincount(samples.owner, inside, minlength=len(P)) / np.bincount(samples.owner, minlength=len(P))
+
+
+def shape_changes(P, Q, fits, ask):
+    """Overlapping loops whose registration explains little of their difference (see
+    ``OVERLAPPING`` and ``SHAPE_CHANGE``).
+
+    Parameters
+    ----------
+    P, Q : Ragged
+        The pairs' curves, as drawn.
+    fits : Fits
+        Each P's registration onto its Q.
+    ask : ndarray of bool, shape (C,)
+        The pairs to consider (the others are False).
+
+    Returns
+    -------
+    changed : ndarray of bool, shape (C,)
+    kept : ndarray, shape (C,)
+        The fraction of the distance the registration leaves (NaN where not asked).
+    """
+    kept = np.full(len(P), np.nan)
+    rows = np.flatnonzero(ask & P.closed)
+    # The cheap screen first: a fit that removes most of the samples' own distance explains
+    # the change (the closest-point ratio is then below SHAPE_CHANGE too).
+    if len(rows):
+        rows = rows[fits.residual[rows] > SCREEN * identity_residual(P.take(rows), Q.take(rows))]
+    if len(rows):
+        Pr, Qr = P.take(rows), Q.take(rows)
+        A, b = fits.A[rows], fits.b[rows]
+        moved = np.einsum("kij,kj->ki", np.take(A, Pr.owner, axis=0), Pr.pts) + np.take(b, Pr.owner, axis=0)
+        before = closest_distance(Pr, Qr)
+        after = closest_distance(Ragged(moved, Pr.offsets, Pr.closed), Qr)
+        kept[rows] = np.divide(after, before, out=np.zeros(len(rows)), where=before > 0)
+        rows = rows[kept[rows] > SHAPE_CHANGE]
+    # Loops side by side keep their carrier (the costliest test, for the few pairs left).
+    if len(rows):
+        Pr, Qr = P.take(rows), Q.take(rows)
+        rows = rows[np.maximum(inside_fraction(Pr, Qr), inside_fraction(Qr, Pr)) >= OVERLAPPING]
+    changed = np.zeros(len(P), dtype=bool)
+    changed[rows] = True
+    return changed, kept
+
+
+def carrier_motions(P, Q, carrier, scale, drawing=None):
+    """The carrier of every pair (see the module docstring).
+
+    Parameters
+    ----------
+    P, Q : Ragged
+        The pairs' curves, as drawn (each Q running the way its P does).
+    carrier : {'similarity', 'rigid', 'none'}
+    scale : ndarray, shape (C,)
+    drawing : DrawingMotion, optional
+        The keys' overall motion (symmetric shapes turn with it).
+
+    Returns
+    -------
+    motions : Motions
+    shape_change : ndarray, shape (C,)
+        For loops left without a carrier because they change shape, the fraction of their
+        distance the registration left; NaN for the other pairs.
+    """
+    n, kind = len(P), "rigid" if carrier == "rigid" else "similarity"
+    kept = np.full(n, np.nan)
+    if carrier == "none":
+        return Motions.identity(n, kind), kept
+    fits = fit_pairs(P, Q, turn=0.0 if drawing is None else drawing.turn)
+    still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
+        np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale
+    )
+    ask = ~handled_directly(P, Q, scale) & ~still
+    changed, kept = shape_changes(P, Q, fits, ask)
+    kept[~changed] = np.nan
+    return motions(P, fits, kind, scale, ask & ~changed, drawing), kept
+
+
+def note_shape_changes(notes, index, motion, shape_change):
+    """Say, in each such pair's notes, why a loop that changes shape got no carrier.
+
+    Parameters
+    ----------
+    notes : list of list of str
+        Every pair's notes (of the drawing).
+    index : ndarray of int, shape (C,)
+        The batch's pairs in the drawing.
+    motion : Motions
+    shape_change : ndarray, shape (C,)
+        From :func:`carrier_motions`.
+    """
+    for c in np.flatnonzero(np.isfinite(shape_change) & ~motion.moving):
+        notes[index[c]].append(
+            f"no carrier: its registration leaves {shape_change[c]:.0%} of the loops' distance"
+            " (they change shape where they lie, they do not move)"
+        )

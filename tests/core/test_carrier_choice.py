@@ -1,0 +1,100 @@
+"""Which pairs get a carrier (drawing/carrier_choice.py)."""
+
+import numpy as np
+import pytest
+
+from ballmorph_core.drawing import carrier_choice
+from ballmorph_core.drawing.pipeline import PairMorph
+from ballmorph_core.drawing.registration import Fits
+from ballmorph_core.geometry.ragged import Ragged
+
+from .shapes import circle, polar_loop
+
+
+def _lumpy(n=300):
+    """r = 1.1 + 0.3 cos(3 theta): crosses the unit circle six times, mostly around it."""
+    return polar_loop([(0.0, 0.0), (0.3, 0.0)], n=n, base=1.1)
+
+
+def _turned(xy, degrees, shift):
+    a = np.radians(degrees)
+    return xy @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]]) + shift
+
+
+def test_closest_distance_of_concentric_circles_is_their_gap_whatever_their_starts():
+    P = Ragged.from_list([circle(1.0, 400), circle(1.0, 400)], [True, True])
+    Q = Ragged.from_list([circle(2.0, 400), circle(2.0, 400, start=2.0)], [True, True])
+    d = carrier_choice.closest_distance(P, Q)
+    np.testing.assert_allclose(d, 1.0, atol=2e-4)
+    assert abs(d[0] - d[1]) < 1e-4
+
+
+def test_a_loop_changing_shape_where_it_lies_gets_no_carrier_and_says_why():
+    morph = PairMorph(circle(1.0, 300), _lumpy(), True)
+    assert "carrier" not in morph.used, morph.used
+    note = [n for n in morph.notes if n.startswith("no carrier")]
+    assert note and "change shape" in note[0], morph.notes
+
+
+def test_the_same_change_while_the_loop_moves_and_turns_keeps_its_carrier():
+    morph = PairMorph(circle(1.0, 300), _turned(_lumpy(), 40.0, (0.9, 0.4)), True)
+    assert "on a similarity carrier" in morph.used, morph.used
+    assert not any(n.startswith("no carrier") for n in morph.notes)
+
+
+@pytest.mark.parametrize("apart, changed", [(0.0, True), (3.0, False)])
+def test_only_overlapping_loops_count_as_changing_shape(apart, changed):
+    # A registration that explains nothing (the identity, its residual the samples' own):
+    # loops lying over each other change shape; loops side by side still need the carrier.
+    P = Ragged.from_list([circle(1.0, 300)], [True])
+    Q = Ragged.from_list([_lumpy() + [apart, 0.0]], [True])
+    fits = Fits(np.eye(2)[None], np.zeros((1, 2)), np.array([np.inf]))
+    got, kept = carrier_choice.shape_changes(P, Q, fits, np.array([True]))
+    assert got[0] == changed
+    assert kept[0] == pytest.approx(1.0)
+
+
+def test_a_registration_that_explains_the_change_is_screened_out_before_any_distance():
+    P = Ragged.from_list([circle(1.0, 300)], [True])
+    Q = Ragged.from_list([_lumpy() + [0.2, 0.0]], [True])
+    fits = Fits(np.eye(2)[None], np.zeros((1, 2)), np.array([0.0]))
+    got, kept = carrier_choice.shape_changes(P, Q, fits, np.array([True]))
+    assert not got[0] and np.isnan(kept[0])
+
+
+def test_open_strokes_are_never_asked():
+    P = Ragged.from_list([circle(1.0, 300)[:200]], [False])
+    Q = Ragged.from_list([_lumpy()[:200]], [False])
+    fits = Fits(np.eye(2)[None], np.zeros((1, 2)), np.array([np.inf]))
+    got, kept = carrier_choice.shape_changes(P, Q, fits, np.array([True]))
+    assert not got[0] and np.isnan(kept[0])
+
+
+class _Astray:
+    """A stand-in composite ball-morph whose middle frames leave the chains far behind."""
+
+    def __init__(self, P, reach):
+        self.P, self.reach = P, reach
+
+    def frames(self, ts):
+        return np.stack([self.P + [0.0, -self.reach] for _ in ts])
+
+
+@pytest.mark.parametrize("reach, followed", [(0.0, True), (0.2, True), (1.0, False)])
+def test_a_composite_ball_morph_that_strays_far_outside_its_chains_falls_back(monkeypatch, reach, followed):
+    from ballmorph_core.drawing import fallbacks
+
+    P = np.c_[np.linspace(0.0, 1.0, 20), np.zeros(20)]
+    Q = np.c_[np.linspace(0.0, 1.0, 20), np.full(20, 0.5)]
+    real = fallbacks.make_morph
+
+    def composite_astray(P_, Q_, method, **kw):
+        return _Astray(P_, reach) if method == "composite-ball" else real(P_, Q_, method, **kw)
+
+    monkeypatch.setattr(fallbacks, "make_morph", composite_astray)
+    morph, note = fallbacks.chain_fallback(P, Q, False, "circular", 0.05, "lens 1/2", "why")
+    # The box's diagonal is 1.118: a reach of 0.2 is 0.18 of it, 1.0 is 0.89.
+    assert isinstance(morph, _Astray) == followed, note
+    assert ("composite ball-morph used" in note) == followed
+    if not followed:
+        assert "leave the chains' box by 0.89 of its diagonal" in note and "linear-interpolation used" in note
