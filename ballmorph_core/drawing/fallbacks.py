@@ -12,16 +12,20 @@ import numpy as np
 from ..errors import BallMorphError, IncompatibleCurvesError
 from ..geometry.intersections import is_simple
 from ..morphs import make_morph
+from ..morphs.aligned import METHOD as ALIGNED_METHOD
+from ..morphs.aligned import aligned_morph
 from ..morphs.base import PathMorph
 from ..morphs.linear import sample_counts, uniform_correspondences
 from ..morphs.paths import LinearPaths
 
 __all__ = [
     "FALLBACK_METHOD",
+    "ALIGNED_METHOD",
     "BALL_METHODS",
     "short",
     "chain_fallback",
     "linear_fallback",
+    "aligned_fallback",
     "arc_length_morphs",
     "unsplittable",
     "comparison_morph",
@@ -75,9 +79,7 @@ def chain_fallback(P, Q, closed, kind, spacing, where, reason):
         reason = f"composite ball-morph: its in-betweens leave the chains' box by {out:.2f} of its diagonal"
     except BallMorphError as exc:
         reason = str(exc)
-    return make_morph(
-        P, Q, FALLBACK_METHOD, closed=closed, spacing=spacing
-    ), f"{where}: {FALLBACK_METHOD} used ({short(reason)})"
+    return aligned_morph(P, Q, closed, spacing), f"{where}: {ALIGNED_METHOD} used ({short(reason)})"
 
 
 def _outside(morph, P, Q):
@@ -88,6 +90,12 @@ def _outside(morph, P, Q):
     frames = morph.frames([0.25, 0.5, 0.75]).reshape(-1, 2)
     beyond = np.maximum(np.maximum(lo - frames, frames - hi), 0.0).max(initial=0.0)
     return float(beyond / max(float(np.hypot(*(hi - lo))), 1e-300))
+
+
+def aligned_fallback(P, Q, closed, spacing, reason):
+    """Aligned interpolation for a pair whose curves lie over each other but that no
+    ball-morph can follow (see :mod:`~ballmorph_core.morphs.aligned`): ``(morph, note)``."""
+    return aligned_morph(P, Q, closed, spacing), f"{reason}: {ALIGNED_METHOD} used"
 
 
 def linear_fallback(P, Q, closed, spacing, reason):

@@ -51,6 +51,7 @@ from .carrier_choice import carrier_motions, note_shape_changes
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
+    aligned_fallback,
     arc_length_morphs,
     chain_fallback,
     comparison_morph,
@@ -159,8 +160,9 @@ def prepare_pairs(pairs, method, spacing):
 
 @dataclass
 class _Roads:
-    """What happens to each pair of a ball-road batch (``'carrier'``, ``'whole'``, ``'lenses'``,
-    ``'linear'``) and, for ``'linear'``, why."""
+    """What happens to each pair of a ball-road batch (``'carrier'``, ``'near'``, ``'whole'``,
+    ``'lenses'``, ``'aligned'`` for curves lying over each other that cannot be cut into
+    lenses, ``'linear'``) and, for the last two, why."""
 
     kind: np.ndarray
     reason: list
@@ -188,7 +190,7 @@ def choose_roads(R, Q, events, coincident, near, carrier, scale):
         elif carrier == "none" and not closed[c] and not (first[c] and last[c]):
             kind[c], reason[c] = "linear", "the strokes do not share endpoints and no carrier is used"
         elif not events.agree[c]:
-            kind[c] = "linear"
+            kind[c] = "aligned"
             reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), events.why_tangled(c))
         elif kind[c] == "whole" and not nested[c]:
             why = "the loops neither cross nor lie one inside the other"
@@ -408,8 +410,9 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     roads = choose_roads(Rc, Qc, events, coincident, near, carrier, scale)
     plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
     whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
-    for c in np.flatnonzero(roads.kind == "linear"):
-        morph, note = linear_fallback(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c], roads.reason[c])
+    for c in np.flatnonzero((roads.kind == "linear") | (roads.kind == "aligned")):
+        fallback = aligned_fallback if roads.kind[c] == "aligned" else linear_fallback
+        morph, note = fallback(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c], roads.reason[c])
         plans.notes[index[c]].append(note)
         _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
     near = np.flatnonzero(roads.kind == "near")

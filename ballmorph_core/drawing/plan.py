@@ -15,7 +15,7 @@ from ..geometry.plane import fit_plane
 from ..geometry.polyline import reversed_fractions
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
 from .attributes import Extras, Held, assemble_frames
-from .fallbacks import FALLBACK_METHOD, point_motion
+from .fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, point_motion
 from .hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
 from .keys import KeyStroke, ProjectedKey
 from .layout import PairFrames
@@ -454,7 +454,7 @@ def _report_pair(result, a, b, flipped, used, notes):
     result.pairs.append(PairReport(a.index, b.index, used, "; ".join(notes)))
     if flipped:
         notes = ["the second key's stroke runs the other way: flipped", *notes]
-    fell_back = used.startswith(FALLBACK_METHOD) or used == "straight point motion"
+    fell_back = used.startswith((FALLBACK_METHOD, ALIGNED_METHOD)) or used == "straight point motion"
     for note in notes:
         level = "WARNING" if fell_back and note is notes[-1] else "INFO"
         result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {note}"))

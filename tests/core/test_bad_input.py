@@ -683,7 +683,7 @@ def test_strokes_crossing_too_often_fall_back_saying_so():
     x, y = np.linspace(0, 1, 60), np.tile([0.0, 1.0], 30)
     A, B = StrokeSet.from_strokes([np.c_[x, y]]), StrokeSet.from_strokes([np.c_[y, x]])
     report = inbetween(A, B, [0.0, 0.5, 1.0]).pairs[0]
-    assert report.method == "linear-interpolation"
+    assert report.method == "aligned-interpolation"
     assert re.search(r"meet more than \d+ times, more than lenses between their points allow", report.reason)
 
 
@@ -794,7 +794,7 @@ def test_cyclic_stroke_with_two_points_is_morphed_as_open():
 def test_self_intersecting_strokes_fall_back_with_a_warning(a, b, cyclic):
     result = inbetween(key(a, cyclic=[cyclic]), key(b, cyclic=[cyclic]), TIMES)
     assert all_finite(result)
-    assert "linear-interpolation" in result.pairs[0].method
+    assert "aligned-interpolation" in result.pairs[0].method
     assert warnings_about(result, 0, 0)
     # The end frames are the keys, resampled on the spline through their points.
     assert distance_to_polyline(stroke_xy(result.frames[0], 0), a, cyclic).max() < 2e-3

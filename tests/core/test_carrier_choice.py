@@ -97,4 +97,4 @@ def test_a_composite_ball_morph_that_strays_far_outside_its_chains_falls_back(mo
     assert isinstance(morph, _Astray) == followed, note
     assert ("composite ball-morph used" in note) == followed
     if not followed:
-        assert "leave the chains' box by 0.89 of its diagonal" in note and "linear-interpolation used" in note
+        assert "leave the chains' box by 0.89 of its diagonal" in note and "aligned-interpolation used" in note

@@ -289,7 +289,7 @@ def test_a_plan_evaluates_to_what_inbetween_gives_at_any_times(method, monkeypat
         _same_drawing(got, want)
     used = [p.method for p in got.pairs]
     if method.endswith("-ball"):
-        assert any(u.startswith("linear-interpolation") for u in used)  # the curl: a fallback
+        assert any(u.startswith("aligned-interpolation") for u in used)  # the curl: a fallback
     assert "straight point motion" in used  # the dot
 
 
