@@ -9,7 +9,7 @@ that fit wins when it explains the pair far better.
 import numpy as np
 
 from .. import tolerances as tol
-from ..geometry.projection import NearestEdges
+from ..geometry.projection import FollowedQueries, NearestEdges
 from ..geometry.similarity import as_complex, from_complex
 
 __all__ = ["slide"]
@@ -23,6 +23,10 @@ SLIDE_GAIN = 0.25
 #: Iterations of the sliding fit, and how far (in sizes) a sample looks for the other stroke.
 SLIDE_ITERATIONS = 12
 SLIDE_REACH = 0.3
+#: A sample's nearest-edge search keeps the edges this much (in sizes) farther than it needs:
+#: a settling fit moves samples by about 0.002 sizes an iteration, so the next iterations
+#: find their closest edges among those (FollowedQueries) instead of in the tree.
+SLIDE_FOLLOW = 0.01
 
 #: The sliding fit is first run on every ``SLIDE_COARSE``-th sample, from the same starts and
 #: without the overlap rule; only pairs whose coarse residual comes below ``SLIDE_MARGIN`` times
@@ -98,6 +102,7 @@ def _sliding_fits(xp, search, index, starts, size, overlap=True):
         a, b = np.array(a, dtype=complex), np.array(b, dtype=complex)
         d, w, s_q = np.full((L, k), np.inf), np.zeros((L, k)), np.zeros(L * k)
         foot = np.full(L * k, np.nan, dtype=complex)
+        followed = FollowedQueries(search, owner, SLIDE_FOLLOW * np.repeat(size, k))
         active = np.arange(L)
         for step in range(SLIDE_ITERATIONS):
             if not len(active):
@@ -108,7 +113,7 @@ def _sliding_fits(xp, search, index, starts, size, overlap=True):
             # which bounds the search as the fit settles (the same answer, found sooner; fmin: a
             # query that found nothing keeps its reach).
             bound = reach[q] if step == 0 else np.fmin(reach[q], np.abs(z - foot[q]) * (1.0 + 1e-9) + 1e-300)
-            dist, edge, frac = search.within(from_complex(z), owner[q], bound)
+            dist, edge, frac = followed.within(q, from_complex(z), bound)
             s_q[q] = Q.s[edge] + frac * Q.length_of_edge[edge]
             inner = np.isfinite(dist) & (s_q[q] > end_eps[q]) & (s_q[q] < length_q[q] - end_eps[q])
             d[active] = np.where(inner, dist, np.inf).reshape(-1, k)
