@@ -298,7 +298,7 @@ class PointTree:
         x = np.asarray(x, dtype=np.float64).reshape(-1, 2)
         k = len(x)
         q, node = np.arange(k), np.asarray(group, dtype=np.int64)
-        slack = np.broadcast_to(np.asarray(slack, dtype=np.float64), (k,))
+        slack = np.asarray(slack, dtype=np.float64)
         limit = np.asarray(reach, dtype=np.float64) + slack
         for depth, (_, _, boxes) in enumerate(self.levels):
             q, node = self._nearer(x, q, node, boxes[node], limit, slack)
@@ -316,7 +316,10 @@ class PointTree:
         bound = limit.copy()
         if len(q):
             first = np.flatnonzero(np.r_[True, q[1:] != q[:-1]])
-            bound[q[first]] = np.fmin(bound[q[first]], np.sqrt(np.fmin.reduceat(far2, first)) + slack[q[first]])
+            bound[q[first]] = np.fmin(
+                bound[q[first]],
+                np.sqrt(np.fmin.reduceat(far2, first)) + (slack if slack.ndim == 0 else slack[q[first]]),
+            )
         keep = near2 <= np.square(bound[q])
         return q[keep], node[keep]
 
