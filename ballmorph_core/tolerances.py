@@ -25,3 +25,7 @@ ROUNDOFF = 1e-12
 #: A registration that moves no point by more than this (times the pair's size) is the
 #: identity: no carrier motion is applied.
 IDENTITY = 1e-9
+
+#: Fits whose normalised residuals differ by less than this are equally good: the one that
+#: turns least wins (a symmetric shape turned by 90 degrees never turns by round-off).
+EQUAL_FIT = 1e-6

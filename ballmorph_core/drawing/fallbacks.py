@@ -1,9 +1,12 @@
 """The fallback step: what a stroke pair gets when the morph it asked for cannot follow it.
 
 A chain (lens or whole pair) that is not b-compatible gets the composite ball-morph (paper
-section 7); whatever still fails, and every pair the ball-morph cannot follow at all, gets
-linear interpolation (uniform arc-length correspondence, straight paths: it never fails on two
-curves); a stroke with fewer than two distinct points moves straight, point by point. Every
+section 7), unless its in-betweens stray far outside the chains; whatever still fails, and
+every pair whose curves lie over each other but cannot be cut into lenses (crossing in another
+order, or crossing themselves), gets aligned interpolation (:mod:`~..morphs.aligned`: matched
+points kept close, straight paths); the other pairs no ball-morph can follow get linear
+interpolation (uniform arc-length correspondence, straight paths). Neither ever fails on two
+curves. A stroke with fewer than two distinct points moves straight, point by point. Every
 fallback says why, for the animator's report.
 """
 
@@ -52,7 +55,7 @@ def short(text, limit=160):
 
 
 def chain_fallback(P, Q, closed, kind, spacing, where, reason):
-    """The composite ball-morph of a chain that is not b-compatible, else linear interpolation.
+    """The composite ball-morph of a chain that is not b-compatible, else aligned interpolation.
 
     Parameters
     ----------

@@ -15,13 +15,14 @@ Ball-morph methods::
    ``NEAR`` of each other that cross (the same stroke redrawn) are matched by arc length on the
    carrier; nested loops and
    strokes sharing their endpoints are ball-mapped whole; crossing pairs are cut into lenses;
-   pairs no ball-morph can follow (tangled crossings, loops side by side, strokes that do not
-   share their endpoints without a carrier) take linear interpolation, and the report says why.
+   pairs no ball-morph can follow take aligned interpolation when their curves lie over each
+   other (tangled crossings, a stroke crossing itself), else linear interpolation (loops side
+   by side, strokes that do not share their endpoints without a carrier); the report says why.
 5. *cut chains* (:mod:`.splitting`): the lenses, overlaps and whole pairs the ball-maps run on.
 6. *map chains*: the ball-maps of every chain of every pair, in batches of about
    ``BALLMAP_BATCH_POINTS`` input points.
 7. *fall back* (:mod:`.fallbacks`): a chain that is not b-compatible gets the composite
-   ball-morph, then linear interpolation.
+   ball-morph, then aligned interpolation.
 8. *lay out* (:mod:`.layout`): every chain's samples in order, evaluated at any times.
 
 The paper's comparison morphs take *prepare*, then their own morph with its fallback. Every
@@ -339,7 +340,7 @@ def _add_pieces(plans, ends, index, pairs, morphs, closed, orders, ranges):
 
 
 def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
-    """Step 7 for chains that are not b-compatible: composite, then linear (the notes say which).
+    """Step 7 for chains that are not b-compatible: composite, then aligned interpolation (the notes say which).
 
     Returns the chains whose ball-maps hold, shape (H,) of bool.
     """

@@ -32,9 +32,9 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..geometry.polyline import signed_area
-from ..geometry.projection import NearestEdges
 from ..geometry.ragged import Ragged
 from ..geometry.similarity import Similarity, as_complex, from_complex
+from .sliding import slide
 
 __all__ = [
     "Fits",
@@ -51,10 +51,6 @@ __all__ = [
 #: Uniform samples per curve for the least-squares fits.
 FIT_SAMPLES = 128
 
-#: Fits whose normalised residuals differ by less than this are equally good: the one that
-#: turns least wins (a symmetric shape turned by 90 degrees never turns by round-off).
-EQUAL_FIT = 1e-6
-
 #: Distinct fits (local minima over the loop's start) whose normalised residuals are within
 #: this of the best are equally good: a circle, an ellipse turned by half a turn. The one
 #: closest to the drawing's turn wins (a hand at the end of a swinging arm turns with it).
@@ -68,16 +64,6 @@ NEARLY_CLOSED = 0.25
 #: the similarity's, and its stretch ratio within ``1 / MAX_STRETCH .. MAX_STRETCH``.
 AFFINE_GAIN = 0.5
 MAX_STRETCH = 4.0
-
-#: Strokes whose end-to-end fit leaves more than this fraction of their size are also fitted
-#: sliding along each other; that fit wins when its residual (over the overlap, which must
-#: cover ``SLIDE_OVERLAP`` of both strokes) is below ``SLIDE_GAIN`` of the end-to-end one.
-SLIDE_FROM = 0.01
-SLIDE_OVERLAP = 0.6
-SLIDE_GAIN = 0.25
-#: Iterations of the sliding fit, and how far (in sizes) a sample looks for the other stroke.
-SLIDE_ITERATIONS = 12
-SLIDE_REACH = 0.3
 
 #: A pair turns with the drawing when their turns agree within this (radians); a drawing
 #: turning less does not count as turning.
@@ -124,7 +110,7 @@ def _loop_fits(xp, xq, turn=0.0):
     Complex Procrustes: with centred samples, ``a = <p, q_s> / <p, p>`` and the residual is
     ``|q|^2 - |<p, q_s>|^2 / |p|^2``; ``<p, q_s>`` for every shift ``s`` is one circular
     cross-correlation. Among fits equally good (a symmetric shape: its residual's local minima
-    within ``EQUAL_TURNS`` of the best; any shift within ``EQUAL_FIT``), the one turning closest
+    within ``EQUAL_TURNS`` of the best; any shift within ``tol.EQUAL_FIT``), the one turning closest
     to ``turn`` wins (radians, scalar or shape (L,): the drawing's own turn, else 0).
     """
     cp, cq = xp.mean(axis=1), xq.mean(axis=1)
@@ -135,7 +121,7 @@ def _loop_fits(xp, xq, turn=0.0):
     fit = 1.0 - np.abs(corr) ** 2 / (norm_p * norm_q)[:, None]
     best = fit.min(axis=1, keepdims=True)
     minimum = (fit <= np.roll(fit, 1, axis=1)) & (fit <= np.roll(fit, -1, axis=1))
-    equal = (fit <= best + EQUAL_FIT) | (minimum & (fit <= best + EQUAL_TURNS))
+    equal = (fit <= best + tol.EQUAL_FIT) | (minimum & (fit <= best + EQUAL_TURNS))
     off = np.abs(np.angle(corr * np.exp(-1j * np.reshape(turn, (-1, 1)))))
     s = np.argmin(np.where(equal, off, np.inf), axis=1)
     rows = np.arange(len(xp))
@@ -277,103 +263,6 @@ def fit_pairs(P, Q, affine=True, turn=0.0):
     return Fits(A, bb, residual)
 
 
-def _weighted_similarity(xp, xq, w):
-    """Least-squares similarity of samples ``xp -> xq`` with weights ``w`` (all shape (L, k)):
-    ``(a, b)`` complex, shape (L,) each (the identity where fewer than two samples weigh)."""
-    total = np.maximum(w.sum(axis=1), 1e-300)
-    cp, cq = (w * xp).sum(axis=1) / total, (w * xq).sum(axis=1) / total
-    p, q = xp - cp[:, None], xq - cq[:, None]
-    norm = (w * np.abs(p) ** 2).sum(axis=1)
-    ok = (norm > 0) & ((w > 0).sum(axis=1) >= 2)
-    a = np.where(ok, (w * np.conj(p) * q).sum(axis=1) / np.where(ok, norm, 1.0), 1.0)
-    return a, np.where(ok, cq - a * cp, 0.0)
-
-
-def _finite_median(d):
-    """Median of each row's finite values, shape (L,) (0 for a row with none)."""
-    finite = np.isfinite(d)
-    ranked = np.sort(np.where(finite, d, np.inf), axis=1)
-    count = finite.sum(axis=1)
-    middle = ranked[np.arange(len(d)), np.maximum(count - 1, 0) // 2]
-    return np.where(count > 0, middle, 0.0)
-
-
-def _sliding_fits(xp, Q, index, starts, size):
-    """Strokes that lie partly along each other (an outline started elsewhere, a line drawn
-    longer, an open circle whose gap changed): the similarity taking P's samples onto Q where
-    they overlap, by trimmed iterative closest points.
-
-    Samples of P that land on Q's ends (P's overhang) or far from Q are left out of each fit.
-
-    Parameters
-    ----------
-    xp : ndarray of complex, shape (L, k)
-        P's uniform samples.
-    Q : Ragged
-    index : ndarray of int, shape (L,)
-        The pairs (curves of Q).
-    starts : list of (ndarray, ndarray)
-        Starting similarities ``(a, b)``, complex, shape (L,) each.
-    size : ndarray, shape (L,)
-
-    Returns
-    -------
-    a, b : ndarray of complex, shape (L,)
-    residual : ndarray, shape (L,)
-        RMS distance of the overlapping samples (inf where the overlap is too short).
-    """
-    L, k = xp.shape
-    owner = np.repeat(index, k)
-    best = (np.ones(L, complex), np.zeros(L, complex), np.full(L, np.inf))
-    end_eps = tol.SHARED_ENDPOINT * np.repeat(size, k)
-    length_q = np.repeat(Q.length[index], k)
-    reach = SLIDE_REACH * np.repeat(size, k)
-    cols = np.arange(k)
-    # Q stays put through every start and iteration: its search is built once.
-    search = NearestEdges(Q)
-    for a, b in starts:
-        a, b = np.array(a, dtype=complex), np.array(b, dtype=complex)
-        d, w, s_q = np.full((L, k), np.inf), np.zeros((L, k)), np.zeros(L * k)
-        foot = np.full(L * k, np.nan, dtype=complex)
-        active = np.arange(L)
-        for step in range(SLIDE_ITERATIONS):
-            if not len(active):
-                break
-            q = (active[:, None] * k + cols).ravel()
-            z = (a[active, None] * xp[active] + b[active, None]).ravel()
-            # The last iteration's foot is still on Q: the closest point lies no farther than it,
-            # which bounds the search as the fit settles (the same answer, found sooner; fmin: a
-            # query that found nothing keeps its reach).
-            bound = reach[q] if step == 0 else np.fmin(reach[q], np.abs(z - foot[q]) * (1.0 + 1e-9) + 1e-300)
-            dist, edge, frac = search.within(from_complex(z), owner[q], bound)
-            s_q[q] = Q.s[edge] + frac * Q.length_of_edge[edge]
-            inner = np.isfinite(dist) & (s_q[q] > end_eps[q]) & (s_q[q] < length_q[q] - end_eps[q])
-            d[active] = np.where(inner, dist, np.inf).reshape(-1, k)
-            limit = np.maximum(3.0 * _finite_median(d[active]), 1e-3 * size[active])
-            w[active] = d[active] <= limit[:, None]
-            target = as_complex(Q.pts[edge] + frac[:, None] * Q.edge[edge])
-            foot[q] = np.where(np.isfinite(dist), target, np.nan)
-            new_a, new_b = _weighted_similarity(xp[active], target.reshape(-1, k), w[active])
-            # A fit that did not move is a fixed point: every later iteration would repeat it.
-            moved = (new_a != a[active]) | (new_b != b[active])
-            a[active], b[active] = new_a, new_b
-            active = active[moved]
-        covered_p = w.mean(axis=1)
-        s_kept = np.where(w > 0, s_q.reshape(L, k), np.nan)
-        span_q = (np.nanmax(s_kept, axis=1, initial=-np.inf) - np.nanmin(s_kept, axis=1, initial=np.inf)) / np.maximum(
-            Q.length[index], 1e-300
-        )
-        residual = np.sqrt((w * np.where(np.isfinite(d), d, 0.0) ** 2).sum(axis=1) / np.maximum(w.sum(axis=1), 1))
-        residual = np.where((covered_p >= SLIDE_OVERLAP) & (span_q >= SLIDE_OVERLAP), residual, np.inf)
-        # Equally good fits (a circle slides along itself): the one turning less.
-        both = np.isfinite(residual) & np.isfinite(best[2])
-        gap = np.subtract(residual, best[2], out=np.zeros(L), where=both)
-        tie = both & (np.abs(gap) <= EQUAL_FIT * size)
-        better = np.where(tie, np.abs(np.angle(a)) < np.abs(np.angle(best[0])), residual < best[2])
-        best = tuple(np.where(better, new, old) for new, old in zip((a, b, residual), best))
-    return best
-
-
 def _open_fits(P, Q, index, k, turn):
     """Strokes: end to end (about a shared endpoint when there is one), as loops when nearly
     closed, or sliding along each other, whichever fits clearly better."""
@@ -387,17 +276,10 @@ def _open_fits(P, Q, index, k, turn):
     round_ = (gap_p < NEARLY_CLOSED) & (gap_q < NEARLY_CLOSED) & ~pin_start & ~pin_end
     if round_.any():
         la, lb, lr = _loop_fits(xp[round_], xq[round_], turn)
-        better = lr < residual[round_] - EQUAL_FIT * size[round_]
+        better = lr < residual[round_] - tol.EQUAL_FIT * size[round_]
         rows = np.flatnonzero(round_)[better]
         a[rows], b[rows], residual[rows] = la[better], lb[better], lr[better]
-    loose = residual > SLIDE_FROM * size
-    if loose.any():
-        rows = np.flatnonzero(loose)
-        starts = [(np.ones(len(rows), complex), np.zeros(len(rows), complex)), (a[rows], b[rows])]
-        sa, sb, sr = _sliding_fits(xp[rows], Q, index[rows], starts, size[rows])
-        better = sr < SLIDE_GAIN * residual[rows]
-        rows = rows[better]
-        a[rows], b[rows], residual[rows] = sa[better], sb[better], sr[better]
+    slide(xp, Q, index, size, a, b, residual)
     return a, b, residual
 
 

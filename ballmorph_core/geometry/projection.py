@@ -14,7 +14,7 @@ from .. import tolerances as tol
 from .ragged import Ragged, ragged_arange
 from .spatial import PointTree
 
-__all__ = ["NearestEdges", "nearest_within", "PolylineProjector", "distances_to_polyline"]
+__all__ = ["NearestEdges", "FollowedQueries", "nearest_within", "PolylineProjector", "distances_to_polyline"]
 
 #: Queries searched at once: a query far from its curve has a large reach and, until its bound
 #: shrinks, many candidates; this bounds the candidates held at once.
@@ -27,6 +27,9 @@ _PIECES_PER_EDGE = 8
 
 #: Pieces per leaf of the k-d tree.
 _LEAF_PIECES = 8
+
+#: Candidates a followed query keeps at most (one with more searches the tree every time).
+_KEPT = 32
 
 
 def _pieces(a, d):
@@ -111,42 +114,132 @@ class NearestEdges:
         frac : ndarray, shape (K,)
             The closest point is ``curves.pts[edge] + frac * curves.edge[edge]``.
         """
+        points, owner, reach, slack = self._bounded(points, owner, reach)
+        out = _empty(len(points))
+        for rows in self._chunks(len(points)):
+            i, p = self.tree.nearest_candidates(points[rows], reach[rows], owner[rows], slack)
+            self._closest(out, rows, points[rows], i, self.piece_edge[p], reach[rows])
+        return out
+
+    def _bounded(self, points, owner, reach):
+        """Queries as arrays, each reach cut to its curve's far corner, and the round-off slack."""
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         owner = np.asarray(owner, dtype=np.int64).reshape(-1)
-        dist, edge, frac = np.full(len(points), np.inf), np.zeros(len(points), np.int64), np.zeros(len(points))
         if len(points) == 0 or len(self.e) == 0:
-            return dist, edge, frac
+            return points, owner, np.zeros(len(points)), 0.0
         # No edge of a curve lies farther than the far corner of its bounding box: a bound for any reach.
         box = self.curves.boxes()[owner]
         corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
         reach = np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
-        a, d = self.a, self.d
         # Distances computed at these coordinates err by round-off: no candidate is lost to it.
         slack = tol.ROUNDOFF * max(self.extent, float(np.abs(points).max()))
-        for start in range(0, len(points), _QUERY_CHUNK):
-            rows = np.arange(start, min(start + _QUERY_CHUNK, len(points)))
-            x = points[rows]
-            i, p = self.tree.nearest_candidates(x, reach[rows], owner[rows], slack)
-            if not len(i):
-                continue
-            j = self.piece_edge[p]
-            ee = np.einsum("ij,ij->i", d[j], d[j])
-            f = np.divide(np.einsum("ij,ij->i", x[i] - a[j], d[j]), ee, out=np.zeros_like(ee), where=ee > 0)
-            f = np.clip(f, 0, 1)
-            d2 = np.sum(np.square(a[j] + f[:, None] * d[j] - x[i]), axis=1)
-            # Candidates come query by query: keep each query's least distance, then the lowest
-            # edge at it (pieces of one edge repeat it: any of them).
-            run = np.flatnonzero(np.r_[True, i[1:] != i[:-1]])
-            run_size = np.diff(np.r_[run, len(i)])
-            best = d2 == np.repeat(np.minimum.reduceat(d2, run), run_size)
-            best &= j == np.repeat(np.minimum.reduceat(np.where(best, j, len(a)), run), run_size)
-            first = np.flatnonzero(best)
-            first = first[np.r_[True, i[first][1:] != i[first][:-1]]]
-            # Every edge within the bound is a candidate, so the best one is the closest.
-            first = first[d2[first] <= np.square(reach[rows][i[first]])]
-            hit = rows[i[first]]
-            dist[hit], edge[hit], frac[hit] = np.sqrt(d2[first]), self.e[j[first]], f[first]
-        return dist, edge, frac
+        return points, owner, reach, slack
+
+    def _chunks(self, n):
+        """Runs of at most ``_QUERY_CHUNK`` of ``n`` queries (none without edges to search)."""
+        if len(self.e) == 0:
+            return
+        for start in range(0, n, _QUERY_CHUNK):
+            yield np.arange(start, min(start + _QUERY_CHUNK, n))
+
+    def _closest(self, out, rows, x, i, j, reach):
+        """The closest of each query's candidate edges, written into ``out`` where within its reach.
+
+        Parameters
+        ----------
+        out : tuple of ndarray
+            ``(dist, edge, frac)`` as :meth:`within` returns them.
+        rows : ndarray of int, shape (K,)
+            The rows of ``out`` the queries fill.
+        x : ndarray, shape (K, 2)
+        i, j : ndarray of int, shape (M,)
+            Candidates, sorted by query: query ``i`` (row of ``x``), edge ``j`` (row of ``self.a``).
+        reach : ndarray, shape (K,)
+        """
+        if not len(i):
+            return
+        a, d, x = self.a[j], self.d[j], x[i]
+        ee = np.einsum("ij,ij->i", d, d)
+        f = np.divide(np.einsum("ij,ij->i", x - a, d), ee, out=np.zeros_like(ee), where=ee > 0)
+        np.clip(f, 0, 1, out=f)
+        a += f[:, None] * d
+        a -= x
+        d2 = np.sum(np.square(a), axis=1)
+        # Candidates come query by query: keep each query's least distance, then the lowest
+        # edge at it (pieces of one edge repeat it: any of them).
+        run = np.flatnonzero(np.r_[True, i[1:] != i[:-1]])
+        run_size = np.diff(np.r_[run, len(i)])
+        best = d2 == np.repeat(np.minimum.reduceat(d2, run), run_size)
+        best &= j == np.repeat(np.minimum.reduceat(np.where(best, j, len(self.a)), run), run_size)
+        first = np.flatnonzero(best)
+        first = first[np.r_[True, i[first][1:] != i[first][:-1]]]
+        # Every edge within the bound is a candidate, so the best one is the closest.
+        first = first[d2[first] <= np.square(reach[i[first]])]
+        hit = rows[i[first]]
+        out[0][hit], out[1][hit], out[2][hit] = np.sqrt(d2[first]), self.e[j[first]], f[first]
+
+
+class FollowedQueries:
+    """Closest edges of queries that move a little from call to call (an iterative fit), the
+    same answers as :meth:`NearestEdges.within`, mostly without descending its tree.
+
+    Each query keeps the candidates of its last tree search, taken ``margin`` wider than that
+    search needed: they hold every edge within ``held`` of where it was then. Moved by ``m``
+    and asked within ``r``, it needs the edges within ``r`` of where it is, which lie within
+    ``r + m`` of where it was: while that stays within ``held``, its kept candidates answer.
+
+    Parameters
+    ----------
+    search : NearestEdges
+    owner : ndarray of int, shape (K,)
+        The curve each query is projected on.
+    margin : ndarray, shape (K,)
+        How much wider than needed each tree search takes its candidates.
+    """
+
+    def __init__(self, search, owner, margin):
+        self.search, self.owner = search, np.asarray(owner, dtype=np.int64)
+        self.margin = np.broadcast_to(np.asarray(margin, dtype=np.float64), self.owner.shape)
+        n = len(self.owner)
+        self.at, self.held = np.zeros((n, 2)), np.full(n, -np.inf)
+        self.kept, self.count = np.zeros((n, _KEPT), np.int64), np.zeros(n, np.int64)
+
+    def within(self, rows, points, reach):
+        """:meth:`NearestEdges.within` of queries ``rows`` (ndarray of int, shape (K,)) now at
+        ``points``, shape (K, 2), within ``reach``, shape (K,)."""
+        search = self.search
+        points, owner, reach, slack = search._bounded(points, self.owner[rows], reach)
+        out = _empty(len(points))
+        if not len(points) or not len(search.e):
+            return out
+        moved = np.hypot(*(points - self.at[rows]).T)
+        fresh = reach + moved + 2.0 * slack > self.held[rows]
+        kept = np.flatnonzero(~fresh)
+        i, slot = ragged_arange(self.count[rows[kept]])
+        search._closest(out, kept, points[kept], i, self.kept[rows[kept][i], slot], reach[kept])
+        fresh = np.flatnonzero(fresh)
+        for chunk in search._chunks(len(fresh)):
+            f = fresh[chunk]
+            i, p = search.tree.nearest_candidates(points[f], reach[f], owner[f], slack + self.margin[rows[f]])
+            search._closest(out, f, points[f], i, search.piece_edge[p], reach[f])
+            held = np.fmin(reach[f], out[0][f]) + self.margin[rows[f]] - slack
+            self._keep(rows[f], points[f], i, search.piece_edge[p], held)
+        return out
+
+    def _keep(self, new, x, i, j, held):
+        """Queries ``new`` keep their candidates ``(i, j)`` (see :meth:`NearestEdges._closest`),
+        which hold every edge within ``held`` of ``x``; those with too many keep none."""
+        count = np.bincount(i, minlength=len(new))
+        slot = np.arange(len(i)) - np.repeat(np.cumsum(count) - count, count)
+        fits = slot < _KEPT
+        self.kept[new[i[fits]], slot[fits]] = j[fits]
+        self.count[new] = np.minimum(count, _KEPT)
+        self.at[new], self.held[new] = x, np.where(count <= _KEPT, held, -np.inf)
+
+
+def _empty(n):
+    """``(dist, edge, frac)`` of ``n`` queries that found nothing."""
+    return np.full(n, np.inf), np.zeros(n, np.int64), np.zeros(n)
 
 
 def nearest_within(points, owner, curves, reach):

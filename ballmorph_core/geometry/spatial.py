@@ -278,9 +278,9 @@ class PointTree:
             Items farther than this are not candidates.
         group : ndarray of int, shape (K,)
             The group (see ``groups``) each query searches.
-        slack : float
+        slack : float or ndarray, shape (K,)
             Added to every bound: an exact distance computed by the caller may fall short of
-            the true one by round-off.
+            the true one by round-off (a caller keeping candidates for later adds a margin).
 
         Returns
         -------
@@ -298,6 +298,7 @@ class PointTree:
         x = np.asarray(x, dtype=np.float64).reshape(-1, 2)
         k = len(x)
         q, node = np.arange(k), np.asarray(group, dtype=np.int64)
+        slack = np.asarray(slack, dtype=np.float64)
         limit = np.asarray(reach, dtype=np.float64) + slack
         for depth, (_, _, boxes) in enumerate(self.levels):
             q, node = self._nearer(x, q, node, boxes[node], limit, slack)
@@ -315,7 +316,10 @@ class PointTree:
         bound = limit.copy()
         if len(q):
             first = np.flatnonzero(np.r_[True, q[1:] != q[:-1]])
-            bound[q[first]] = np.fmin(bound[q[first]], np.sqrt(np.fmin.reduceat(far2, first)) + slack)
+            bound[q[first]] = np.fmin(
+                bound[q[first]],
+                np.sqrt(np.fmin.reduceat(far2, first)) + (slack if slack.ndim == 0 else slack[q[first]]),
+            )
         keep = near2 <= np.square(bound[q])
         return q[keep], node[keep]
 

@@ -4,9 +4,10 @@ finds strokes lying along each other (drawing/registration.py)."""
 import numpy as np
 import pytest
 
+from ballmorph_core.drawing import sliding
 from ballmorph_core.drawing.ends import settle_ends
 from ballmorph_core.drawing.pipeline import PairMorph
-from ballmorph_core.drawing.registration import fit_pairs
+from ballmorph_core.drawing.registration import FIT_SAMPLES, fit_pairs
 from ballmorph_core.geometry.ragged import Ragged
 
 
@@ -77,3 +78,44 @@ def test_a_straight_line_drawn_longer_is_scaled_not_slid():
     P, Q = batch(np.c_[x, 0.0 * x]), batch(np.c_[1.5 * x + 0.2, 0.0 * x])
     fits = fit_pairs(P, Q)
     np.testing.assert_allclose(fits.A[0], 1.5 * np.eye(2), atol=1e-9)
+
+
+def _full_sliding_fits(monkeypatch):
+    """Record the samples per pair of every sliding fit that runs on all of them."""
+    calls = []
+    real = sliding._sliding_fits
+
+    def spy(xp, *args, **kwargs):
+        if xp.shape[1] == FIT_SAMPLES:
+            calls.append(len(xp))
+        return real(xp, *args, **kwargs)
+
+    monkeypatch.setattr(sliding, "_sliding_fits", spy)
+    return calls
+
+
+def test_an_outline_started_elsewhere_passes_the_coarse_gate(monkeypatch):
+    """The coarse sliding fit lets a pair that needs sliding through to the full fit."""
+    calls = _full_sliding_fits(monkeypatch)
+    P, Q = batch(arc(0, 330, 110) * [1.0, 0.8]), batch(arc(100, 430, 110) * [1.0, 0.8])
+    fits = fit_pairs(P, Q)
+    assert calls == [1]
+    np.testing.assert_allclose(fits.A[0], np.eye(2), atol=5e-3)
+
+
+def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monkeypatch):
+    """A stroke redrawn with a wobble fits loosely end to end and sliding cannot help: the
+    coarse fit says so, the full one never runs, and the fit is the one it would have left."""
+    s = np.linspace(0.0, 1.0, 200)
+    P = np.c_[s, 0.2 * np.sin(np.pi * s)]
+    Q = np.c_[1.05 * s + 0.1, 0.2 * np.sin(np.pi * s) + 0.04 * np.sin(3 * np.pi * s + 0.5)]
+    with monkeypatch.context() as ungated:
+        ungated.setattr(sliding, "SLIDE_MARGIN", np.inf)
+        calls = _full_sliding_fits(ungated)
+        want = fit_pairs(batch(P), batch(Q))
+        assert calls == [1]  # loose: the full fit runs without the gate, and loses
+    calls = _full_sliding_fits(monkeypatch)
+    fits = fit_pairs(batch(P), batch(Q))
+    assert calls == [0]
+    for name in ("A", "b", "residual"):
+        np.testing.assert_array_equal(getattr(fits, name), getattr(want, name))

@@ -24,7 +24,13 @@ from ballmorph_core.geometry.polyline import (
     scale_of,
     subcurve,
 )
-from ballmorph_core.geometry.projection import NearestEdges, PolylineProjector, distances_to_polyline, nearest_within
+from ballmorph_core.geometry.projection import (
+    FollowedQueries,
+    NearestEdges,
+    PolylineProjector,
+    distances_to_polyline,
+    nearest_within,
+)
 from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange
 from ballmorph_core.geometry.spatial import CurveTree, PointTree, box_pair_chunks, box_pairs
 
@@ -238,6 +244,61 @@ def test_nearest_edges_match_brute_force_edge_and_fraction(seed, kind):
     one = nearest_within(points, owner, batch, reach)
     for g, w in zip(one, want):
         np.testing.assert_array_equal(g, w)
+
+
+def _drifting(rng, batch, owner, points, rows):
+    """Queries of an iterative fit: small steps, a few jumps, a few onto vertices (exact ties)."""
+    k = len(points)
+    step = rng.normal(0, 0.003, (k, 2)) * np.where(rng.random((k, 1)) < 0.1, 100.0, 1.0)
+    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 2, k)]
+    return np.where(rng.random((k, 1)) < 0.05, on_vertex, points + step)
+
+
+@given(st.integers(0, 2**32 - 1), st.sampled_from(["wobbly", "scribble"]), st.sampled_from([0.0, 0.02, 0.2]))
+@settings(max_examples=30, deadline=None)
+def test_followed_queries_answer_as_the_tree_does(seed, kind, margin):
+    # Drifting queries asked in changing subsets: the very edges, fractions and distances.
+    rng = np.random.default_rng(seed)
+    n_curves = int(rng.integers(1, 4))
+    curves = []
+    for c in range(n_curves):
+        n = int(rng.integers(2, 150))
+        walk = np.cumsum(rng.normal(0, 0.05, (n, 2)), axis=0)
+        curves.append(rng.random((n, 2)) + c if kind == "scribble" else walk)
+    batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
+    search, k = NearestEdges(batch), 80
+    owner = rng.integers(0, n_curves, k)
+    followed = FollowedQueries(search, owner, margin)
+    points = rng.uniform(-0.5, 1.5, (k, 2))
+    for _ in range(8):
+        rows = np.flatnonzero(rng.random(k) < 0.8)
+        points = _drifting(rng, batch, owner, points, rows)
+        reach = rng.choice([0.01, 0.1, np.inf], len(rows))
+        got = followed.within(rows, points[rows], reach)
+        want = search.within(points[rows], owner[rows], reach)
+        for g, w in zip(got, want):
+            np.testing.assert_array_equal(g, w)
+
+
+def test_followed_queries_that_barely_move_do_not_search_the_tree_again():
+    # Asked within their last foot's distance, queries drifting 0.002 find their closest
+    # edges among the candidates kept 0.05 wider.
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 3, 200)
+    batch = Ragged.from_list([np.c_[t, np.sin(t)]], [False])
+    search = NearestEdges(batch)
+    asked = []
+    tree_candidates = search.tree.nearest_candidates
+    search.tree.nearest_candidates = lambda x, *args: asked.append(len(x)) or tree_candidates(x, *args)
+    points = np.c_[t[::2], np.sin(t[::2]) + 0.05]
+    followed = FollowedQueries(search, np.zeros(len(points), np.int64), 0.05)
+    reach = np.inf
+    for _ in range(3):
+        _, edge, frac = followed.within(np.arange(len(points)), points, reach)
+        foot = batch.pts[edge] + frac[:, None] * batch.edge[edge]
+        points = points + rng.normal(0, 0.002, points.shape)
+        reach = np.linalg.norm(points - foot, axis=1) * (1 + 1e-9)  # as the sliding fit bounds them
+    assert asked == [len(points)]
 
 
 @given(st.integers(0, 2**32 - 1), st.booleans())
