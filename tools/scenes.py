@@ -1496,13 +1496,8 @@ SCENES = {scene.name: scene for scene in _all_scenes()}
 
 #: Scenes today's core fails, with the figures it misses (the tests mark them xfail(strict=True)).
 #: Regenerate with ``python tools/scenes_report.py --xfail-table`` when the core improves.
-XFAIL_TODAY = {
-    "static-overlap-loop": ("new self-crossing strokes 1 on 1 of 7 frames, 1 crossings (keys: 0 strokes) (goal ≤ 0)"),
-}
+XFAIL_TODAY = {}
 
 #: Scenes of XFAIL_TODAY whose float32 twin, as Blender stores the keys, meets every goal: the
 #: operator test expects them to pass (and fails if they stop passing).
-BLENDER_PASSES = {
-    "static-overlap-loop": "on float32 keys the dented circle's lens ends are bridged cleanly; on the "
-    "float64 keys the composite ball-morph's bridge at a lens end is the wrong disk (one crossing at t = 1/8)",
-}
+BLENDER_PASSES = {}

@@ -38,11 +38,16 @@ __all__ = [
 #: The last resort: uniform arc-length correspondence and straight paths never fail.
 FALLBACK_METHOD = "linear-interpolation"
 
-#: A composite ball-morph whose in-betweens (at t = 1/4, 1/2, 3/4) leave the box of its two
+#: A composite ball-morph whose in-betweens (at ``CHECK_TIMES``) leave the box of its two
 #: chains by more than this fraction of the box's diagonal is not followed: a ball-morph's paths
 #: stay inside the gap between the chains, and one this far out is relative blending gone
 #: astray (a lens pairing a sliver of one outline with the whole of the other), not a morph.
+#: Nor is one whose in-betweens cross themselves where neither chain does (a bridging disk at
+#: a lens end where the chains meet tangentially).
 STRAY_REACH = 0.25
+
+#: The times a composite ball-morph's in-betweens are checked at.
+CHECK_TIMES = (0.125, 0.25, 0.5, 0.75, 0.875)
 
 #: Methods that need the paper's configurations and so take the ball road (carrier, splitting).
 BALL_METHODS = ("circular-ball", "linear-ball", "parabolic-ball", "hat-ball", "tangent-ball")
@@ -76,21 +81,25 @@ def chain_fallback(P, Q, closed, kind, spacing, where, reason):
     """
     try:
         morph = make_morph(P, Q, "composite-ball", closed=closed, spacing=spacing, kind=kind)
-        out = _outside(morph, P, Q)
-        if out <= STRAY_REACH:
+        frames = morph.frames(CHECK_TIMES)
+        out = _outside(frames, P, Q)
+        if out > STRAY_REACH:
+            reason = f"composite ball-morph: its in-betweens leave the chains' box by {out:.2f} of its diagonal"
+        elif is_simple(P, closed) and is_simple(Q, closed) and not all(is_simple(f, closed) for f in frames):
+            reason = "composite ball-morph: its in-betweens cross themselves where neither chain does"
+        else:
             return morph, f"{where}: not b-compatible, composite ball-morph used ({short(reason)})"
-        reason = f"composite ball-morph: its in-betweens leave the chains' box by {out:.2f} of its diagonal"
     except BallMorphError as exc:
         reason = str(exc)
     return aligned_morph(P, Q, closed, spacing), f"{where}: {ALIGNED_METHOD} used ({short(reason)})"
 
 
-def _outside(morph, P, Q):
-    """How far the morph's in-betweens at t = 1/4, 1/2, 3/4 reach outside the box of P and Q,
-    in diagonals of that box (0 when they stay inside)."""
+def _outside(frames, P, Q):
+    """How far in-betweens (shape (T, K, 2)) reach outside the box of P and Q, in diagonals of
+    that box (0 when they stay inside)."""
     ends = np.concatenate([P, Q])
     lo, hi = ends.min(axis=0), ends.max(axis=0)
-    frames = morph.frames([0.25, 0.5, 0.75]).reshape(-1, 2)
+    frames = np.asarray(frames).reshape(-1, 2)
     beyond = np.maximum(np.maximum(lo - frames, frames - hi), 0.0).max(initial=0.0)
     return float(beyond / max(float(np.hypot(*(hi - lo))), 1e-300))
 

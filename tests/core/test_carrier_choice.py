@@ -98,3 +98,32 @@ def test_a_composite_ball_morph_that_strays_far_outside_its_chains_falls_back(mo
     assert ("composite ball-morph used" in note) == followed
     if not followed:
         assert "leave the chains' box by 0.89 of its diagonal" in note and "aligned-interpolation used" in note
+
+
+class _Crossing:
+    """A stand-in composite ball-morph whose in-between at t = 1/8 (only) crosses itself."""
+
+    def __init__(self, P, Q):
+        self.P, self.Q = P, Q
+
+    def frames(self, ts):
+        out = [0.5 * (self.P + self.Q) for _ in ts]
+        out[0] = out[0].copy()
+        out[0][[5, 12]] = out[0][[12, 5]] + [0.0, 0.1]  # two samples swapped: the line loops back
+        return np.stack(out)
+
+
+def test_a_composite_ball_morph_whose_in_between_crosses_itself_falls_back(monkeypatch):
+    from ballmorph_core.drawing import fallbacks
+
+    x = np.linspace(0.0, 1.0, 20)
+    P, Q = np.c_[x, np.zeros(20)], np.c_[x, np.full(20, 0.5)]
+    real = fallbacks.make_morph
+    monkeypatch.setattr(
+        fallbacks,
+        "make_morph",
+        lambda P_, Q_, method, **kw: _Crossing(P_, Q_) if method == "composite-ball" else real(P_, Q_, method, **kw),
+    )
+    morph, note = fallbacks.chain_fallback(P, Q, False, "circular", 0.05, "lens 1/2", "why")
+    assert not isinstance(morph, _Crossing)
+    assert "cross themselves where neither chain does" in note and "aligned-interpolation used" in note, note
