@@ -100,7 +100,7 @@ def similarity_matrices(a):
 
 def _samples(rg, index, k):
     """``k`` uniform arc-length samples (on the chords) of curves ``index``, complex, shape (len, k)."""
-    sub = Ragged.from_list([rg.curve(c) for c in index], rg.closed[index])
+    sub = rg.take(index)
     return as_complex(sub.resample(np.full(len(index), k), smooth=False).pts).reshape(len(index), k)
 
 
@@ -166,21 +166,30 @@ def identity_residual(P, Q):
 
 def _area_moments(rg, index):
     """Area centroid and second moments of loops ``index``: ``(centre (L, 2), cov (L, 2, 2))``."""
-    out_c, out_m = np.zeros((len(index), 2)), np.zeros((len(index), 2, 2))
-    for k, c in enumerate(index):
-        x, y = rg.curve(c).T
-        xn, yn = np.roll(x, -1), np.roll(y, -1)
-        cross = x * yn - xn * y
-        area = 0.5 * cross.sum()
-        if abs(area) <= tol.ROUNDOFF * (np.ptp(x) * np.ptp(y) + 1e-300):
-            out_m[k] = np.nan
-            continue
-        cx = ((x + xn) * cross).sum() / (6 * area)
-        cy = ((y + yn) * cross).sum() / (6 * area)
-        sxx = ((x * x + x * xn + xn * xn) * cross).sum() / (12 * area) - cx * cx
-        syy = ((y * y + y * yn + yn * yn) * cross).sum() / (12 * area) - cy * cy
-        sxy = ((x * yn + 2 * x * y + 2 * xn * yn + xn * y) * cross).sum() / (24 * area) - cx * cy
-        out_c[k], out_m[k] = (cx, cy), ((sxx, sxy), (sxy, syy))
+    sub = rg.take(index)
+    if not len(index):
+        return np.zeros((0, 2)), np.zeros((0, 2, 2))
+    # Every loop's vertices with their successors (the last one's is its first), summed per loop.
+    x, y = sub.pts[:, 0], sub.pts[:, 1]
+    after = np.maximum(sub.nxt, 0)
+    xn, yn = x[after], y[after]
+    cross = x * yn - xn * y
+
+    def total(v):
+        return np.bincount(sub.owner, v, minlength=len(index))
+
+    area = 0.5 * total(cross)
+    starts = np.minimum(sub.offsets[:-1], max(len(x) - 1, 0))
+    ptp = [np.maximum.reduceat(v, starts) - np.minimum.reduceat(v, starts) for v in (x, y)]
+    flat = ~(np.abs(area) > tol.ROUNDOFF * (ptp[0] * ptp[1] + 1e-300)) | (sub.n < 3)
+    area = np.where(flat, 1.0, area)
+    cx, cy = total((x + xn) * cross) / (6 * area), total((y + yn) * cross) / (6 * area)
+    sxx = total((x * x + x * xn + xn * xn) * cross) / (12 * area) - cx * cx
+    syy = total((y * y + y * yn + yn * yn) * cross) / (12 * area) - cy * cy
+    sxy = total((x * yn + 2 * x * y + 2 * xn * yn + xn * y) * cross) / (24 * area) - cx * cy
+    out_c = np.where(flat[:, None], 0.0, np.c_[cx, cy])
+    out_m = np.stack([np.c_[sxx, sxy], np.c_[sxy, syy]], axis=1)
+    out_m[flat] = np.nan
     return out_c, out_m
 
 

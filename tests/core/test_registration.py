@@ -11,3 +11,15 @@ def test_the_carriers_closed_form_inverses_are_inverses():
     inverse = registration._inverses(A)
     np.testing.assert_allclose(A @ inverse, np.broadcast_to(np.eye(2), A.shape), atol=1e-9)
     np.testing.assert_allclose(inverse, np.linalg.inv(A), rtol=1e-9, atol=1e-9)
+
+
+def test_area_moments_of_a_batch_are_each_loops_own():
+    from ballmorph_core.geometry.ragged import Ragged
+
+    rect = np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [0.0, 2.0]])
+    loops = [rect, rect[::-1] + (1.0, -3.0), np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])]
+    centre, cov = registration._area_moments(Ragged.from_list(loops, [True] * 3), np.array([0, 1, 2]))
+    np.testing.assert_allclose(centre[:2], [[2.0, 1.0], [3.0, -2.0]], atol=1e-12)
+    # A w x h rectangle: w^2 / 12 and h^2 / 12, whichever way it runs.
+    np.testing.assert_allclose(cov[:2], np.broadcast_to(np.diag([16.0, 4.0]) / 12.0, (2, 2, 2)), atol=1e-12)
+    assert np.isnan(cov[2]).all()  # no area: no shape to fit
