@@ -16,7 +16,7 @@ from ..errors import BallMorphError, IncompatibleCurvesError
 from ..geometry.intersections import is_simple
 from ..morphs import make_morph
 from ..morphs.aligned import METHOD as ALIGNED_METHOD
-from ..morphs.aligned import aligned_morph
+from ..morphs.aligned import aligned_morph, aligned_morphs
 from ..morphs.base import PathMorph
 from ..morphs.linear import sample_counts, uniform_correspondences
 from ..morphs.paths import LinearPaths
@@ -28,7 +28,7 @@ __all__ = [
     "short",
     "chain_fallback",
     "linear_fallback",
-    "aligned_fallback",
+    "aligned_fallbacks",
     "arc_length_morphs",
     "unsplittable",
     "comparison_morph",
@@ -104,10 +104,24 @@ def _outside(frames, P, Q):
     return float(beyond / max(float(np.hypot(*(hi - lo))), 1e-300))
 
 
-def aligned_fallback(P, Q, closed, spacing, reason):
-    """Aligned interpolation for a pair whose curves lie over each other but that no
-    ball-morph can follow (see :mod:`~ballmorph_core.morphs.aligned`): ``(morph, note)``."""
-    return aligned_morph(P, Q, closed, spacing), f"{reason}: {ALIGNED_METHOD} used"
+def aligned_fallbacks(pairs, spacing, reasons):
+    """Aligned interpolation for pairs whose curves lie over each other but that no ball-morph
+    can follow (see :mod:`~ballmorph_core.morphs.aligned`), aligned together.
+
+    Parameters
+    ----------
+    pairs : list of (ndarray, ndarray, bool)
+        Each pair's P (N, 2), Q (M, 2) and whether they are loops.
+    spacing : array_like, shape (G,)
+    reasons : list of str
+        Why each pair takes it.
+
+    Returns
+    -------
+    morphs : list of PathMorph
+    notes : list of str
+    """
+    return aligned_morphs(pairs, list(spacing)), [f"{reason}: {ALIGNED_METHOD} used" for reason in reasons]
 
 
 def linear_fallback(P, Q, closed, spacing, reason):

@@ -52,7 +52,7 @@ from .carrier_choice import carrier_motions, note_shape_changes
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
-    aligned_fallback,
+    aligned_fallbacks,
     arc_length_morphs,
     chain_fallback,
     comparison_morph,
@@ -411,11 +411,17 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     roads = choose_roads(Rc, Qc, events, coincident, near, carrier, scale)
     plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
     whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
-    for c in np.flatnonzero((roads.kind == "linear") | (roads.kind == "aligned")):
-        fallback = aligned_fallback if roads.kind[c] == "aligned" else linear_fallback
-        morph, note = fallback(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c], roads.reason[c])
+    for c in np.flatnonzero(roads.kind == "linear"):
+        morph, note = linear_fallback(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c], roads.reason[c])
         plans.notes[index[c]].append(note)
         _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
+    aligned = np.flatnonzero(roads.kind == "aligned")
+    if len(aligned):
+        curves = [(Rc.curve(c), Qc.curve(c), bool(closed[c])) for c in aligned]
+        morphs, notes = aligned_fallbacks(curves, h[aligned], [roads.reason[c] for c in aligned])
+        for c, note in zip(aligned, notes):
+            plans.notes[index[c]].append(note)
+        _add_pieces(plans, ends, index, aligned, morphs, closed[aligned], np.zeros(len(aligned)), whole_ranges[aligned])
     near = np.flatnonzero(roads.kind == "near")
     if len(near):
         morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])

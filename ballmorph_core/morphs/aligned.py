@@ -10,7 +10,8 @@ time warping of uniform samples, minimising the summed squared distance of match
 direction of least travel (as linear interpolation aligns them), both ends pinned there.
 
 The alignment runs on at most ``ALIGN_SAMPLES`` samples per curve (its cost grows with their
-product); the morph's own samples then follow the aligned map between arc lengths.
+product), for a batch of pairs at once; the morph's own samples then follow the aligned map
+between arc lengths.
 """
 
 import numpy as np
@@ -20,57 +21,97 @@ from .base import PathMorph
 from .linear import best_cyclic_alignment, sample_count
 from .paths import LinearPaths
 
-__all__ = ["METHOD", "ALIGN_SAMPLES", "align", "aligned_morph"]
+__all__ = ["METHOD", "ALIGN_SAMPLES", "align", "aligned_morphs", "aligned_morph"]
 
 #: The morph's name in reports.
 METHOD = "aligned-interpolation"
 
-#: Samples per curve of the alignment (at most): 256 x 256 cells, about 5 ms.
+#: Samples per curve of the alignment (at most): 256 x 256 cells a pair.
 ALIGN_SAMPLES = 256
 
-#: The three steps of the warp: along both curves (its cost counted twice, so a diagonal walk
-#: costs what two single steps cost) or along one.
-_STEPS = ((1, 1, 2.0), (1, 0, 1.0), (0, 1, 1.0))
+#: Alignment cells held at once (pairs are aligned in chunks of about this many cells; each
+#: takes about 20 bytes, twice over for the padding of the anti-diagonal layout).
+_CELL_BUDGET = 2_000_000
 
 
-def align(p, q):
-    """The monotone alignment of two sample sequences with both ends pinned.
+def align(ps, qs):
+    """The monotone alignments of pairs of sample sequences, both ends pinned.
 
     Parameters
     ----------
-    p, q : ndarray, shape (N, 2), (M, 2)
-        ``p[0]`` goes to ``q[0]`` and ``p[-1]`` to ``q[-1]``.
+    ps, qs : list of ndarray
+        G pairs: ``ps[g]`` shape (N_g, 2), ``qs[g]`` shape (M_g, 2); ``ps[g][0]`` goes to
+        ``qs[g][0]`` and ``ps[g][-1]`` to ``qs[g][-1]``.
 
     Returns
     -------
-    i, j : ndarray of int, shape (L,)
-        The matched sample indices, non-decreasing, from (0, 0) to (N - 1, M - 1), each step
-        advancing ``i`` or ``j`` or both by one.
+    list of (ndarray of int, ndarray of int)
+        Per pair, the matched sample indices ``i, j`` (shape (L_g,) each), non-decreasing, from
+        (0, 0) to (N_g - 1, M_g - 1), each step advancing ``i`` or ``j`` or both by one.
     """
-    n, m = len(p), len(q)
-    cost = np.sum(np.square(p[:, None, :] - q[None, :, :]), axis=2)
-    total = np.full((n, m), np.inf)
-    step = np.zeros((n, m), dtype=np.int8)
-    total[0, 0] = cost[0, 0]
-    # Cells of one anti-diagonal depend only on the two before it: each is one vector step.
-    for d in range(1, n + m - 1):
-        i = np.arange(max(0, d - m + 1), min(n - 1, d) + 1)
-        j = d - i
-        best = np.full(len(i), np.inf)
-        for k, (di, dj, weight) in enumerate(_STEPS):
-            ok = (i >= di) & (j >= dj)
-            came = np.full(len(i), np.inf)
-            came[ok] = total[i[ok] - di, j[ok] - dj] + weight * cost[i[ok], j[ok]]
-            better = came < best
-            best[better], step[i[better], j[better]] = came[better], k
-        total[i, j] = best
-    path = [(n - 1, m - 1)]
-    while path[-1] != (0, 0):
-        a, b = path[-1]
-        di, dj, _ = _STEPS[step[a, b]]
-        path.append((a - di, b - dj))
-    i, j = np.array(path[::-1]).T
-    return i, j
+    out, start = [], 0
+    while start < len(ps):
+        stop, cells = start, 0
+        while stop < len(ps) and (stop == start or cells + len(ps[stop]) * len(qs[stop]) <= _CELL_BUDGET):
+            cells += len(ps[stop]) * len(qs[stop])
+            stop += 1
+        out += _align_chunk(ps[start:stop], qs[start:stop])
+        start = stop
+    return out
+
+
+def _align_chunk(ps, qs):
+    """:func:`align` of a few pairs, in one table of anti-diagonals (padding cells cost inf)."""
+    g = len(ps)
+    n, m = np.array([len(p) for p in ps]), np.array([len(q) for q in qs])
+    big_n, big_m = int(n.max()), int(m.max())
+    diagonals = big_n + big_m - 1
+    # cost[d, :, i]: the squared distance of cell (i, d - i), the cells of anti-diagonal d side
+    # by side, so that each diagonal's predecessors are slices of the two before it.
+    i = np.arange(big_n)[None, :]
+    j = np.arange(diagonals)[:, None] - i
+    cost = np.full((diagonals, g, big_n), np.inf)
+    cells = {}  # (N_g, M_g) -> its cells (d, i, j): most pairs share the size ALIGN_SAMPLES
+    for k, (p, q) in enumerate(zip(ps, qs)):
+        if (len(p), len(q)) not in cells:
+            d, ii = np.nonzero((j >= 0) & (j < len(q)) & (i < len(p)))
+            cells[len(p), len(q)] = d, ii, j[d, ii]
+        d, ii, jj = cells[len(p), len(q)]
+        full = np.sum(np.square(p[:, None, :] - q[None, :, :]), axis=2)
+        cost[d, k, ii] = full[ii, jj]
+    # total[d + 2, :, i + 1]: the least cost of a warp to cell (i, d - i). Row 0 column 0 is the
+    # corner before the start, so cell (0, 0) costs what a diagonal step into it does (every
+    # warp pays it: the same optimum); the rest of the border is unreachable.
+    total = np.full((diagonals + 2, g, big_n + 1), np.inf)
+    total[0, :, 0] = 0.0
+    step = np.zeros((diagonals, g, big_n), dtype=np.int8)
+    for d in range(diagonals):
+        c = cost[d]
+        # Steps 0, 1, 2 come from (i - 1, j - 1), (i - 1, j), (i, j - 1); a step along both
+        # curves counts its cell twice, so a diagonal walk costs what two single steps cost.
+        # Ties go to the first (as argmin would).
+        both, along_p, along_q = total[d, :, :-1] + 2.0 * c, total[d + 1, :, :-1] + c, total[d + 1, :, 1:] + c
+        low = np.minimum(np.minimum(both, along_p), along_q)
+        step[d] = np.where(both == low, 0, np.where(along_p == low, 1, 2))
+        total[d + 2, :, 1:] = low
+    # Walk every warp back from its far corner at once.
+    di, dj = np.array([1, 1, 0]), np.array([1, 0, 1])
+    at_i, at_j = n - 1, m - 1
+    rows = np.arange(g)
+    trail_i, trail_j = [at_i], [at_j]
+    while (at_i > 0).any() or (at_j > 0).any():
+        moving = (at_i > 0) | (at_j > 0)
+        code = step[at_i + at_j, rows, at_i]
+        at_i = np.where(moving, at_i - di[code], at_i)
+        at_j = np.where(moving, at_j - dj[code], at_j)
+        trail_i.append(np.where(moving, at_i, -1))
+        trail_j.append(np.where(moving, at_j, -1))
+    trail_i, trail_j = np.array(trail_i)[::-1], np.array(trail_j)[::-1]
+    out = []
+    for k in range(g):
+        keep = trail_i[:, k] >= 0
+        out.append((trail_i[keep, k], trail_j[keep, k]))
+    return out
 
 
 def _uniform(curve, closed, count):
@@ -80,32 +121,23 @@ def _uniform(curve, closed, count):
     return rg, s, rg.point_at(np.zeros(count, dtype=np.int64), s, smooth=True)
 
 
-def aligned_morph(P, Q, closed, spacing):
-    """The aligned interpolation of two curves (see the module docstring).
-
-    Parameters
-    ----------
-    P, Q : ndarray, shape (N, 2), (M, 2)
-        Validated curves; a stroke Q runs the way P does.
-    closed : bool
-    spacing : float or None
-        Sample spacing of the morph (the longer curve's count, as linear interpolation).
-
-    Returns
-    -------
-    PathMorph
-        Method :data:`METHOD`.
-    """
+def _setup(P, Q, closed, spacing):
+    """One pair's alignment samples: ``(count, rp, rq, xp, xq_in_order, shift, backwards, k)``."""
     count = sample_count(P, Q, closed, spacing, "symmetric")
     k = min(ALIGN_SAMPLES, max(count, 3))
-    rp, sp, xp = _uniform(P, closed, k + closed)
-    rq, sq, xq = _uniform(Q, closed, k + closed)
+    rp, _, xp = _uniform(P, closed, k + closed)
+    rq, _, xq = _uniform(Q, closed, k + closed)
     shift, backwards = 0, False
     if closed:
         shift, backwards = best_cyclic_alignment(xp[:-1], xq[:-1])
     # Q's samples in the order P meets them: from its shift, forwards or backwards.
     order = (shift + (-1 if backwards else 1) * np.arange(k + closed)) % k if closed else np.arange(k)
-    i, j = align(xp, xq[order])
+    return count, rp, rq, xp, xq[order], shift, backwards, k
+
+
+def _morph(setup, closed, i, j):
+    """The PathMorph of one pair from its setup and its warp ``(i, j)``."""
+    count, rp, rq, xp, xq, shift, backwards, k = setup
     # Along the warp both fractions grow; their sum grows strictly: the morph's samples are
     # spread evenly over it.
     fp, fq = i / (len(xp) - 1), j / (len(xq) - 1)
@@ -119,3 +151,29 @@ def aligned_morph(P, Q, closed, spacing):
     p = rp.point_at(zero, u_p * rp.length[0], smooth=True)
     q = rq.point_at(zero, u_q * rq.length[0], smooth=True)
     return PathMorph(METHOD, closed, LinearPaths(p, q), u_p, u_q)
+
+
+def aligned_morphs(pairs, spacing):
+    """The aligned interpolations of several curve pairs, aligned together.
+
+    Parameters
+    ----------
+    pairs : list of (ndarray, ndarray, bool)
+        Validated curves P (N, 2) and Q (M, 2) (a stroke Q running the way P does) and whether
+        they are loops.
+    spacing : list of float or None
+        Each pair's sample spacing (the longer curve's count, as linear interpolation).
+
+    Returns
+    -------
+    list of PathMorph
+        Method :data:`METHOD`.
+    """
+    setups = [_setup(P, Q, closed, h) for (P, Q, closed), h in zip(pairs, spacing)]
+    warps = align([s[3] for s in setups], [s[4] for s in setups])
+    return [_morph(s, closed, i, j) for s, (_, _, closed), (i, j) in zip(setups, pairs, warps)]
+
+
+def aligned_morph(P, Q, closed, spacing):
+    """:func:`aligned_morphs` of one pair (PathMorph)."""
+    return aligned_morphs([(P, Q, closed)], [spacing])[0]

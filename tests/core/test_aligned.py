@@ -13,7 +13,7 @@ from .shapes import circle
 
 def test_a_sequence_aligns_with_itself_one_to_one():
     p = circle(1.0, 40)
-    i, j = align(p, p)
+    [(i, j)] = align([p], [p])
     np.testing.assert_array_equal(i, np.arange(40))
     np.testing.assert_array_equal(j, np.arange(40))
 
@@ -24,10 +24,21 @@ def test_a_sequence_aligns_with_itself_one_to_one():
     arrays(np.float64, st.tuples(st.integers(2, 30), st.just(2)), elements=st.floats(-5, 5)),
 )
 def test_an_alignment_pins_both_ends_and_steps_by_one(p, q):
-    i, j = align(p, q)
+    [(i, j)] = align([p], [q])
     assert (i[0], j[0]) == (0, 0) and (i[-1], j[-1]) == (len(p) - 1, len(q) - 1)
     di, dj = np.diff(i), np.diff(j)
     assert set(zip(di.tolist(), dj.tolist())) <= {(1, 1), (1, 0), (0, 1)}
+
+
+def test_pairs_aligned_together_are_aligned_as_each_alone():
+    rng = np.random.default_rng(3)
+    ps = [rng.normal(size=(n, 2)) for n in (5, 40, 17, 2)]
+    qs = [rng.normal(size=(m, 2)) for m in (30, 3, 17, 9)]
+    together = align(ps, qs)
+    for p, q, (i, j) in zip(ps, qs, together):
+        [(i1, j1)] = align([p], [q])
+        np.testing.assert_array_equal(i, i1)
+        np.testing.assert_array_equal(j, j1)
 
 
 def _spiked(radius, n=400, spike=0.6, width=0.02):
