@@ -37,8 +37,7 @@ def _new_breakdown(layer, number):
 
 
 def _fill(grease_pencil_data, layer, frame, strokes):
-    grease_pencil.write_strokes(frame.drawing, strokes)
-    generated.mark(grease_pencil_data, layer, frame)
+    generated.mark(grease_pencil_data, layer, frame, grease_pencil.write_strokes(frame.drawing, strokes))
 
 
 def write_all(grease_pencil_data, morphed_list):
