@@ -167,21 +167,30 @@ class _Discrete:
 
 
 class _Mix:
-    """Per-sample values at time ``t``, block of columns by block: the first key's own columns
+    """Per-sample values at any time, block of columns by block: the first key's own columns
     where the keys agree (shared by every frame), ``(1 - t) a + t b`` where they differ.
+
+    The differing columns are copied out contiguous once, for every frame to mix (mixing the
+    strided columns of ``va`` in place was most of a redo's attribute time).
 
     ``va``, ``vb``: shape (K, W); ``differ``: shape (W,) of bool."""
 
-    def __init__(self, va, vb, differ, t):
-        self.va, self.vb, self.differ, self.t = va, vb, differ, t
+    def __init__(self, va, vb, differ):
+        self.va, self.differ = va, differ
+        self.columns = {j: (va[:, j].copy(), vb[:, j].copy()) for j in np.flatnonzero(differ).tolist()}
 
-    def block(self, lo, hi):
-        """Columns ``lo:hi``, shape (K, hi - lo)."""
-        a, d = self.va[:, lo:hi], np.flatnonzero(self.differ[lo:hi])
-        if not len(d):
-            return a
-        out = a.copy()
-        out[:, d] = (1 - self.t) * a[:, d] + self.t * self.vb[:, lo:hi][:, d]
+    def block(self, lo, hi, t):
+        """Columns ``lo:hi`` at time ``t``, shape (K, hi - lo)."""
+        d = np.flatnonzero(self.differ[lo:hi]).tolist()
+        if not d:
+            return self.va[:, lo:hi]
+        if hi - lo == 1:
+            a, b = self.columns[lo]
+            return ((1 - t) * a + t * b)[:, None]
+        out = self.va[:, lo:hi].copy()
+        for j in d:
+            a, b = self.columns[lo + j]
+            out[:, j] = (1 - t) * a + t * b
         return out
 
 
@@ -217,20 +226,20 @@ def assemble_frames(parts, plan, times):
     # Each block (depth, radius, opacity, colour, extras) is mixed only where it differs.
     differ = np.any(va != vb, axis=0)
     depth = va[:, 0] if np.any(va[:, 0]) else None
+    mix = _Mix(va, vb, differ)
     out = []
     for ti, t in enumerate(times):
-        mix = _Mix(va, vb, differ, t)
-        depth = mix.block(0, 1)[:, 0] if differ[0] else depth
+        depth = mix.block(0, 1, t)[:, 0] if differ[0] else depth
         points, curves = discrete.at(t)
-        points.update(extras.from_columns(mix.block(_BASE, va.shape[1])))
+        points.update(extras.from_columns(mix.block(_BASE, va.shape[1], t)))
         drawing = StrokeSet(
             positions=plane.to_3d(parts.frames[ti], depth),
             offsets=parts.offsets,
             cyclic=parts.closed,
             material_index=mat_a if t < 0.5 else mat_b,
-            radius=mix.block(1, 2)[:, 0],
-            opacity=mix.block(2, 3)[:, 0],
-            vertex_color=mix.block(3, _BASE),
+            radius=mix.block(1, 2, t)[:, 0],
+            opacity=mix.block(2, 3, t)[:, 0],
+            vertex_color=mix.block(3, _BASE, t),
             origin=origin,
             point_attributes=points,
             curve_attributes=curves,
