@@ -285,6 +285,6 @@ def fingerprint(drawing):
 def _fingerprint(offsets, positions):
     """The hash of stroke offsets (S + 1,) and positions (N, 3) as Blender stores them (int32,
     float32)."""
-    crc = zlib.crc32(np.asarray(offsets).astype("<i4").tobytes())
-    crc = zlib.crc32(np.asarray(positions, dtype="<f4").tobytes(), crc)
+    crc = zlib.crc32(np.ascontiguousarray(offsets, dtype="<i4"))
+    crc = zlib.crc32(np.ascontiguousarray(positions, dtype="<f4"), crc)  # its buffer: no copy
     return f"{crc:08x}"

@@ -341,4 +341,10 @@ def _carry(motions, t, frame, sizes):
     M, c = np.where(motions.moving[:, None, None], M, np.eye(2)), np.where(motions.moving[:, None], c, 0.0)
     x, y = frame[:, 0].copy(), frame[:, 1].copy()
     for i in range(2):
-        frame[:, i] = np.repeat(M[:, i, 0], sizes) * x + np.repeat(M[:, i, 1], sizes) * y + np.repeat(c[:, i], sizes)
+        # M_i0 x + M_i1 y + c_i, summed in that order, in place (no full-size temporaries).
+        column, term = np.repeat(M[:, i, 0], sizes), np.repeat(M[:, i, 1], sizes)
+        column *= x
+        term *= y
+        column += term
+        column += np.repeat(c[:, i], sizes)
+        frame[:, i] = column

@@ -47,8 +47,8 @@ def ink_lengths(strokes):
     edges = np.sqrt(step[:, 0] ** 2 + step[:, 1] ** 2 + step[:, 2] ** 2)
     point_owner = np.repeat(np.arange(count), np.diff(offsets))
     owner = point_owner[:-1]
-    inside = owner == point_owner[1:]
-    lengths = np.bincount(owner[inside], edges[inside], minlength=count).astype(np.float64)
+    edges[owner != point_owner[1:]] = 0.0  # from a stroke's last point to the next one's first
+    lengths = np.bincount(owner, edges, minlength=count).astype(np.float64)
     closing = strokes.cyclic & (strokes.sizes > 2)
     first, last = offsets[:-1][closing], offsets[1:][closing] - 1
     lengths[closing] += np.linalg.norm(positions[last] - positions[first], axis=1)
