@@ -270,8 +270,8 @@ class Layout:
         # Rows as given (ball rows, then each segment's) -> their place in the frames.
         rows = np.flatnonzero(keep)
         rows = rows[np.lexsort((local[rows], rank[chain[rows]]))]
-        self.position = np.full(len(chain), -1, dtype=np.int64)
-        self.position[rows] = np.arange(len(rows))
+        position = np.full(len(chain), -1, dtype=np.int64)  # not kept: only the rows below are
+        position[rows] = np.arange(len(rows))
         c = chain[rows]
         owner = pair[c]
         self.offsets = np.searchsorted(owner, np.arange(len(self.closed) + 1))
@@ -281,7 +281,7 @@ class Layout:
         self.u_b = self._fractions(u_q, range_q[c], lengths[owner, 1], owner)
         n_ball = len(ball.u_p)
         kept = keep[:n_ball]
-        self._ball_rows = _Rows(self.position[:n_ball][kept])
+        self._ball_rows = _Rows(position[:n_ball][kept])
         self._paths = BallPaths(ball.p[kept], ball.m[kept], ball.q[kept], kind) if kept.any() else None
         self._ball_offset = ball.offset[kept] if np.any(ball.offset[kept]) else None
         starts = np.cumsum(np.r_[n_ball, [len(s.morph.u_p) for s in segments]])
@@ -290,7 +290,7 @@ class Layout:
             kept_rows = keep[a : a + len(seg.morph.u_p)]
             local = np.flatnonzero(kept_rows)
             offset = None if seg.offset is None or not np.any(seg.offset) else seg.offset[local]
-            item = (seg.morph, local, self.position[a : a + len(seg.morph.u_p)][kept_rows], offset)
+            item = (seg.morph, local, position[a : a + len(seg.morph.u_p)][kept_rows], offset)
             if _joinable(seg.morph):
                 joinable.setdefault(type(seg.morph.paths), []).append(item)
             else:
