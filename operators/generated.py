@@ -52,10 +52,11 @@ def is_generated(grease_pencil_data, layer, frame):
     return recorded is not None and grease_pencil.fingerprint(frame.drawing) in recorded.split()
 
 
-def mark(grease_pencil_data, layer, frame):
-    """Record ``frame`` as written by this add-on (call after its strokes are written)."""
+def mark(grease_pencil_data, layer, frame, new):
+    """Record ``frame`` as written by this add-on, its strokes' fingerprint ``new`` (what
+    :func:`.grease_pencil.write_strokes` returns)."""
     records = _records(grease_pencil_data, layer, create=True)
-    number, new = str(frame.frame_number), grease_pencil.fingerprint(frame.drawing)
+    number = str(frame.frame_number)
     kept = [fingerprint for fingerprint in records.get(number, "").split() if fingerprint != new]
     records[number] = " ".join([*kept[max(0, len(kept) + 1 - _HISTORY) :], new])
 

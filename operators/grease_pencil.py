@@ -209,6 +209,12 @@ def write_strokes(drawing, strokes, matrix=None):
     matrix : ndarray, shape (4, 4), optional
         Applied to the positions (morph space -> layer space); None writes them as given.
 
+    Returns
+    -------
+    str
+        The drawing's :func:`fingerprint` as written (made from the arrays handed to Blender,
+        not read back from it).
+
     Raises
     ------
     ValueError
@@ -217,13 +223,15 @@ def write_strokes(drawing, strokes, matrix=None):
     if len(drawing.curve_offsets) > 1:
         raise ValueError("write_strokes: the drawing already has strokes")
     if len(strokes) == 0:
-        return  # an empty drawing; add_strokes([]) would crash Blender 5.0.1
+        # An empty drawing (add_strokes([]) would crash Blender 5.0.1).
+        return _fingerprint(np.zeros(1, dtype=np.int32), np.zeros((0, 3), dtype=np.float32))
     sizes = strokes.sizes
     if np.any(sizes < 1):
         raise ValueError(f"write_strokes: stroke {int(np.argmin(sizes))} has no points")
     drawing.add_strokes(sizes.tolist())
     attributes = drawing.attributes
-    _write(attributes, "position", _transform(strokes.positions, matrix))
+    positions = np.ascontiguousarray(_transform(strokes.positions, matrix), dtype=np.float32)
+    _write(attributes, "position", positions)
     _write(attributes, "radius", strokes.radius)
     # Always written: a new drawing has no opacity attribute, which Python reads as 0.
     _write(attributes, "opacity", strokes.opacity)
@@ -235,14 +243,16 @@ def write_strokes(drawing, strokes, matrix=None):
         for name, values in extras.items():
             _write_extra(attributes, name, domain, strokes.attribute_types.get(name), values)
     drawing.tag_positions_changed()
+    return _fingerprint(np.concatenate([[0], np.cumsum(sizes)]), positions)
 
 
 def _write_extra(attributes, name, domain, kind, values):
     """Write one carried attribute with its own data type (guessed from the values if unknown)."""
     values = np.asarray(values)
     if name == "curve_type":
-        # Resampled points are no Bezier or NURBS control points: those strokes become POLY.
-        values = np.where(np.isin(values, (2, 3)), 0, values)
+        # Resampled points are no Bezier or NURBS control points: those strokes become POLY
+        # (two comparisons, not np.isin: its set machinery was 0.8 ms of a 100x200x9 redo).
+        values = np.where((values == 2) | (values == 3), 0, values)
     if kind not in _EXTRA_TYPES:
         kind = _guess_type(values)
     key, shape, dtype = _EXTRA_TYPES[kind]
@@ -270,7 +280,12 @@ def fingerprint(drawing):
     Used to recognise frames this add-on wrote and nobody changed since.
     """
     offsets = _offsets(drawing)
-    positions = _read(drawing.attributes, "position", int(offsets[-1]))
-    crc = zlib.crc32(offsets.astype("<i4").tobytes())
-    crc = zlib.crc32(positions.astype("<f4").tobytes(), crc)
+    return _fingerprint(offsets, _read(drawing.attributes, "position", int(offsets[-1])))
+
+
+def _fingerprint(offsets, positions):
+    """The hash of stroke offsets (S + 1,) and positions (N, 3) as Blender stores them (int32,
+    float32)."""
+    crc = zlib.crc32(np.ascontiguousarray(offsets, dtype="<i4"))
+    crc = zlib.crc32(np.ascontiguousarray(positions, dtype="<f4"), crc)  # its buffer: no copy
     return f"{crc:08x}"

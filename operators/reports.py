@@ -341,25 +341,23 @@ def _length_why(deviation):
     return f"ink {amount} {way} than the keys' blend of lengths"
 
 
-def _stray(pair, method, deviation, times):
-    """``(Stray fields without the frame number, frame index, rank)`` for one pair, or None."""
-    whys, worst = [], _middle(times)
+def _stray(pair, method, off, size, worst, middle):
+    """``(Stray fields without the frame number, frame index, rank)`` for one pair, or None;
+    ``off`` and ``size`` are its deviation and its size at its worst frame ``worst``."""
     if pair.stroke_a is None or pair.stroke_b is None:
         key, other, index = (
             ("first", "second", pair.stroke_a) if pair.stroke_b is None else ("second", "first", pair.stroke_b)
         )
-        return f"stroke {index} of the {key} key", f"no partner in the {other} key", worst, (0, 0.0)
-    size = np.abs(np.nan_to_num(deviation, nan=0.0, posinf=np.inf))
-    if size.max(initial=0.0) > 0:
-        worst = int(np.argmax(size))
+        return f"stroke {index} of the {key} key", f"no partner in the {other} key", middle, (0, 0.0)
+    whys = []
     fallbacks = _fallbacks_used(pair.method, method)
     if fallbacks:
         whys.append(f"made with {' and '.join(fallbacks)} (a fallback)")
-    if size[worst] > LENGTH_STRAY:
-        whys.append(_length_why(deviation[worst]))
+    if size > LENGTH_STRAY:
+        whys.append(_length_why(off))
     if not whys:
         return None
-    return f"stroke {pair.stroke_a} -> {pair.stroke_b}", "; ".join(whys), worst, (0 if fallbacks else 1, -size[worst])
+    return f"stroke {pair.stroke_a} -> {pair.stroke_b}", "; ".join(whys), worst, (0 if fallbacks else 1, -size)
 
 
 def strays(pairs, method, deviation, times, frames):
@@ -406,12 +404,17 @@ def strays(pairs, method, deviation, times, frames):
     deviation = np.asarray(deviation, dtype=np.float64).reshape(len(pairs), len(times))
     if not len(times):
         return []
+    # Every pair's worst frame at once (one pass over the (P, T) table, not one per pair).
+    size = np.abs(np.nan_to_num(deviation, nan=0.0, posinf=np.inf))
+    middle = _middle(times)
+    worst = np.where(size.max(axis=1, initial=0.0) > 0, np.argmax(size, axis=1), middle)
+    rows = np.arange(len(pairs))
     found = []
-    for pair, row in zip(pairs, deviation):
-        stray = _stray(pair, method, row, times)
+    for pair, off, at, index in zip(pairs, deviation[rows, worst].tolist(), size[rows, worst].tolist(), worst.tolist()):
+        stray = _stray(pair, method, off, at, index, middle)
         if stray is not None:
-            what, why, worst, rank = stray
-            found.append((rank, Stray(what, why, int(frames[worst]))))
+            what, why, frame, rank = stray
+            found.append((rank, Stray(what, why, int(frames[frame]))))
     return [stray for _, stray in sorted(found, key=lambda item: item[0])]
 
 

@@ -37,8 +37,7 @@ def _new_breakdown(layer, number):
 
 
 def _fill(grease_pencil_data, layer, frame, strokes):
-    grease_pencil.write_strokes(frame.drawing, strokes)
-    generated.mark(grease_pencil_data, layer, frame)
+    generated.mark(grease_pencil_data, layer, frame, grease_pencil.write_strokes(frame.drawing, strokes))
 
 
 def write_all(grease_pencil_data, morphed_list):
@@ -48,6 +47,7 @@ def write_all(grease_pencil_data, morphed_list):
     ----------
     grease_pencil_data : bpy.types.GreasePencil
     morphed_list : list of morph.Morphed
+        Each frame is let go (``None`` in its ``frames``) once written.
 
     Returns
     -------
@@ -61,10 +61,12 @@ def write_all(grease_pencil_data, morphed_list):
             _remove_earlier(morphed, removed)
         for morphed in morphed_list:
             layer = morphed.layer
-            for number, strokes in zip(morphed.interval.targets.tolist(), morphed.frames):
+            for i, number in enumerate(morphed.interval.targets.tolist()):
                 frame = _new_breakdown(layer, number)
                 created.append((layer, number))
-                _fill(grease_pencil_data, layer, frame, strokes)
+                _fill(grease_pencil_data, layer, frame, morphed.frames[i])
+                # Written: let it go, so Blender's copy of a big run's frames does not pile up on ours.
+                morphed.frames[i] = None
     except Exception:
         _roll_back(grease_pencil_data, created, removed, record)
         raise

@@ -17,9 +17,9 @@ from .hints import HINT
 from .strokes import StrokeSet
 from .unmatched import Anchors, shown_strokes
 
-__all__ = ["Held", "Extras", "assemble_frames"]
+__all__ = ["Held", "Extras", "FrameValues", "assemble_frames"]
 
-#: Columns of ProjectedKey.values before the extra floats: plane offset, radius, opacity, RGBA.
+#: Columns of ProjectedKey.values() before the extra floats: plane offset, radius, opacity, RGBA.
 _BASE = 7
 
 
@@ -104,7 +104,7 @@ class Extras:
 def _pair_values(parts, strokes_a, strokes_b, ka, kb):
     """Per sample: the values (plane offset, radius, opacity, colour, extras) on both keys."""
     sizes = np.diff(parts.offsets)
-    width = ka.values.shape[1]
+    width = ka.width
     if not sizes.sum():
         return np.zeros((0, width)), np.zeros((0, width))
     va = ka.sample(np.repeat(strokes_a, sizes) if parts.stroke_a is None else parts.stroke_a, parts.u_a)
@@ -116,7 +116,7 @@ def _as_drawn(h, extras):
     """A stroke without a partner as drawn in its key: the StrokeSet of its one stroke."""
     s, i = h.key.strokes, h.index
     sl = s.points(i)
-    values = h.key.values[sl]
+    values = h.key.values(sl)
     points = extras.from_columns(values[:, _BASE:])
     own = extras.arrays(s, "point")
     points.update({name: own[name][sl] for name in extras.point if name not in points})
@@ -167,25 +167,106 @@ class _Discrete:
 
 
 class _Mix:
-    """Per-sample values at time ``t``, block of columns by block: the first key's own columns
+    """Per-sample values at any time, block of columns by block: the first key's own columns
     where the keys agree (shared by every frame), ``(1 - t) a + t b`` where they differ.
 
-    ``va``, ``vb``: shape (K, W); ``differ``: shape (W,) of bool."""
+    Each block is kept contiguous, and each differing column as its two keys' columns (mixing
+    the strided columns of the samples' values every frame was most of a redo's attribute
+    time); the samples' values themselves are not kept.
 
-    def __init__(self, va, vb, differ, t):
-        self.va, self.vb, self.differ, self.t = va, vb, differ, t
+    Parameters
+    ----------
+    va, vb : ndarray, shape (K, W)
+    blocks : sequence of (int, int)
+        The column ranges ``(lo, hi)`` asked for.
+    """
 
-    def block(self, lo, hi):
-        """Columns ``lo:hi``, shape (K, hi - lo)."""
-        a, d = self.va[:, lo:hi], np.flatnonzero(self.differ[lo:hi])
-        if not len(d):
-            return a
-        out = a.copy()
-        out[:, d] = (1 - self.t) * a[:, d] + self.t * self.vb[:, lo:hi][:, d]
+    def __init__(self, va, vb, blocks):
+        self.differ = np.any(va != vb, axis=0)
+        self._blocks = {}
+        for lo, hi in blocks:
+            mixed = {j: (va[:, lo + j].copy(), vb[:, lo + j].copy()) for j in np.flatnonzero(self.differ[lo:hi])}
+            shared = None if len(mixed) == hi - lo == 1 else va[:, lo:hi].copy()
+            self._blocks[lo] = shared, mixed
+
+    def block(self, lo, t):
+        """The block starting at column ``lo`` at time ``t``, shape (K, hi - lo)."""
+        shared, mixed = self._blocks[lo]
+        if not mixed:
+            return shared
+        if shared is None:
+            ((a, b),) = mixed.values()
+            return ((1 - t) * a + t * b)[:, None]
+        out = shared.copy()
+        for j, (a, b) in mixed.items():
+            out[:, j] = (1 - t) * a + t * b
         return out
 
 
-def assemble_frames(parts, plan, times):
+class FrameValues:
+    """What the in-betweens take from the keys at the pairs' samples, whatever the time: their
+    attributes on both keys (:class:`_Mix`), the discrete ones, the strokes without a partner.
+
+    A plan makes it once for its samples and assembles every later frame from it.
+
+    Parameters
+    ----------
+    parts : PairFrames
+        Every pair's samples (the second strokes' fractions along them as drawn); their frames
+        are not read.
+    plan : InbetweenPlan
+        Its ``strokes`` (each pair's two KeyStrokes), projected keys ``ka`` and ``kb``, ``held``
+        strokes, ``unmatched`` choice and aligned ``extras``.
+    """
+
+    def __init__(self, parts, plan):
+        strokes_a, strokes_b = [a for a, _, _ in plan.strokes], [b for _, b, _ in plan.strokes]
+        held, extras = plan.held, plan.extras
+        index_a = np.array([a.index for a in strokes_a], dtype=np.int64)
+        index_b = np.array([b.index for b in strokes_b], dtype=np.int64)
+        va, vb = _pair_values(parts, index_a, index_b, plan.ka, plan.kb)
+        self.discrete = _Discrete(parts, plan, index_a, index_b, extras)
+        self.anchors = Anchors(held, parts, plan) if plan.unmatched == "neighbour" and held else None
+        self.drawn = [_as_drawn(h, extras) for h in held]
+        self.materials = (
+            np.array([a.material for a in strokes_a], dtype=np.int64),
+            np.array([b.material for b in strokes_b], dtype=np.int64),
+        )
+        self.origin = np.c_[index_a, index_b].astype(np.int64).reshape(-1, 2)
+        # Attributes the two keys agree on (often radius, opacity, colour and the offset from
+        # the plane) are shared by every frame, not mixed: a redo of a big drawing is mostly
+        # the frames' loop. Each block (depth, radius, opacity, colour, extras) is mixed only
+        # where it differs.
+        self.mix = _Mix(va, vb, ((0, 1), (1, 2), (2, 3), (3, _BASE), (_BASE, va.shape[1])))
+        self.depth = None if self.mix.differ[0] or not np.any(va[:, 0]) else self.mix.block(0, 0.0)[:, 0]
+
+    def frames(self, parts, plan, times):
+        """One StrokeSet per time (:func:`assemble_frames`)."""
+        held, plane, unmatched, extras, mix = plan.held, plan.plane, plan.unmatched, plan.extras, self.mix
+        out = []
+        for ti, t in enumerate(times):
+            depth = mix.block(0, t)[:, 0] if mix.differ[0] else self.depth
+            points, curves = self.discrete.at(t)
+            points.update(extras.from_columns(mix.block(_BASE, t)))
+            drawing = StrokeSet(
+                positions=plane.to_3d(parts.frames[ti], depth),
+                offsets=parts.offsets,
+                cyclic=parts.closed,
+                material_index=self.materials[0] if t < 0.5 else self.materials[1],
+                radius=mix.block(1, t)[:, 0],
+                opacity=mix.block(2, t)[:, 0],
+                vertex_color=mix.block(3, t),
+                origin=self.origin,
+                point_attributes=points,
+                curve_attributes=curves,
+                attribute_types=extras.types,
+            )
+            shown = shown_strokes(held, self.drawn, t, unmatched, parts.frames[ti], self.anchors, plane)
+            out.append(StrokeSet.concatenate([drawing, *shown]))
+        return out
+
+
+def assemble_frames(parts, plan, times, values=None):
     """One StrokeSet per time from every pair's frames and the strokes without a partner.
 
     Parameters
@@ -196,46 +277,11 @@ def assemble_frames(parts, plan, times):
         Its ``strokes`` (each pair's two KeyStrokes), projected keys ``ka`` and ``kb``, ``held``
         strokes, drawing ``plane``, ``unmatched`` choice and aligned ``extras``.
     times : ndarray, shape (T,)
+    values : FrameValues, optional
+        Made from these samples before (else made here).
 
     Returns
     -------
     list of StrokeSet
     """
-    strokes_a, strokes_b = [a for a, _, _ in plan.strokes], [b for _, b, _ in plan.strokes]
-    ka, kb, held, plane, unmatched, extras = plan.ka, plan.kb, plan.held, plan.plane, plan.unmatched, plan.extras
-    index_a = np.array([a.index for a in strokes_a], dtype=np.int64)
-    index_b = np.array([b.index for b in strokes_b], dtype=np.int64)
-    va, vb = _pair_values(parts, index_a, index_b, ka, kb)
-    discrete = _Discrete(parts, plan, index_a, index_b, extras)
-    anchors = Anchors(held, parts, plan) if unmatched == "neighbour" and held else None
-    drawn = [_as_drawn(h, extras) for h in held]
-    mat_a = np.array([a.material for a in strokes_a], dtype=np.int64)
-    mat_b = np.array([b.material for b in strokes_b], dtype=np.int64)
-    origin = np.c_[index_a, index_b].astype(np.int64).reshape(-1, 2)
-    # Attributes the two keys agree on (often radius, opacity, colour and the offset from the
-    # plane) are shared by every frame, not mixed: a redo of a big drawing is mostly this loop.
-    # Each block (depth, radius, opacity, colour, extras) is mixed only where it differs.
-    differ = np.any(va != vb, axis=0)
-    depth = va[:, 0] if np.any(va[:, 0]) else None
-    out = []
-    for ti, t in enumerate(times):
-        mix = _Mix(va, vb, differ, t)
-        depth = mix.block(0, 1)[:, 0] if differ[0] else depth
-        points, curves = discrete.at(t)
-        points.update(extras.from_columns(mix.block(_BASE, va.shape[1])))
-        drawing = StrokeSet(
-            positions=plane.to_3d(parts.frames[ti], depth),
-            offsets=parts.offsets,
-            cyclic=parts.closed,
-            material_index=mat_a if t < 0.5 else mat_b,
-            radius=mix.block(1, 2)[:, 0],
-            opacity=mix.block(2, 3)[:, 0],
-            vertex_color=mix.block(3, _BASE),
-            origin=origin,
-            point_attributes=points,
-            curve_attributes=curves,
-            attribute_types=extras.types,
-        )
-        shown = shown_strokes(held, drawn, t, unmatched, parts.frames[ti], anchors, plane)
-        out.append(StrokeSet.concatenate([drawing, *shown]))
-    return out
+    return (FrameValues(parts, plan) if values is None else values).frames(parts, plan, times)

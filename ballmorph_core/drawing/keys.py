@@ -48,8 +48,9 @@ class ProjectedKey:
     ----------
     rg : Ragged
         The strokes' 2D points (arc lengths and fractions come from it).
-    values : ndarray, shape (N, 7 + F)
-        Per point: offset from the plane, radius, opacity, vertex colour (RGBA), the extra values.
+    width : int
+        Values per point (7 + F): offset from the plane, radius, opacity, vertex colour (RGBA),
+        the extra values (:meth:`values` reads them).
     """
 
     def __init__(self, strokes, plane, extra_values=None):
@@ -57,7 +58,8 @@ class ProjectedKey:
         self.rg = Ragged(xy, strokes.offsets, strokes.cyclic)
         self.strokes = strokes
         extra = np.zeros((len(xy), 0)) if extra_values is None else np.asarray(extra_values, dtype=np.float64)
-        self.values = np.column_stack([depth, strokes.radius, strokes.opacity, strokes.vertex_color, extra])
+        values = np.column_stack([depth, strokes.radius, strokes.opacity, strokes.vertex_color, extra])
+        self.width = values.shape[1]
         length = self.rg.length[self.rg.owner]
         local = np.arange(len(xy)) - strokes.offsets[:-1][self.rg.owner]
         n = self.rg.n[self.rg.owner]
@@ -71,10 +73,13 @@ class ProjectedKey:
         x = np.concatenate([self.u, np.ones(len(closing))]) + 2.0 * owner
         order = np.argsort(x, kind="stable")
         self._x = x[order]
-        # np.take: fancy indexing gathers (N, F) rows several times slower (numpy 1.26).
-        self._v = np.take(np.concatenate([self.values, np.take(self.values, closing, axis=0)]), order, axis=0)
         self._point = np.concatenate([np.arange(len(xy)), closing])[order]
-        self._last = None  # (stroke, u, values): a plan evaluated again asks for the same
+        # The values are kept once, in this table: a contiguous row per value (np.interp reads
+        # one at a time), and each point's row in it (its first: a loop's closing copy follows).
+        self._v = np.ascontiguousarray(np.take(values, self._point, axis=0).T)
+        self._row = np.empty(len(xy), dtype=np.int64)
+        own = np.flatnonzero(order < len(xy))
+        self._row[order[own]] = own
 
     def stroke(self, i, flip=False):
         """Stroke ``i`` for morphing (KeyStroke), reversed if ``flip``."""
@@ -96,11 +101,10 @@ class ProjectedKey:
         return self._point[pick]
 
     def sample(self, stroke, u):
-        """Per-point values at fractions ``u`` of given strokes (vectorised), shape (K, 7)."""
-        last = self._last
-        if last is not None and np.array_equal(stroke, last[0]) and np.array_equal(u, last[1]):
-            return last[2]
+        """Per-point values at fractions ``u`` of given strokes (vectorised), shape (K, 7 + F)."""
         x = np.clip(u, 0.0, 1.0) + 2.0 * stroke
-        values = np.column_stack([np.interp(x, self._x, self._v[:, c]) for c in range(self._v.shape[1])])
-        self._last = (stroke, u, values)
-        return values
+        return np.column_stack([np.interp(x, self._x, column) for column in self._v])
+
+    def values(self, points):
+        """The values of some of the key's points (an index or a slice), shape (K, 7 + F)."""
+        return self._v[:, self._row[points]].T

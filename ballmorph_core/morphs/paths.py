@@ -284,6 +284,27 @@ class BallPaths(_Endpoints):
             return self._chord / np.sinc(self._phi / np.pi)
         return self._par_len
 
+    def _circular_at(self, t):
+        """The circular paths at time ``t``: the chord from p to the point reached after turning
+        2 phi t, of length |d| sin(phi t) / sin(phi), along u turned by phi t.
+
+        Column by column, in place (the values of ``p + length * rotate(u, phi t)`` to the bit):
+        each full-size temporary costs a redo its page faults, frame after frame.
+        """
+        turn = self._phi * t
+        length = self._chord_per_sinc * (t * np.sinc(turn / np.pi))
+        cos, sin = np.cos(turn), np.sin(turn)
+        u0, u1 = self._u[:, 0], self._u[:, 1]
+        x, y = cos * u0, sin * u0  # u turned by phi t
+        x -= sin * u1
+        y += cos * u1
+        out = np.empty_like(self.p)
+        for axis, column in enumerate((x, y)):
+            column *= length
+            column += self.p[:, axis]
+            out[:, axis] = column
+        return out
+
     def at(self, t):
         """Positions at time ``t`` in [0, 1] (uniform arc-length speed), shape (K, 2)."""
         t = float(np.clip(t, 0.0, 1.0))
@@ -295,10 +316,7 @@ class BallPaths(_Endpoints):
         if self.kind == "tangent":
             return m + _rotate(p - m, self._beta * t)
         if self.kind == "circular":
-            # Chord from p to the point reached after turning 2 phi t:
-            # length |d| sin(phi t) / sin(phi), direction u turned by phi t.
-            length = self._chord_per_sinc * (t * np.sinc(self._phi * t / np.pi))
-            return p + length[:, None] * _rotate(self._u, self._phi * t)
+            return self._circular_at(t)
         # Parabolic: Bezier parameter reached at arc-length fraction t.
         s = self._parabola_parameter(t)[:, None]
         return (1 - s) ** 2 * p + 2 * s * (1 - s) * m + s**2 * q

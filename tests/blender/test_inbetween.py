@@ -1,5 +1,7 @@
 """ballmorph.inbetween on real Grease Pencil data: frames, strokes, attributes, options, errors."""
 
+import importlib
+
 import bpy
 import gp_data
 import numpy as np
@@ -134,6 +136,22 @@ def test_rerun_replaces_only_its_own_frames(shot, capfd):
     result, text = run(capfd, frame_count=1)
     assert result == {"FINISHED"} and "replacing 1 earlier" in text
     assert gp_data.frame_numbers(layer) == [1, 5, 9]
+
+
+def test_the_recorded_fingerprints_are_the_ones_blender_reads_back(shot, addon):
+    """The writer records each in-between's fingerprint from the arrays it hands to Blender, not
+    read back: it must be what reading it back gives, or re-runs would not know their frames."""
+    io = importlib.import_module(f"{addon.__name__}.operators.grease_pencil")
+    layer = ink(shot)
+    assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
+    (record,) = gp_data.marks(shot).values()
+    for n in range(2, 9):
+        assert record[str(n)].split()[-1] == io.fingerprint(gp_data.frame_at(layer, n).drawing)
+    strokes = io.read_strokes(gp_data.frame_at(layer, 5).drawing)
+    turned = np.array([[0.0, -2.0, 0.0, 0.3], [1.0, 0.0, 0.0, 0.1], [0.0, 0.0, 0.7, 0.0], [0.0, 0.0, 0.0, 1.0]])
+    for number, written, matrix in ((20, strokes, turned), (21, bm.StrokeSet.empty(), None)):
+        drawing = layer.frames.new(number).drawing
+        assert io.write_strokes(drawing, written, matrix) == io.fingerprint(drawing)
 
 
 def test_an_in_between_the_animator_edited_becomes_theirs(shot, capfd):

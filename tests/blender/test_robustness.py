@@ -530,6 +530,23 @@ def test_an_interval_failing_for_every_morph_leaves_its_layer_untouched(addon, c
     assert gp_data.snapshot(obj) == after
 
 
+def test_the_writer_lets_each_in_between_go_once_written(shot, addon, monkeypatch):
+    """A big run must not hold its frames twice (ours and Blender's) at the end: the writer lets
+    each computed frame go as soon as it is written."""
+    writer = importlib.import_module(f"{addon.__name__}.operators.writer")
+    real, held = writer.write_all, []
+
+    def spy(data, morphed_list):
+        written = real(data, morphed_list)
+        held.extend(frame for morphed in morphed_list for frame in morphed.frames if frame is not None)
+        return written
+
+    monkeypatch.setattr(writer, "write_all", spy)
+    assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
+    assert gp_data.frame_numbers(shot.data.layers["Ink"]) == list(range(1, 10))
+    assert not held
+
+
 def test_a_failed_write_leaves_the_layer_as_it_was(shot, addon, monkeypatch):
     layer = shot.data.layers["Ink"]
     assert bpy.ops.ballmorph.inbetween(frame_count=3) == {"FINISHED"}

@@ -393,3 +393,47 @@ def test_a_pair_not_finite_at_some_times_only_is_reported_as_when_evaluated_at_o
     assert chunked.pairs[0].method == "straight point motion"
     assert "non-finite" in chunked.pairs[0].reason
     assert all(np.isfinite(f.positions).all() for f in chunked.frames)
+
+
+def test_a_plan_reads_its_samples_on_the_keys_once_and_stays_exact(monkeypatch):
+    """A plan reads what its samples take from the keys (attributes, sources, pieces) at its
+    first evaluation and afterwards only moves and mixes: later evaluations at other times, in
+    chunks, read nothing again and are bit for bit a fresh plan's, on every golden drawing."""
+    import golden_cases
+
+    plan_module = importlib.import_module("ballmorph_core.drawing.plan")
+    keys_module = importlib.import_module("ballmorph_core.drawing.keys")
+    real, sampled = keys_module.ProjectedKey.sample, []
+    later = [0.9, 0.15, 0.5, 0.0]
+    for _name, key_a, key_b, options in golden_cases.cases():
+        plan = bm.plan_inbetween(key_a, key_b, **options)
+        plan.evaluate(np.linspace(0.0, 1.0, 5))
+        with monkeypatch.context() as patch:
+            patch.setattr(keys_module.ProjectedKey, "sample", lambda key, *args: sampled.append(1) or real(key, *args))
+            patch.setattr(plan_module, "EVALUATE_SAMPLES", 1)
+            again = plan.evaluate(later)
+        assert not sampled, "a plan read its samples on the keys again"
+        _same_drawing(again, bm.plan_inbetween(key_a, key_b, **options).evaluate(later))
+
+
+def test_a_pair_not_finite_at_some_times_leaves_the_kept_samples_alone(monkeypatch):
+    """An evaluation where a pair goes point by point (other samples) neither uses nor spoils
+    what the plan kept of its own samples: before, during and after, each evaluation is a
+    fresh plan's."""
+    key_a, key_b = _drawing_4_and_5()
+    frames_of = type(bm.plan_inbetween(key_a, key_b).pairs).frames
+    times = np.linspace(0.0, 1.0, 6)
+
+    def late_nan(self, at):
+        parts = frames_of(self, at)
+        parts.frames[np.asarray(at) > 0.6, parts.offsets[0] : parts.offsets[1]] = np.nan
+        return parts
+
+    plan = bm.plan_inbetween(key_a, key_b)
+    _same_drawing(plan.evaluate(times), bm.inbetween(key_a, key_b, times))
+    with monkeypatch.context() as patch:
+        patch.setattr(type(plan.pairs), "frames", late_nan)
+        broken = plan.evaluate(times)
+        _same_drawing(broken, bm.plan_inbetween(key_a, key_b).evaluate(times))
+    assert broken.pairs[0].method == "straight point motion"
+    _same_drawing(plan.evaluate(times[::-1]), bm.inbetween(key_a, key_b, times[::-1]))
