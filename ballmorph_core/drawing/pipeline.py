@@ -64,7 +64,7 @@ from .layout import BallRows
 from .pairplans import PairPlans
 from .point_roads import guarded, own_points_road, polyline_road
 from .registration import Motions, identity_residual
-from .splitting import cut_chains, find_events
+from .splitting import cross, cut_chains, find_events
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 
@@ -170,10 +170,11 @@ class _Roads:
 
 
 def choose_roads(R, Q, events, coincident, near, carrier, scale):
-    """Step 4: the road of every pair (see the module docstring)."""
+    """Step 4: the road of every pair (see the module docstring); ``near`` marks the pairs
+    within ``NEAR`` of each other that cross or overlap (the near road)."""
     n, closed = len(R), R.closed
     kind = np.where(closed & (events.count == 0), "whole", "lenses").astype(object)
-    kind[near & ~coincident & (events.count > 0)] = "near"
+    kind[near & ~coincident] = "near"
     reason = [""] * n
     end_eps = tol.SHARED_ENDPOINT * scale
     first = np.linalg.norm(R.pts[R.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
@@ -406,9 +407,11 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     Rc, Qc = ends.common_p, ends.common_q
     residual = identity_residual(Rc, Qc)  # of the common parts
     coincident |= residual <= tol.OVERLAP * scale
-    events = find_events(Rc, Qc, scale, h / 2, ~coincident)
-    near = (residual <= NEAR * scale) & motions.moving
-    roads = choose_roads(Rc, Qc, events, coincident, near, carrier, scale)
+    near = (residual <= NEAR * scale) & motions.moving & ~coincident
+    # A near pair that crosses takes the near road whatever its events: they are not sought.
+    crossing_near = cross(Rc, Qc, scale, near)
+    events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near)
+    roads = choose_roads(Rc, Qc, events, coincident, crossing_near | (near & (events.count > 0)), carrier, scale)
     plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
     whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
     for c in np.flatnonzero(roads.kind == "linear"):

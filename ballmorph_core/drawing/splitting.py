@@ -23,7 +23,7 @@ from ..geometry.polyline import scale_of
 from ..geometry.projection import nearest_within
 from ..geometry.ragged import Ragged
 
-__all__ = ["Events", "Chains", "find_events", "cut_chains", "Piece", "split_pair", "MAX_HITS_PER_POINT"]
+__all__ = ["Events", "Chains", "find_events", "cross", "cut_chains", "Piece", "split_pair", "MAX_HITS_PER_POINT"]
 
 #: Crossings in the same order along both curves cut them into lenses, and every lens holds a
 #: vertex of P or Q (two straight pieces meet once), so such a pair has at most ``n_P + n_Q + 1``
@@ -154,6 +154,23 @@ def _orders_agree(events, closed, n_pairs, end_eps):
     return np.bincount(pair[~ok], minlength=n_pairs) == 0
 
 
+def _interior(R, pair, s_p, end_eps):
+    """Which meetings at arc lengths ``s_p`` along R are events: on a loop every one, on a
+    stroke those away from its ends (shared endpoints are not events), shape (K,) of bool."""
+    return R.closed[pair] | ((s_p > end_eps[pair]) & (s_p < R.length[pair] - end_eps[pair]))
+
+
+def cross(R, Q, scale, wanted):
+    """Wanted pairs whose curves cross or touch somewhere but at a stroke pair's shared ends
+    (or meet too often to count), shape (C,) of bool: all the near road asks of a pair, without
+    the overlap analysis of :func:`find_events` (a pair that crosses has events there too).
+    """
+    end_eps = tol.SHARED_ENDPOINT * scale
+    cx = batch_crossings(R, Q, scale, wanted, max_hits=MAX_HITS_PER_POINT * (R.n + Q.n))
+    inside = _interior(R, cx.pair, cx.s_a, end_eps)
+    return (np.bincount(cx.pair[inside], minlength=len(R)) > 0) | cx.crowded
+
+
 def find_events(R, Q, scale, spacing, wanted):
     """Crossings and overlaps of every wanted pair (see the module docstring).
 
@@ -179,7 +196,7 @@ def find_events(R, Q, scale, spacing, wanted):
     # Overlaps need nearly parallel segments close together: only those pairs are searched.
     cx, along = batch_crossings(R, Q, scale, wanted, overlap_reach=tol.OVERLAP * scale, max_hits=max_hits)
     pair, s_p, s_q = cx.pair, cx.s_a, cx.s_b
-    interior = closed[pair] | ((s_p > end_eps[pair]) & (s_p < R.length[pair] - end_eps[pair]))
+    interior = _interior(R, pair, s_p, end_eps)
     pair, s_p, s_q = pair[interior], s_p[interior], s_q[interior]
     over = _overlaps(R, Q, scale, spacing, wanted & along)
     o_pair = over[:, 0].astype(np.int64)
