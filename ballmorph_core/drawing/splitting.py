@@ -107,21 +107,18 @@ def _runs(near, closed):
 def _overlaps(R, Q, scale, spacing, wanted):
     """Stretches of each wanted R lying on its Q: rows (pair, sP0, sP1, sQ0, sQ1)."""
     idx = np.flatnonzero(wanted)
-    sub = Ragged(
-        R.pts[np.concatenate([np.arange(R.offsets[c], R.offsets[c + 1]) for c in idx])]
-        if len(idx)
-        else np.zeros((0, 2)),
-        np.concatenate([[0], np.cumsum(R.n[idx])]),
-        R.closed[idx],
-    )
+    if not len(idx):
+        return np.zeros((0, 5))
+    # Only the wanted pairs' curves are searched (a search over every Q would build for all).
+    sub, sub_q = R.take(idx), Q.take(idx)
     counts = np.round(sub.length / spacing[idx]).astype(np.int64) + np.where(sub.closed, 0, 1)
     dense = sub.resample(counts, smooth=False)
     # Dense arc lengths rescaled onto R's own (resampling along R keeps them proportional).
     s_dense = dense.s * (sub.length / np.maximum(dense.length, 1e-300))[dense.owner]
     eps = tol.OVERLAP * scale[idx][dense.owner]
-    dist, edge, frac = nearest_within(dense.pts, idx[dense.owner], Q, eps)
+    dist, edge, frac = nearest_within(dense.pts, dense.owner, sub_q, eps)
     near = dist <= eps
-    s_q = Q.s[edge] + frac * Q.length_of_edge[edge]
+    s_q = sub_q.s[edge] + frac * sub_q.length_of_edge[edge]
     rows = []
     for c in np.unique(dense.owner[near]):
         sl = slice(dense.offsets[c], dense.offsets[c + 1])
