@@ -67,8 +67,15 @@ def handled_directly(P, Q, scale):
     end_eps = tol.SHARED_ENDPOINT * scale
     first = np.linalg.norm(P.pts[P.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
     last = np.linalg.norm(P.pts[P.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
-    inside = P.contains(Q.pts[Q.offsets[:-1]], np.arange(n)) | Q.contains(P.pts[P.offsets[:-1]], np.arange(n))
-    nested = closed & inside
+    # A loop inside another has its box inside the other's: a cheap necessary test first.
+    bp, bq = P.boxes(), Q.boxes()
+    p_in_q = np.all(bp[:, :2] >= bq[:, :2], axis=1) & np.all(bp[:, 2:] <= bq[:, 2:], axis=1)
+    q_in_p = np.all(bq[:, :2] >= bp[:, :2], axis=1) & np.all(bq[:, 2:] <= bp[:, 2:], axis=1)
+    nested = closed & (p_in_q | q_in_p)
+    ask = np.flatnonzero(nested)
+    nested[ask] = P.contains(np.take(Q.pts, Q.offsets[ask], axis=0), ask) | Q.contains(
+        np.take(P.pts, P.offsets[ask], axis=0), ask
+    )
     if nested.any():
         cx = batch_crossings(P, Q, scale, nested)
         nested &= np.bincount(cx.pair, minlength=n) == 0

@@ -127,3 +127,14 @@ def test_a_composite_ball_morph_whose_in_between_crosses_itself_falls_back(monke
     morph, note = fallbacks.chain_fallback(P, Q, False, "circular", 0.05, "lens 1/2", "why")
     assert not isinstance(morph, _Crossing)
     assert "cross themselves where neither chain does" in note and "aligned-interpolation used" in note, note
+
+
+def test_handled_directly_are_nested_loops_and_strokes_sharing_their_ends():
+    x = np.linspace(0.0, 1.0, 30)
+    loops = [circle(1.0, 80), circle(0.5, 80, centre=(0.2, 0.1)), circle(1.0, 80), circle(1.0, 80)]
+    others = [circle(0.5, 80, centre=(0.2, 0.1)), circle(1.0, 80), circle(1.0, 80) + [0.5, 0], circle(1.0, 80) + [3, 0]]
+    P = Ragged.from_list(loops + [np.c_[x, x * 0], np.c_[x, x * 0]], [True] * 4 + [False] * 2)
+    Q = Ragged.from_list(others + [np.c_[x, np.sin(np.pi * x)], np.c_[x, x * 0] + [0, 1]], P.closed)
+    got = carrier_choice.handled_directly(P, Q, np.ones(6))
+    # Inside either way; crossing; side by side; sharing both ends; sharing none.
+    np.testing.assert_array_equal(got, [True, True, False, False, True, False])
