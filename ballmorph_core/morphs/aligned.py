@@ -21,13 +21,16 @@ from .base import PathMorph
 from .linear import best_cyclic_alignment, sample_count
 from .paths import LinearPaths
 
-__all__ = ["METHOD", "ALIGN_SAMPLES", "align", "aligned_morphs", "aligned_morph"]
+__all__ = ["METHOD", "ALIGN_SAMPLES", "WARP_SMOOTHING", "align", "aligned_morphs", "aligned_morph"]
 
 #: The morph's name in reports.
 METHOD = "aligned-interpolation"
 
 #: Samples per curve of the alignment (at most): 256 x 256 cells a pair.
 ALIGN_SAMPLES = 256
+
+#: Steps of the warp its fractions are averaged over (odd): about 2 % of a warp of 256 x 256.
+WARP_SMOOTHING = 9
 
 #: Alignment cells held at once (pairs are aligned in chunks of about this many cells; each
 #: takes about 20 bytes, twice over for the padding of the anti-diagonal layout).
@@ -135,12 +138,26 @@ def _setup(P, Q, closed, spacing):
     return count, rp, rq, xp, xq[order], shift, backwards, k
 
 
+def _smoothed(f):
+    """A warp's fractions along one curve (non-decreasing, shape (L,)) averaged over
+    ``WARP_SMOOTHING`` steps, its ends kept: still non-decreasing, without the staircase a warp
+    makes where one curve waits for the other (each stair a small kink in the in-betweens)."""
+    if len(f) <= 2:
+        return f
+    pad = WARP_SMOOTHING // 2
+    padded = np.concatenate([np.full(pad, f[0]), f, np.full(pad, f[-1])])
+    sums = np.cumsum(np.r_[0.0, padded])
+    out = (sums[2 * pad + 1 :] - sums[: -2 * pad - 1]) / (2 * pad + 1)
+    out[0], out[-1] = f[0], f[-1]
+    return out
+
+
 def _morph(setup, closed, i, j):
     """The PathMorph of one pair from its setup and its warp ``(i, j)``."""
     count, rp, rq, xp, xq, shift, backwards, k = setup
     # Along the warp both fractions grow; their sum grows strictly: the morph's samples are
     # spread evenly over it.
-    fp, fq = i / (len(xp) - 1), j / (len(xq) - 1)
+    fp, fq = _smoothed(i / (len(xp) - 1)), _smoothed(j / (len(xq) - 1))
     walk = fp + fq
     w = np.linspace(0.0, walk[-1], count, endpoint=not closed)
     u_p, t_q = np.interp(w, walk, fp), np.interp(w, walk, fq)

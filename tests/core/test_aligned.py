@@ -72,3 +72,15 @@ def test_the_aligned_morph_starts_on_p_and_ends_on_q():
     np.testing.assert_allclose(morph(1.0)[[0, -1]], Q[[0, -1]], atol=1e-12)
     assert np.all(np.diff(morph.u_p) >= 0) and np.all(np.diff(morph.u_q) >= 0)
     assert morph.method == "aligned-interpolation" and not morph.closed
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.floats(0.0, 1.0), min_size=1, max_size=80))
+def test_a_smoothed_warp_still_rises_and_keeps_its_ends(steps):
+    from ballmorph_core.morphs.aligned import _smoothed
+
+    f = np.cumsum(steps) / max(np.sum(steps), 1e-12)
+    f = np.r_[0.0, f]
+    g = _smoothed(f)
+    assert len(g) == len(f) and g[0] == f[0] and g[-1] == f[-1]
+    assert np.all(np.diff(g) >= -1e-12)
