@@ -207,7 +207,12 @@ class BallPaths(_Endpoints):
             )
             self._phi = np.arctan2(_cross(self._u, d), np.einsum("ij,ij->i", self._u, d))
             self._phi = np.where(self._chord > 0, self._phi, 0.0)
-            self._chord_per_sinc = self._chord / np.sinc(self._phi / np.pi)  # at() needs it every frame
+            self._chord_per_sinc = self._chord / np.sinc(self._phi / np.pi)
+            # The chord reached at time t is |d| sin(phi t) / sin(phi) long (|d| t on a straight
+            # path): at() needs its two coefficients every frame, and the sine it computes anyway.
+            turning = self._phi != 0
+            self._per_sin = np.divide(self._chord_per_sinc, self._phi, out=np.zeros_like(self._phi), where=turning)
+            self._straight = np.where(turning, 0.0, self._chord)
         elif kind == "tangent":
             self._beta = self._tangent_turns()
         elif kind == "parabolic":
@@ -288,12 +293,13 @@ class BallPaths(_Endpoints):
         """The circular paths at time ``t``: the chord from p to the point reached after turning
         2 phi t, of length |d| sin(phi t) / sin(phi), along u turned by phi t.
 
-        Column by column, in place (the values of ``p + length * rotate(u, phi t)`` to the bit):
-        each full-size temporary costs a redo its page faults, frame after frame.
+        Column by column, in place (the values of ``p + length * rotate(u, phi t)``): each
+        full-size temporary costs a redo its page faults, frame after frame.
         """
         turn = self._phi * t
-        length = self._chord_per_sinc * (t * np.sinc(turn / np.pi))
         cos, sin = np.cos(turn), np.sin(turn)
+        length = self._per_sin * sin
+        length += self._straight * t
         u0, u1 = self._u[:, 0], self._u[:, 1]
         x, y = cos * u0, sin * u0  # u turned by phi t
         x -= sin * u1
