@@ -460,11 +460,20 @@ def _derived(row):
     return row
 
 
+def _fell_back(result, method):
+    """How many of an InbetweenResult's pairs used a fallback morph other than ``method``
+    (the fallbacks named by the add-on's own core, found through the result's module)."""
+    core = importlib.import_module(type(result).__module__.split(".drawing")[0])
+    fallbacks = [f for f in core.FALLBACK_MORPHS if f != method]
+    return sum(any(f in str(getattr(p, "method", "")) for f in fallbacks) for p in getattr(result, "pairs", []))
+
+
 def stage_times(run, clean, runs, method):
     """Median per-stage seconds over ``runs`` instrumented operator runs (see :class:`StageClock`).
 
-    Also 'operator' (the whole call), 'pairs' (stroke pairs) and 'fallbacks' (pairs that did not
-    use the requested ``method``, a core method name), and :func:`_derived`'s parts.
+    Also 'operator' (the whole call), 'pairs' (stroke pairs) and 'fallbacks' (pairs one of whose
+    pieces used a fallback morph, the core's ``FALLBACK_MORPHS``, other than the requested
+    ``method``, a core method name), and :func:`_derived`'s parts.
     """
     per_run = []
     with StageClock() as clock:
@@ -479,7 +488,7 @@ def stage_times(run, clean, runs, method):
             row["operator"] = total
             pairs = [p for result in clock.results for p in getattr(result, "pairs", [])]
             row["pairs"] = len(pairs)
-            row["fallbacks"] = sum(not str(getattr(p, "method", "")).startswith(method) for p in pairs)
+            row["fallbacks"] = sum(_fell_back(result, method) for result in clock.results)
             per_run.append(_derived(row))
     clean()
     out = {}
@@ -849,8 +858,8 @@ def _kind_section(kind, rows, methods, short):
             " and the carrier at every in-between time), *assemble* (attributes and StrokeSets"
             " per frame) and *core rest* (plane fit, registration, crossings and lenses,"
             " fallbacks); *write*: the Blender write-back of every frame; *other*: the"
-            " operator's own overhead. *fallbacks*: stroke pairs that did not use the circular"
-            " ball-morph.",
+            " operator's own overhead. *fallbacks*: stroke pairs a piece of which took a fallback"
+            " morph (composite ball-morph, aligned or linear interpolation, straight point motion).",
             "",
             "| size | operator | keys | read | core | match | ball-map | per pair | frames | assemble"
             " | core rest | write | other | pairs | fallbacks |",
