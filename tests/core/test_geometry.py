@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 from shapes import circle, distance_to_polyline
 
 from ballmorph_core.ballmap.onemap import OneWayMap
+from ballmorph_core.geometry import projection
 from ballmorph_core.geometry.circles import circumcircles
 from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, self_crossings
 from ballmorph_core.geometry.polyline import (
@@ -244,6 +245,30 @@ def test_nearest_edges_match_brute_force_edge_and_fraction(seed, kind):
     one = nearest_within(points, owner, batch, reach)
     for g, w in zip(one, want):
         np.testing.assert_array_equal(g, w)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_few_queries_per_curve_measure_every_edge_as_the_tree_would(seed, monkeypatch):
+    # One query per curve (the ends of strokes): every edge of its curve is measured and no
+    # tree is built; the very answers of the tree's search and of the brute force.
+    rng = np.random.default_rng(seed)
+    curves = [np.cumsum(rng.normal(0, 0.05, (int(rng.integers(2, 120)), 2)), axis=0) for _ in range(7)]
+    curves[0][3 % len(curves[0])] = curves[0][0]  # a zero-length edge or an exact tie
+    batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
+    owner = rng.permutation(len(curves))
+    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 2, len(owner))]
+    points = np.where(rng.random((len(owner), 1)) < 0.3, on_vertex, rng.uniform(-0.5, 1.5, (len(owner), 2)))
+    reach = rng.choice([0.01, 0.1, 0.5, np.inf], len(owner))
+    want = _nearest_edges_brute(points, owner, batch, reach)
+    direct = NearestEdges(batch)
+    got = direct.within(points, owner, reach)
+    assert "_index" not in vars(direct)
+    monkeypatch.setattr(projection, "_DIRECT_PAIRS_PER_EDGE", 0)
+    searched = NearestEdges(batch)
+    for g, t, w in zip(got, searched.within(points, owner, reach), want):
+        np.testing.assert_array_equal(g, w)
+        np.testing.assert_array_equal(t, w)
+    assert "_index" in vars(searched)
 
 
 def _drifting(rng, batch, owner, points, rows):
