@@ -95,6 +95,9 @@ class NearestEdges:
         self.curves = curves
         self.e = np.flatnonzero(curves.nxt >= 0)
         self.a, self.d = curves.pts[self.e], curves.edge[self.e]
+        # What _closest gathers per candidate, coordinate by coordinate (single-value gathers
+        # are faster than of (x, y) rows): a's x and y, d's x and y, |d|^2, shape (5, E).
+        self.columns = np.stack([*self.a.T, *self.d.T, self.d[:, 0] * self.d[:, 0] + self.d[:, 1] * self.d[:, 1]])
         # Edges come curve after curve: curve c's are e[first_edge[c]:first_edge[c + 1]].
         self.first_edge = np.searchsorted(curves.owner[self.e], np.arange(len(curves.offsets)))
 
@@ -195,13 +198,17 @@ class NearestEdges:
         """
         if not len(i):
             return
-        a, d, x = self.a[j], self.d[j], x[i]
-        ee = np.einsum("ij,ij->i", d, d)
-        f = np.divide(np.einsum("ij,ij->i", x - a, d), ee, out=np.zeros_like(ee), where=ee > 0)
+        ax, ay, dx, dy, ee = np.take(self.columns, j, axis=1)
+        xx, xy = np.take(x[:, 0], i), np.take(x[:, 1], i)
+        f = np.divide((xx - ax) * dx + (xy - ay) * dy, ee, out=np.zeros_like(ee), where=ee > 0)
         np.clip(f, 0, 1, out=f)
-        a += f[:, None] * d
-        a -= x
-        d2 = np.sum(np.square(a), axis=1)
+        # The foot minus the query, coordinate by coordinate.
+        ax += f * dx
+        ax -= xx
+        ay += f * dy
+        ay -= xy
+        d2 = np.square(ax, out=ax)
+        d2 += np.square(ay, out=ay)
         # Candidates come query by query: keep each query's least distance, then the lowest
         # edge at it (pieces of one edge repeat it: any of them).
         run = np.flatnonzero(np.r_[True, i[1:] != i[:-1]])
