@@ -142,20 +142,21 @@ def _box_reach(boxes, centres):
 
     Parameters
     ----------
-    boxes : ndarray, shape (K, 4)
-        ``(xmin, ymin, xmax, ymax)`` rows (NaN for an empty node).
-    centres : ndarray, shape (K, 2)
+    boxes : ndarray, shape (4, K)
+        ``xmin, ymin, xmax, ymax`` rows (NaN for an empty node): coordinate by coordinate, so
+        the tree's searches gather single values (faster than rows of four).
+    centres : ndarray, shape (2, K)
 
     Returns
     -------
     near2, far2 : ndarray, shape (K,)
         NaN where the box is empty.
     """
-    cx, cy = centres[:, 0], centres[:, 1]
-    dx = np.maximum(np.maximum(boxes[:, 0] - cx, cx - boxes[:, 2]), 0.0)
-    dy = np.maximum(np.maximum(boxes[:, 1] - cy, cy - boxes[:, 3]), 0.0)
-    fx = np.maximum(np.abs(boxes[:, 0] - cx), np.abs(boxes[:, 2] - cx))
-    fy = np.maximum(np.abs(boxes[:, 1] - cy), np.abs(boxes[:, 3] - cy))
+    (x0, y0, x1, y1), (cx, cy) = boxes, centres
+    dx = np.maximum(np.maximum(x0 - cx, cx - x1), 0.0)
+    dy = np.maximum(np.maximum(y0 - cy, cy - y1), 0.0)
+    fx = np.maximum(np.abs(x0 - cx), np.abs(x1 - cx))
+    fy = np.maximum(np.abs(y0 - cy), np.abs(y1 - cy))
     return dx * dx + dy * dy, fx * fx + fy * fy
 
 
@@ -205,7 +206,7 @@ class PointTree:
             if (ends - starts).max(initial=0) <= leaf_size:
                 break
             # Split every node at its median along its wider side.
-            axis = (boxes[:, 2] - boxes[:, 0] < boxes[:, 3] - boxes[:, 1]).astype(np.int64)
+            axis = (boxes[2] - boxes[0] < boxes[3] - boxes[1]).astype(np.int64)
             node_of = np.repeat(np.arange(len(starts)), ends - starts)
             coord = self.points[perm, axis[node_of]]
             perm = perm[np.lexsort((coord, node_of))]
@@ -213,21 +214,23 @@ class PointTree:
             starts = np.stack([starts, mids], axis=1).ravel()
             ends = np.stack([mids, ends], axis=1).ravel()
         self.perm = perm
-        # Leaves' items as boxes, for nearest_candidates (points need no copy).
-        self.item_boxes = None if highs is None else np.concatenate([self.lows, self.highs], axis=1)
+        # Leaves' items as boxes, for nearest_candidates, coordinate by coordinate (see _box_reach).
+        self.item_boxes = np.concatenate([self.lows.T, self.highs.T]) if highs is not None else None
+        self.xy = np.ascontiguousarray(self.points.T)
 
     def _boxes(self, perm, starts, ends):
+        """Each node's box, shape (4, nodes) (see :func:`_box_reach`)."""
+        boxes = np.full((4, len(starts)), np.nan)
         if len(perm) == 0:
-            return np.full((len(starts), 4), np.nan)
+            return boxes
         lows, highs = self.lows[perm], self.highs[perm]
         nonempty = ends > starts
-        boxes = np.full((len(starts), 4), np.nan)
         # Nodes tile perm, so reduceat over the non-empty ones' starts takes exactly each node.
         idx = starts[nonempty]
-        boxes[nonempty, 0] = np.minimum.reduceat(lows[:, 0], idx)
-        boxes[nonempty, 1] = np.minimum.reduceat(lows[:, 1], idx)
-        boxes[nonempty, 2] = np.maximum.reduceat(highs[:, 0], idx)
-        boxes[nonempty, 3] = np.maximum.reduceat(highs[:, 1], idx)
+        boxes[0, nonempty] = np.minimum.reduceat(lows[:, 0], idx)
+        boxes[1, nonempty] = np.minimum.reduceat(lows[:, 1], idx)
+        boxes[2, nonempty] = np.maximum.reduceat(highs[:, 0], idx)
+        boxes[3, nonempty] = np.maximum.reduceat(highs[:, 1], idx)
         return boxes
 
     def _descend(self, depth, q, node):
@@ -251,13 +254,13 @@ class PointTree:
         whose points are then measured.
         """
         x = np.asarray(x, dtype=np.float64).reshape(-1, 2)
-        k = len(x)
+        k, xy = len(x), np.ascontiguousarray(x.T)
         q = np.arange(k)
         node = np.zeros(k, dtype=np.int64)
         for depth, (_, _, boxes) in enumerate(self.levels):
-            bx = boxes[node]
-            near, far = _box_reach(bx, x[q])
-            empty = np.isnan(bx[:, 0])
+            bx = np.take(boxes, node, axis=1)
+            near, far = _box_reach(bx, np.take(xy, q, axis=1))
+            empty = np.isnan(bx[0])
             near, far = np.where(empty, np.inf, near), np.where(empty, np.inf, far)
             bound = np.full(k, np.inf)
             np.minimum.at(bound, q, far)
@@ -295,24 +298,27 @@ class PointTree:
         the nearest far corner among a query's nodes bounds its closest distance; nodes (and
         at last items) beyond the bound are dropped level by level.
         """
-        x = np.asarray(x, dtype=np.float64).reshape(-1, 2)
-        k = len(x)
-        q, node = np.arange(k), np.asarray(group, dtype=np.int64)
+        x = np.ascontiguousarray(np.asarray(x, dtype=np.float64).reshape(-1, 2).T)
+        q, node = np.arange(x.shape[1]), np.asarray(group, dtype=np.int64)
         slack = np.asarray(slack, dtype=np.float64)
         limit = np.asarray(reach, dtype=np.float64) + slack
         for depth, (_, _, boxes) in enumerate(self.levels):
-            q, node = self._nearer(x, q, node, boxes[node], limit, slack)
+            q, node = self._nearer(x, q, node, np.take(boxes, node, axis=1), limit, slack)
             q, node = self._descend(depth, q, node)
         q, item = self._leaf_points(q, node)
-        boxes = np.tile(self.points[item], 2) if self.item_boxes is None else self.item_boxes[item]
+        if self.item_boxes is None:
+            boxes = np.tile(np.take(self.xy, item, axis=1), (2, 1))
+        else:
+            boxes = np.take(self.item_boxes, item, axis=1)
         q, item = self._nearer(x, q, item, boxes, limit, slack)
         return q, item
 
     @staticmethod
     def _nearer(x, q, node, boxes, limit, slack):
-        """The (query, node) pairs, sorted by query, whose box lies within the query's bound."""
+        """The (query, node) pairs, sorted by query, whose box lies within the query's bound
+        (``x``, shape (2, K), and ``boxes``, shape (4, M), coordinate by coordinate)."""
         # An empty node's NaNs: fmin passes them over, and NaN <= bound drops the node.
-        near2, far2 = _box_reach(boxes, x[q])
+        near2, far2 = _box_reach(boxes, np.take(x, q, axis=1))
         bound = limit.copy()
         if len(q):
             first = np.flatnonzero(np.r_[True, q[1:] != q[:-1]])
@@ -345,8 +351,9 @@ class PointTree:
         found_q, found_p = [], []
         q = np.arange(len(centres))
         node = np.zeros(len(centres), dtype=np.int64)
+        xy = np.ascontiguousarray(centres.T)
         for depth, (starts, ends, boxes) in enumerate(self.levels):
-            near2, far2 = _box_reach(boxes[node], centres[q])
+            near2, far2 = _box_reach(np.take(boxes, node, axis=1), np.take(xy, q, axis=1))
             near = near2 < r2[q]
             inside = near & (far2 < r2[q])
             if inside.any():
@@ -455,7 +462,7 @@ class CurveTree:
         found_q, found_p = [], []
         for depth in range(len(self.levels) - 1, -1, -1):
             c_start, c_end, boxes = self.levels[depth]
-            near2, far2 = _box_reach(boxes[node], centres[q])
+            near2, far2 = _box_reach(boxes[node].T, centres[q].T)
             near = near2 < r2[q]
             inside = near & (far2 < r2[q])
             if depth == 0:
