@@ -426,6 +426,9 @@ class CurveTree:
             count = parents
         self.roots = np.concatenate([[0], np.cumsum(count)])[:-1]  # root node of each curve
         self.has_points = sizes > 0
+        # Queried coordinate by coordinate (see _box_reach): boxes as (4, nodes) rows.
+        self.levels = [(c_start, c_end, np.ascontiguousarray(boxes.T)) for c_start, c_end, boxes in self.levels]
+        self.xy = np.ascontiguousarray(self.points.T)
 
     def _boxes(self, start, end):
         if len(start) == 0:
@@ -460,9 +463,10 @@ class CurveTree:
         keep = self.has_points[c]
         q, node = q[keep], self.roots[c[keep]]
         found_q, found_p = [], []
+        xy = np.ascontiguousarray(centres.T)
         for depth in range(len(self.levels) - 1, -1, -1):
             c_start, c_end, boxes = self.levels[depth]
-            near2, far2 = _box_reach(boxes[node].T, centres[q].T)
+            near2, far2 = _box_reach(np.take(boxes, node, axis=1), np.take(xy, q, axis=1))
             near = near2 < r2[q]
             inside = near & (far2 < r2[q])
             if depth == 0:
@@ -481,7 +485,8 @@ class CurveTree:
         start, end, _ = self.levels[0]
         owner, local = ragged_arange(end[node] - start[node])
         pq, pp = q[owner], start[node][owner] + local
-        d2 = np.sum(np.square(self.points[pp] - centres[pq]), axis=1)
+        dx, dy = np.take(self.xy, pp, axis=1) - np.take(xy, pq, axis=1)
+        d2 = dx * dx + dy * dy
         hit = d2 < r2[pq]
         found_q.append(pq[hit])
         found_p.append(pp[hit])
