@@ -7,6 +7,8 @@ the same few numpy calls. Edges are indexed by their first vertex (edge ``i`` ru
 ``i`` to ``nxt[i]``); an open curve's last vertex starts no edge.
 """
 
+from functools import cached_property
+
 import numpy as np
 
 from .. import tolerances as tol
@@ -89,9 +91,10 @@ def group_argmin(values, owner, n_groups):
     mins = np.minimum.reduceat(values, starts)
     counts = np.diff(np.r_[starts, len(values)])
     hit = np.flatnonzero(values == np.repeat(mins, counts))
-    groups, first = np.unique(owner[hit], return_index=True)
+    # Hits come group by group (in order): each group's first is where its owner changes.
+    first = hit[np.r_[True, owner[hit][1:] != owner[hit][:-1]]] if len(hit) else hit
     out = np.zeros(n_groups, dtype=np.int64)
-    out[groups] = hit[first]
+    out[owner[first]] = first
     return out
 
 
@@ -198,6 +201,15 @@ class Ragged:
         base : ndarray, shape (C,)
             Shift of each curve (each curve's range is followed by a gap).
         """
+        return self._global_s if gap == 1.0 else self._shifted(gap)
+
+    @cached_property
+    def _global_s(self):
+        """:meth:`global_s` with the default gap, which every locate needs: made once (not
+        to be written to)."""
+        return self._shifted(1.0)
+
+    def _shifted(self, gap):
         base = np.concatenate([[0.0], np.cumsum(self.length + gap)])[:-1]
         return self.s + base[self.owner], base
 

@@ -60,6 +60,22 @@ def test_group_argmin_finds_the_first_minimum_of_each_group():
     values = np.array([3.0, 1.0, 1.0, 5.0, 0.5, 7.0])
     owner = np.array([0, 0, 0, 2, 2, 3])
     assert group_argmin(values, owner, 4).tolist() == [1, 0, 4, 5]
+    # A group whose minimum is NaN gets 0 like an empty one; the others are untouched.
+    values[3:5] = np.nan
+    assert group_argmin(values, owner, 4).tolist() == [1, 0, 0, 5]
+
+
+def test_global_arc_lengths_are_made_once_and_shifted_per_curve():
+    batch = Ragged.from_list(
+        [np.array([[0.0, 0.0], [3.0, 4.0]]), np.array([[1.0, 1.0], [1.0, 2.0], [2.0, 2.0]])], False
+    )
+    g, base = batch.global_s()
+    assert batch.global_s()[0] is g  # the default gap's is kept for every locate
+    np.testing.assert_array_equal(base, [0.0, 6.0])
+    np.testing.assert_array_equal(g, [0.0, 5.0, 6.0, 7.0, 8.0])
+    g2, base2 = batch.global_s(gap=0.5)
+    np.testing.assert_array_equal(base2, [0.0, 5.5])
+    np.testing.assert_array_equal(g2, [0.0, 5.0, 5.5, 6.5, 7.5])
 
 
 def test_ragged_measures_each_curve_as_the_single_curve_functions_do():
