@@ -193,45 +193,36 @@ class PointTree:
         if highs is not None:
             # Boxes split at their centres (points are their own centres).
             self.points = 0.5 * (self.lows + self.highs)
-        perm = np.arange(n)
         if groups is None:
             starts, ends = np.array([0]), np.array([n])
         else:
             groups = np.asarray(groups, dtype=np.int64)
             starts, ends = groups[:-1], groups[1:]
+        # Leaves' items as boxes, for nearest_candidates, coordinate by coordinate (see _box_reach).
+        corners = np.concatenate([self.lows.T, self.highs.T])
+        self.item_boxes = corners if highs is not None else None
+        self.xy = np.ascontiguousarray(self.points.T)
+        # Coordinates as dense ranks (equal ones share theirs): one stable argsort of
+        # (node, rank) orders exactly as lexsort by (node, coordinate), several times faster.
+        ranks = np.stack([np.unique(c, return_inverse=True)[1].reshape(-1) for c in self.xy])
+        span = int(ranks.max(initial=0)) + 1
+        # The items' corners and ranks in tree order (perm), carried from level to level.
+        perm = np.arange(n)
         self.levels = []
         while True:
-            boxes = self._boxes(perm, starts, ends)
+            boxes = _node_boxes(corners, starts, ends)
             self.levels.append((starts, ends, boxes))
             if (ends - starts).max(initial=0) <= leaf_size:
                 break
             # Split every node at its median along its wider side.
-            axis = (boxes[2] - boxes[0] < boxes[3] - boxes[1]).astype(np.int64)
+            axis = boxes[2] - boxes[0] < boxes[3] - boxes[1]
             node_of = np.repeat(np.arange(len(starts)), ends - starts)
-            coord = self.points[perm, axis[node_of]]
-            perm = perm[np.lexsort((coord, node_of))]
+            order = np.argsort(node_of * span + np.where(axis[node_of], ranks[1], ranks[0]), kind="stable")
+            perm, corners, ranks = perm[order], np.take(corners, order, axis=1), np.take(ranks, order, axis=1)
             mids = (starts + ends) // 2
             starts = np.stack([starts, mids], axis=1).ravel()
             ends = np.stack([mids, ends], axis=1).ravel()
         self.perm = perm
-        # Leaves' items as boxes, for nearest_candidates, coordinate by coordinate (see _box_reach).
-        self.item_boxes = np.concatenate([self.lows.T, self.highs.T]) if highs is not None else None
-        self.xy = np.ascontiguousarray(self.points.T)
-
-    def _boxes(self, perm, starts, ends):
-        """Each node's box, shape (4, nodes) (see :func:`_box_reach`)."""
-        boxes = np.full((4, len(starts)), np.nan)
-        if len(perm) == 0:
-            return boxes
-        lows, highs = self.lows[perm], self.highs[perm]
-        nonempty = ends > starts
-        # Nodes tile perm, so reduceat over the non-empty ones' starts takes exactly each node.
-        idx = starts[nonempty]
-        boxes[0, nonempty] = np.minimum.reduceat(lows[:, 0], idx)
-        boxes[1, nonempty] = np.minimum.reduceat(lows[:, 1], idx)
-        boxes[2, nonempty] = np.maximum.reduceat(highs[:, 0], idx)
-        boxes[3, nonempty] = np.maximum.reduceat(highs[:, 1], idx)
-        return boxes
 
     def _descend(self, depth, q, node):
         """The children of the surviving (query, node) pairs, below level ``depth``."""
@@ -371,6 +362,20 @@ class PointTree:
         found_q.append(pq[hit])
         found_p.append(pp[hit])
         return np.concatenate(found_q), np.concatenate(found_p)
+
+
+def _node_boxes(corners, starts, ends):
+    """Each node's box, shape (4, nodes) (see :func:`_box_reach`), from its items' corners in
+    tree order, shape (4, N) (nodes tile them: ``starts``, ``ends``)."""
+    boxes = np.full((4, len(starts)), np.nan)
+    nonempty = ends > starts
+    if not corners.shape[1] or not nonempty.any():
+        return boxes
+    # Nodes tile the items, so reduceat over the non-empty ones' starts takes exactly each node.
+    idx = starts[nonempty]
+    boxes[:2, nonempty] = np.minimum.reduceat(corners[:2], idx, axis=1)
+    boxes[2:, nonempty] = np.maximum.reduceat(corners[2:], idx, axis=1)
+    return boxes
 
 
 def _union_boxes(lows, highs, start):

@@ -169,6 +169,29 @@ def test_point_tree_nearest_and_within_match_brute_force(points, queries):
     assert sorted(zip(q.tolist(), p.tolist())) == sorted(zip(*np.nonzero(d2 < 0.09)))
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_point_tree_nodes_hold_their_items_split_at_the_median_of_the_wider_side(seed):
+    # Boxes on a coarse grid (many equal coordinates) in three groups, rebuilt level by level:
+    # every node's box is its items' box, and its children are its items in (stable) order of
+    # their centres along its wider side, cut in half.
+    rng = np.random.default_rng(seed)
+    lows = np.round(rng.random((2000, 2)) * 6) / 6
+    highs = lows + np.round(rng.random((2000, 2)) * 3) / 30
+    tree = PointTree(lows, 4, highs=highs, groups=np.array([0, 40, 41, 2000]))
+    centres = 0.5 * (lows + highs)
+    perm = np.arange(2000)
+    for depth, (starts, ends, boxes) in enumerate(tree.levels):
+        for k in np.flatnonzero(ends > starts):
+            mine = perm[starts[k] : ends[k]]
+            np.testing.assert_array_equal(boxes[:, k], [*lows[mine].min(axis=0), *highs[mine].max(axis=0)])
+            if depth + 1 < len(tree.levels):
+                axis = int(boxes[2, k] - boxes[0, k] < boxes[3, k] - boxes[1, k])
+                perm[starts[k] : ends[k]] = mine[np.argsort(centres[mine, axis], kind="stable")]
+        if depth + 1 < len(tree.levels):
+            np.testing.assert_array_equal(tree.levels[depth + 1][0][::2], starts)
+    np.testing.assert_array_equal(perm, tree.perm)
+
+
 def test_curve_tree_searches_only_the_curves_named():
     a, b = _wobbly(80, 5), _wobbly(70, 6) + 0.1
     pts = np.concatenate([a, b])
