@@ -227,8 +227,13 @@ class Ragged:
         edge : ndarray of int, shape (K,)
         frac : ndarray, shape (K,)
         """
+        curve, s = np.broadcast_arrays(np.asarray(curve), np.asarray(s, dtype=np.float64))
         length = self.length[curve]
-        s = np.where(self.closed[curve], np.mod(s, np.maximum(length, 1e-300)), np.clip(s, 0.0, length))
+        # Loops wrap round, open curves stop at their ends (rows by index: open batches skip the mod).
+        loops = np.flatnonzero(self.closed[curve])
+        wrapped = np.mod(s[loops], np.maximum(length[loops], 1e-300))
+        s = np.clip(s, 0.0, length)
+        s[loops] = wrapped
         g, base = self.global_s()
         i = np.searchsorted(g, s + base[curve], side="right") - 1
         i = np.clip(i, self.offsets[curve], self.offsets[curve + 1] - 1)
