@@ -29,10 +29,11 @@ def tangent_disks(x, n, a, b, N, eps):
 
     Parameters
     ----------
-    x, n : ndarray, shape (K, 2)
-        Samples and their unit gap normals.
-    a, b, N : ndarray, shape (K, 2)
-        One edge per sample and its unit gap normal.
+    x, n : ndarray, shape (2, K)
+        Samples and their unit gap normals, coordinate by coordinate (rows ``x`` and ``y``:
+        contiguous rows make every step one pass over plain arrays).
+    a, b, N : ndarray, shape (2, K)
+        One edge per sample and its unit gap normal, likewise.
     eps : float
         Length tolerance (a vertex this close to ``x`` is touched by a zero disk).
 
@@ -43,25 +44,26 @@ def tangent_disks(x, n, a, b, N, eps):
     u : ndarray, shape (K,)
         The contact's position along the edge in [0, 1].
     """
-    d = b - a
-    len2 = np.einsum("ij,ij->i", d, d)
+    (xx, xy), (nx, ny), (ax, ay), (Nx, Ny) = x, n, a, N
+    dx, dy = b[0] - ax, b[1] - ay
+    len2 = dx * dx + dy * dy
     # Edge (eq. 4, 5).
-    num = np.einsum("ij,ij->i", x - a, N)
-    den = 1.0 - np.einsum("ij,ij->i", n, N)
+    num = (xx - ax) * Nx + (xy - ay) * Ny
+    den = 1.0 - (nx * Nx + ny * Ny)
     with np.errstate(divide="ignore", invalid="ignore"):
         r_e = np.where(den > PARALLEL, num / den, np.inf)
     r_e = np.where(r_e >= -eps, np.maximum(r_e, 0.0), np.inf)
-    q = x + np.where(np.isfinite(r_e), r_e, 0.0)[:, None] * (n - N)
+    step = np.where(np.isfinite(r_e), r_e, 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        u = np.einsum("ij,ij->i", q - a, d) / len2
+        u = ((xx + step * (nx - Nx) - ax) * dx + (xy + step * (ny - Ny) - ay) * dy) / len2
     r_e = np.where((u >= -ON_EDGE) & (u <= 1 + ON_EDGE), r_e, np.inf)
     u = np.clip(np.nan_to_num(u), 0.0, 1.0)
     # Vertices (eq. 3): r = |v - x|^2 / (2 (v - x) . n).
     best_r, best_u = r_e, u
-    for vert, uu in ((a, 0.0), (b, 1.0)):
-        dv = vert - x
-        dist2 = np.einsum("ij,ij->i", dv, dv)
-        den_v = 2.0 * np.einsum("ij,ij->i", dv, n)
+    for (vx, vy), uu in ((a, 0.0), (b, 1.0)):
+        ex, ey = vx - xx, vy - xy
+        dist2 = ex * ex + ey * ey
+        den_v = 2.0 * (ex * nx + ey * ny)
         with np.errstate(divide="ignore", invalid="ignore"):
             r_v = np.where(den_v > 0, dist2 / den_v, np.inf)
         r_v = np.where(dist2 <= eps * eps, 0.0, r_v)
@@ -77,7 +79,7 @@ def _smallest_in_windows(x, n, edges, windows, eps):
     counts = np.array([len(w) for w in windows])
     owner, _ = ragged_arange(counts)
     e = np.concatenate(windows)
-    rr, uu = tangent_disks(x[owner], n[owner], a[e], b[e], N[e], eps)
+    rr, uu = tangent_disks(x[owner].T, n[owner].T, a[e].T, b[e].T, N[e].T, eps)
     best = group_argmin(rr, owner, len(x))
     return rr[best], a[e[best]] + uu[best][:, None] * (b[e[best]] - a[e[best]])
 

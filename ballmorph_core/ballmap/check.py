@@ -44,10 +44,18 @@ def _local_depths(side, chain, s, centres, radii):
     local = edge - rg.offsets[chain]
     n_v = np.maximum(rg.n[chain], 1)[:, None]
     win = local[:, None] + np.arange(-LOCAL_WINDOW, LOCAL_WINDOW + 2)[None, :]
-    win = np.where(rg.closed[chain][:, None], np.mod(win, n_v), np.clip(win, 0, n_v - 1))
+    # Loops wrap round, open curves stop at their ends (rows by index: no boolean copies).
+    loops = np.flatnonzero(rg.closed[chain])
+    wrapped = np.mod(win[loops], n_v[loops])
+    np.clip(win, 0, n_v - 1, out=win)
+    win[loops] = wrapped
     g = rg.offsets[chain][:, None] + win
-    diff = rg.pts[g] - centres[:, None, :]
-    d2 = np.einsum("kwi,kwi->kw", diff, diff)
+    # Coordinate by coordinate: gathers of single values, about 3x faster than of (x, y) rows.
+    dx, dy = np.take(rg.pts[:, 0], g), np.take(rg.pts[:, 1], g)
+    dx -= centres[:, :1]
+    dy -= centres[:, 1:]
+    d2 = np.square(dx, out=dx)
+    d2 += np.square(dy, out=dy)
     k = np.argmin(d2, axis=1)
     rows = np.arange(len(k))
     return radii - np.sqrt(d2[rows, k]), g[rows, k]

@@ -30,9 +30,10 @@ def _search(x, n, dst, chain, e_lo, e_hi, eps):
 
     Returns radii (inf where none) and contact positions in units of target edges (``e + u``).
     """
-    rg = dst.rg
+    rg, (pts, edge, normals) = dst.rg, dst.columns
+    x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
     counts = e_hi - e_lo + 1
-    r, pos = np.full(len(x), np.inf), np.zeros(len(x))
+    r, pos = np.full(x.shape[1], np.inf), np.zeros(x.shape[1])
     for sl in budget_slices(counts, CANDIDATE_BUDGET):
         owner, local = ragged_arange(counts[sl])
         if not len(owner):
@@ -40,7 +41,15 @@ def _search(x, n, dst, chain, e_lo, e_hi, eps):
         c = chain[sl][owner]
         e_local = e_lo[sl][owner] + local
         g = rg.offsets[c] + np.where(rg.closed[c], e_local % np.maximum(rg.n_edges[c], 1), e_local)
-        rr, uu = tangent_disks(x[sl][owner], n[sl][owner], rg.pts[g], rg.pts[g] + rg.edge[g], dst.enormals[g], eps)
+        a, i = np.take(pts, g, axis=1), owner + sl.start
+        rr, uu = tangent_disks(
+            np.take(x, i, axis=1),
+            np.take(n, i, axis=1),
+            a,
+            a + np.take(edge, g, axis=1),
+            np.take(normals, g, axis=1),
+            eps,
+        )
         best = group_argmin(rr, owner, sl.stop - sl.start)
         r[sl], pos[sl] = rr[best], e_local[best] + uu[best]
     return r, pos

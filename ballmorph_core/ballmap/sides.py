@@ -28,6 +28,9 @@ class Sides:
         The dense curves.
     vnormals, enormals : ndarray, shape (N, 2)
         Vertex normals and edge normals (by first vertex), into the gap.
+    columns : tuple of ndarray, shape (2, N)
+        ``rg.pts``, ``rg.edge`` and ``enormals`` coordinate by coordinate (for the searches'
+        gathers, see :func:`~ballmorph_core.ballmap.candidates.tangent_disks`).
     """
 
     def __init__(self, curves, closed, sides, spacing):
@@ -40,6 +43,7 @@ class Sides:
         side = np.asarray(sides, dtype=np.float64)[self.rg.owner][:, None]
         self.vnormals = side * self.rg.vertex_normals()
         self.enormals = side * self.rg.edge_normals()
+        self.columns = tuple(np.ascontiguousarray(v.T) for v in (self.rg.pts, self.rg.edge, self.enormals))
 
     def view(self, c):
         """Curve ``c`` alone (Side)."""

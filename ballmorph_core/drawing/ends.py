@@ -17,6 +17,7 @@ ball-map as any stroke pair.
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -201,8 +202,9 @@ class _SlidingPaths:
 
     Parameters
     ----------
-    curves : Ragged
-        Open curves.
+    curves : list of ndarray, shape (n_i, 2)
+        Open curves, batched only if these paths are evaluated on their own: the layout joins
+        the overhangs of a drawing and evaluates their joined batch only.
     curve : ndarray of int, shape (K,)
         Each point's curve.
     s, attach : ndarray, shape (K,)
@@ -213,14 +215,18 @@ class _SlidingPaths:
     """
 
     def __init__(self, curves, curve, s, attach, towards, grow):
-        self._rg, self._curve, self._s, self._attach = curves, curve, s, attach
+        self._curves, self._curve, self._s, self._attach = curves, curve, s, attach
         self._towards, self._grow = towards, grow
+
+    @cached_property
+    def _rg(self):
+        return Ragged.from_list(self._curves, False)
 
     @classmethod
     def join(cls, parts):
         """Many of them (``(paths, kept points)`` each) as one: one evaluation for them all."""
-        curves = Ragged.from_list([paths._rg.pts for paths, _ in parts], False)
-        ends = np.cumsum([0] + [len(paths._rg) for paths, _ in parts])
+        curves = [c for paths, _ in parts for c in paths._curves]
+        ends = np.cumsum([0] + [len(paths._curves) for paths, _ in parts])
         columns = (
             np.concatenate([first + paths._curve[keep] for first, (paths, keep) in zip(ends, parts)]),
             *(np.concatenate([getattr(paths, name)[keep] for paths, keep in parts]) for name in ("_s", "_attach")),
@@ -279,7 +285,7 @@ def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
     s = np.linspace(s0, s1, count)
     u = np.linspace(0.0, 1.0, count)
     paths = _SlidingPaths(
-        Ragged.from_list([curve], [False]),
+        [curve],
         np.zeros(count, np.int64),
         s,
         np.full(count, float(attach)),

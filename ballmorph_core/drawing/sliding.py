@@ -69,6 +69,7 @@ def _sliding_fits(xp, search, index, starts, size, overlap=True):
     they overlap, by trimmed iterative closest points.
 
     Samples of P that land on Q's ends (P's overhang) or far from Q are left out of each fit.
+    Every start is fitted at once (rows of one batch: each row's fit is its own).
 
     Parameters
     ----------
@@ -90,57 +91,69 @@ def _sliding_fits(xp, search, index, starts, size, overlap=True):
     residual : ndarray, shape (L,)
         RMS distance of the overlapping samples (inf where the overlap is too short).
     """
+    Q, (L, k), n = search.curves, xp.shape, len(starts)
+    xp, index, size = np.tile(xp, (n, 1)), np.tile(index, n), np.tile(size, n)
+    a = np.concatenate([np.asarray(a, dtype=complex) for a, _ in starts])
+    b = np.concatenate([np.asarray(b, dtype=complex) for _, b in starts])
+    d, w, s_q = _iterate(xp, search, index, size, a, b)
+    covered_p = w.mean(axis=1)
+    s_kept = np.where(w > 0, s_q.reshape(n * L, k), np.nan)
+    span_q = (np.nanmax(s_kept, axis=1, initial=-np.inf) - np.nanmin(s_kept, axis=1, initial=np.inf)) / np.maximum(
+        Q.length[index], 1e-300
+    )
+    residual = np.sqrt((w * np.where(np.isfinite(d), d, 0.0) ** 2).sum(axis=1) / np.maximum(w.sum(axis=1), 1))
+    if overlap:
+        residual = np.where((covered_p >= SLIDE_OVERLAP) & (span_q >= SLIDE_OVERLAP), residual, np.inf)
+    size = size[:L]
+    best = (np.ones(L, complex), np.zeros(L, complex), np.full(L, np.inf))
+    for fit in zip(a.reshape(n, L), b.reshape(n, L), residual.reshape(n, L)):
+        # Equally good fits (a circle slides along itself): the one turning less.
+        both = np.isfinite(fit[2]) & np.isfinite(best[2])
+        gap = np.subtract(fit[2], best[2], out=np.zeros(L), where=both)
+        tie = both & (np.abs(gap) <= tol.EQUAL_FIT * size)
+        better = np.where(tie, np.abs(np.angle(fit[0])) < np.abs(np.angle(best[0])), fit[2] < best[2])
+        best = tuple(np.where(better, new, old) for new, old in zip(fit, best))
+    return best
+
+
+def _iterate(xp, search, index, size, a, b):
+    """The trimmed iterative closest points of :func:`_sliding_fits` (arguments as there, one
+    start per row): ``a``, ``b`` updated in place; returns the last iteration's distances ``d``
+    (inf off Q's interior) and weights ``w``, shape (L, k), and arc lengths on Q, shape (L k,)."""
     Q = search.curves
     L, k = xp.shape
     owner = np.repeat(index, k)
-    best = (np.ones(L, complex), np.zeros(L, complex), np.full(L, np.inf))
     end_eps = tol.SHARED_ENDPOINT * np.repeat(size, k)
     length_q = np.repeat(Q.length[index], k)
     reach = SLIDE_REACH * np.repeat(size, k)
     cols = np.arange(k)
-    for a, b in starts:
-        a, b = np.array(a, dtype=complex), np.array(b, dtype=complex)
-        d, w, s_q = np.full((L, k), np.inf), np.zeros((L, k)), np.zeros(L * k)
-        foot = np.full(L * k, np.nan, dtype=complex)
-        followed = FollowedQueries(search, owner, SLIDE_FOLLOW * np.repeat(size, k))
-        active = np.arange(L)
-        for step in range(SLIDE_ITERATIONS):
-            if not len(active):
-                break
-            q = (active[:, None] * k + cols).ravel()
-            z = (a[active, None] * xp[active] + b[active, None]).ravel()
-            # The last iteration's foot is still on Q: the closest point lies no farther than it,
-            # which bounds the search as the fit settles (the same answer, found sooner; fmin: a
-            # query that found nothing keeps its reach).
-            bound = reach[q] if step == 0 else np.fmin(reach[q], np.abs(z - foot[q]) * (1.0 + 1e-9) + 1e-300)
-            dist, edge, frac = followed.within(q, from_complex(z), bound)
-            s_q[q] = Q.s[edge] + frac * Q.length_of_edge[edge]
-            inner = np.isfinite(dist) & (s_q[q] > end_eps[q]) & (s_q[q] < length_q[q] - end_eps[q])
-            d[active] = np.where(inner, dist, np.inf).reshape(-1, k)
-            limit = np.maximum(3.0 * _finite_median(d[active]), 1e-3 * size[active])
-            w[active] = d[active] <= limit[:, None]
-            target = as_complex(Q.pts[edge] + frac[:, None] * Q.edge[edge])
-            foot[q] = np.where(np.isfinite(dist), target, np.nan)
-            new_a, new_b = _weighted_similarity(xp[active], target.reshape(-1, k), w[active])
-            # A fit that did not move is a fixed point: every later iteration would repeat it.
-            moved = (new_a != a[active]) | (new_b != b[active])
-            a[active], b[active] = new_a, new_b
-            active = active[moved]
-        covered_p = w.mean(axis=1)
-        s_kept = np.where(w > 0, s_q.reshape(L, k), np.nan)
-        span_q = (np.nanmax(s_kept, axis=1, initial=-np.inf) - np.nanmin(s_kept, axis=1, initial=np.inf)) / np.maximum(
-            Q.length[index], 1e-300
-        )
-        residual = np.sqrt((w * np.where(np.isfinite(d), d, 0.0) ** 2).sum(axis=1) / np.maximum(w.sum(axis=1), 1))
-        if overlap:
-            residual = np.where((covered_p >= SLIDE_OVERLAP) & (span_q >= SLIDE_OVERLAP), residual, np.inf)
-        # Equally good fits (a circle slides along itself): the one turning less.
-        both = np.isfinite(residual) & np.isfinite(best[2])
-        gap = np.subtract(residual, best[2], out=np.zeros(L), where=both)
-        tie = both & (np.abs(gap) <= tol.EQUAL_FIT * size)
-        better = np.where(tie, np.abs(np.angle(a)) < np.abs(np.angle(best[0])), residual < best[2])
-        best = tuple(np.where(better, new, old) for new, old in zip((a, b, residual), best))
-    return best
+    d, w, s_q = np.full((L, k), np.inf), np.zeros((L, k)), np.zeros(L * k)
+    foot = np.full(L * k, np.nan, dtype=complex)
+    followed = FollowedQueries(search, owner, SLIDE_FOLLOW * np.repeat(size, k))
+    active = np.arange(L)
+    for step in range(SLIDE_ITERATIONS):
+        if not len(active):
+            break
+        q = (active[:, None] * k + cols).ravel()
+        z = (a[active, None] * xp[active] + b[active, None]).ravel()
+        # The last iteration's foot is still on Q: the closest point lies no farther than it,
+        # which bounds the search as the fit settles (the same answer, found sooner; fmin: a
+        # query that found nothing keeps its reach).
+        bound = reach[q] if step == 0 else np.fmin(reach[q], np.abs(z - foot[q]) * (1.0 + 1e-9) + 1e-300)
+        dist, edge, frac = followed.within(q, from_complex(z), bound)
+        s_q[q] = Q.s[edge] + frac * Q.length_of_edge[edge]
+        inner = np.isfinite(dist) & (s_q[q] > end_eps[q]) & (s_q[q] < length_q[q] - end_eps[q])
+        d[active] = np.where(inner, dist, np.inf).reshape(-1, k)
+        limit = np.maximum(3.0 * _finite_median(d[active]), 1e-3 * size[active])
+        w[active] = d[active] <= limit[:, None]
+        target = as_complex(Q.pts[edge] + frac[:, None] * Q.edge[edge])
+        foot[q] = np.where(np.isfinite(dist), target, np.nan)
+        new_a, new_b = _weighted_similarity(xp[active], target.reshape(-1, k), w[active])
+        # A fit that did not move is a fixed point: every later iteration would repeat it.
+        moved = (new_a != a[active]) | (new_b != b[active])
+        a[active], b[active] = new_a, new_b
+        active = active[moved]
+    return d, w, s_q
 
 
 def _worth_sliding(xp, search, index, size, a, b, residual):

@@ -5,8 +5,12 @@ batch, within a reach, through a k-d tree over the edges (long edges cut into pi
 scribble's edges spanning the whole drawing do not make every query a candidate of every
 edge); built once, it answers batch after batch (a fit iterating over the same curves).
 It needs no reach to be quick: a query's bound shrinks to the nearest far corner of its
-curve's boxes as it descends, so :class:`PolylineProjector` asks it with none.
+curve's boxes as it descends, so :class:`PolylineProjector` asks it with none. A search asking
+few queries per curve (each stroke's two ends) measures every edge of their curves instead,
+and builds no tree.
 """
+
+from functools import cached_property
 
 import numpy as np
 
@@ -30,6 +34,10 @@ _LEAF_PIECES = 8
 
 #: Candidates a followed query keeps at most (one with more searches the tree every time).
 _KEPT = 32
+
+#: A search whose queries' curves hold at most this many edges per edge of the batch measures
+#: every one of them: fewer pairs than building the tree sorts (about one query per curve).
+_DIRECT_PAIRS_PER_EDGE = 2
 
 
 def _pieces(a, d):
@@ -79,20 +87,42 @@ class NearestEdges:
     A k-d tree over the pieces of :func:`_pieces`, one root per curve (a query meets only its
     own curve's edges), split at the pieces' centres: its boxes stay small even where the
     curve's runs of edges do not (a scribble's), and a query's reach shrinks to the nearest
-    far corner as it descends.
+    far corner as it descends. It is built at the first search with more queries per curve
+    than ``_DIRECT_PAIRS_PER_EDGE`` allows measuring every edge for.
     """
 
     def __init__(self, curves):
         self.curves = curves
         self.e = np.flatnonzero(curves.nxt >= 0)
         self.a, self.d = curves.pts[self.e], curves.edge[self.e]
-        if len(self.e) == 0:
-            return
-        boxes, self.piece_edge = _pieces(self.a, self.d)
+        # What _closest gathers per candidate, coordinate by coordinate (single-value gathers
+        # are faster than of (x, y) rows): a's x and y, d's x and y, |d|^2, shape (5, E).
+        self.columns = np.stack([*self.a.T, *self.d.T, self.d[:, 0] * self.d[:, 0] + self.d[:, 1] * self.d[:, 1]])
+        # Edges come curve after curve: curve c's are e[first_edge[c]:first_edge[c + 1]].
+        self.first_edge = np.searchsorted(curves.owner[self.e], np.arange(len(curves.offsets)))
+
+    @cached_property
+    def _index(self):
+        """The k-d tree over the pieces (see Notes), each piece's edge and the largest coordinate
+        of their boxes; built when a search first needs them."""
+        boxes, piece_edge = _pieces(self.a, self.d)
         # Edges come curve after curve, and so do their pieces.
-        groups = np.searchsorted(curves.owner[self.e[self.piece_edge]], np.arange(len(curves.offsets)))
-        self.tree = PointTree(boxes[:, :2], _LEAF_PIECES, highs=boxes[:, 2:], groups=groups)
-        self.extent = float(np.abs(boxes).max())
+        groups = np.searchsorted(self.curves.owner[self.e[piece_edge]], np.arange(len(self.curves.offsets)))
+        return (
+            PointTree(boxes[:, :2], _LEAF_PIECES, highs=boxes[:, 2:], groups=groups),
+            piece_edge,
+            float(np.abs(boxes).max()),
+        )
+
+    @property
+    def tree(self):
+        """The k-d tree over the pieces (a PointTree with one group per curve)."""
+        return self._index[0]
+
+    @property
+    def piece_edge(self):
+        """The edge (row of ``a``) of each of the tree's pieces, ndarray of int, shape (M,)."""
+        return self._index[1]
 
     def within(self, points, owner, reach):
         """The closest point of each query's curve, among edges within ``reach`` of the query.
@@ -114,26 +144,36 @@ class NearestEdges:
         frac : ndarray, shape (K,)
             The closest point is ``curves.pts[edge] + frac * curves.edge[edge]``.
         """
-        points, owner, reach, slack = self._bounded(points, owner, reach)
+        points, owner, reach = self._bounded(points, owner, reach)
         out = _empty(len(points))
+        counts = np.diff(self.first_edge)[owner]
+        if counts.sum() <= _DIRECT_PAIRS_PER_EDGE * len(self.e):
+            # Every edge of the query's curve: the closest within reach is among them.
+            i, k = ragged_arange(counts)
+            self._closest(out, np.arange(len(points)), points, i, self.first_edge[owner[i]] + k, reach)
+            return out
+        slack = self._slack(points)
         for rows in self._chunks(len(points)):
             i, p = self.tree.nearest_candidates(points[rows], reach[rows], owner[rows], slack)
             self._closest(out, rows, points[rows], i, self.piece_edge[p], reach[rows])
         return out
 
     def _bounded(self, points, owner, reach):
-        """Queries as arrays, each reach cut to its curve's far corner, and the round-off slack."""
+        """Queries as arrays, each reach cut to its curve's far corner."""
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         owner = np.asarray(owner, dtype=np.int64).reshape(-1)
         if len(points) == 0 or len(self.e) == 0:
-            return points, owner, np.zeros(len(points)), 0.0
+            return points, owner, np.zeros(len(points))
         # No edge of a curve lies farther than the far corner of its bounding box: a bound for any reach.
         box = self.curves.boxes()[owner]
         corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
         reach = np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
-        # Distances computed at these coordinates err by round-off: no candidate is lost to it.
-        slack = tol.ROUNDOFF * max(self.extent, float(np.abs(points).max()))
-        return points, owner, reach, slack
+        return points, owner, reach
+
+    def _slack(self, points):
+        """The tree's round-off slack for ``points`` (shape (K, 2), K > 0): distances computed
+        at these coordinates err by round-off, and no candidate is lost to it."""
+        return tol.ROUNDOFF * max(self._index[2], float(np.abs(points).max()))
 
     def _chunks(self, n):
         """Runs of at most ``_QUERY_CHUNK`` of ``n`` queries (none without edges to search)."""
@@ -158,13 +198,17 @@ class NearestEdges:
         """
         if not len(i):
             return
-        a, d, x = self.a[j], self.d[j], x[i]
-        ee = np.einsum("ij,ij->i", d, d)
-        f = np.divide(np.einsum("ij,ij->i", x - a, d), ee, out=np.zeros_like(ee), where=ee > 0)
+        ax, ay, dx, dy, ee = np.take(self.columns, j, axis=1)
+        xx, xy = np.take(x[:, 0], i), np.take(x[:, 1], i)
+        f = np.divide((xx - ax) * dx + (xy - ay) * dy, ee, out=np.zeros_like(ee), where=ee > 0)
         np.clip(f, 0, 1, out=f)
-        a += f[:, None] * d
-        a -= x
-        d2 = np.sum(np.square(a), axis=1)
+        # The foot minus the query, coordinate by coordinate.
+        ax += f * dx
+        ax -= xx
+        ay += f * dy
+        ay -= xy
+        d2 = np.square(ax, out=ax)
+        d2 += np.square(ay, out=ay)
         # Candidates come query by query: keep each query's least distance, then the lowest
         # edge at it (pieces of one edge repeat it: any of them).
         run = np.flatnonzero(np.r_[True, i[1:] != i[:-1]])
@@ -208,10 +252,11 @@ class FollowedQueries:
         """:meth:`NearestEdges.within` of queries ``rows`` (ndarray of int, shape (K,)) now at
         ``points``, shape (K, 2), within ``reach``, shape (K,)."""
         search = self.search
-        points, owner, reach, slack = search._bounded(points, self.owner[rows], reach)
+        points, owner, reach = search._bounded(points, self.owner[rows], reach)
         out = _empty(len(points))
         if not len(points) or not len(search.e):
             return out
+        slack = search._slack(points)
         moved = np.hypot(*(points - self.at[rows]).T)
         fresh = reach + moved + 2.0 * slack > self.held[rows]
         kept = np.flatnonzero(~fresh)

@@ -7,6 +7,8 @@ the same few numpy calls. Edges are indexed by their first vertex (edge ``i`` ru
 ``i`` to ``nxt[i]``); an open curve's last vertex starts no edge.
 """
 
+from functools import cached_property
+
 import numpy as np
 
 from .. import tolerances as tol
@@ -89,9 +91,10 @@ def group_argmin(values, owner, n_groups):
     mins = np.minimum.reduceat(values, starts)
     counts = np.diff(np.r_[starts, len(values)])
     hit = np.flatnonzero(values == np.repeat(mins, counts))
-    groups, first = np.unique(owner[hit], return_index=True)
+    # Hits come group by group (in order): each group's first is where its owner changes.
+    first = hit[np.r_[True, owner[hit][1:] != owner[hit][:-1]]] if len(hit) else hit
     out = np.zeros(n_groups, dtype=np.int64)
-    out[groups] = hit[first]
+    out[owner[first]] = first
     return out
 
 
@@ -162,7 +165,6 @@ class Ragged:
         self.s = csum
         self.length = self._sums(self.length_of_edge)
         self.n_edges = np.where(self.closed, self.n, np.maximum(self.n - 1, 0))
-        self._global_s = None  # global_s() with the default gap, once asked for
 
     def __len__(self):
         return len(self.n)
@@ -201,13 +203,17 @@ class Ragged:
 
         Those of the default gap are computed once and shared: read them, never write them.
         """
-        if gap == 1.0 and self._global_s is not None:  # kept: overhangs locate on it every frame
-            return self._global_s
+        return self._global_s if gap == 1.0 else self._shifted(gap)
+
+    @cached_property
+    def _global_s(self):
+        """:meth:`global_s` with the default gap, which every locate needs: made once (not
+        to be written to)."""
+        return self._shifted(1.0)
+
+    def _shifted(self, gap):
         base = np.concatenate([[0.0], np.cumsum(self.length + gap)])[:-1]
-        found = self.s + base[self.owner], base
-        if gap == 1.0:
-            self._global_s = found
-        return found
+        return self.s + base[self.owner], base
 
     def locate(self, curve, s):
         """Edge (global first-vertex index) and fraction at arc lengths ``s`` on given curves.
@@ -223,8 +229,13 @@ class Ragged:
         edge : ndarray of int, shape (K,)
         frac : ndarray, shape (K,)
         """
+        curve, s = np.broadcast_arrays(np.asarray(curve), np.asarray(s, dtype=np.float64))
         length = self.length[curve]
-        s = np.where(self.closed[curve], np.mod(s, np.maximum(length, 1e-300)), np.clip(s, 0.0, length))
+        # Loops wrap round, open curves stop at their ends (rows by index: open batches skip the mod).
+        loops = np.flatnonzero(self.closed[curve])
+        wrapped = np.mod(s[loops], np.maximum(length[loops], 1e-300))
+        s = np.clip(s, 0.0, length)
+        s[loops] = wrapped
         g, base = self.global_s()
         i = np.searchsorted(g, s + base[curve], side="right") - 1
         i = np.clip(i, self.offsets[curve], self.offsets[curve + 1] - 1)

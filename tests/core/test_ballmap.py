@@ -16,6 +16,7 @@ from shapes import (
 
 import ballmorph_core as bm
 from ballmorph_core.ballmap import check
+from ballmorph_core.ballmap.candidates import tangent_disks
 from ballmorph_core.geometry.intersections import is_simple
 from ballmorph_core.geometry.polyline import vertex_normals
 
@@ -360,3 +361,31 @@ def test_vertex_normals_are_unit_and_orthogonal_on_a_circle():
     np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1.0)
     # Left normals of a counter-clockwise circle point inwards.
     np.testing.assert_allclose(n, -c / 2.0, atol=1e-12)
+
+
+def test_tangent_disks_are_the_smallest_disk_touching_each_edge():
+    # Random samples and edges (coordinate rows): the radius is the least of the edge's
+    # tangent disk (contact on the edge) and its two vertices' disks, and the disk touches.
+    rng = np.random.default_rng(5)
+    k = 400
+    x, a, b = rng.uniform(-1, 1, (3, 2, k))
+    n = rng.normal(size=(2, k))
+    n /= np.linalg.norm(n, axis=0)
+    N = np.array([a[1] - b[1], b[0] - a[0]]) * rng.choice([-1.0, 1.0], k)  # the edges' normals
+    N /= np.linalg.norm(N, axis=0)
+    r, u = tangent_disks(x, n, a, b, N, 1e-12)
+    for i in range(k):
+        xi, ni, ai, bi, Ni = x[:, i], n[:, i], a[:, i], b[:, i], N[:, i]
+        radii = [np.inf]
+        den = 1.0 - ni @ Ni
+        r_e = (xi - ai) @ Ni / den if den > 1e-12 else np.inf
+        if np.isfinite(r_e) and r_e >= 0:
+            f = (xi + r_e * (ni - Ni) - ai) @ (bi - ai) / ((bi - ai) @ (bi - ai))
+            radii.append(r_e if -1e-9 <= f <= 1 + 1e-9 else np.inf)
+        for v in (ai, bi):
+            dv = v - xi
+            radii.append(dv @ dv / (2.0 * dv @ ni) if dv @ ni > 0 else np.inf)
+        assert r[i] == pytest.approx(min(radii), rel=1e-9)
+        if np.isfinite(r[i]):
+            contact = ai + u[i] * (bi - ai)
+            assert np.linalg.norm(xi + r[i] * ni - contact) == pytest.approx(r[i], rel=1e-6, abs=1e-9)

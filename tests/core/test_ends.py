@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from ballmorph_core.drawing import sliding
-from ballmorph_core.drawing.ends import settle_ends
+from ballmorph_core.drawing.ends import overhang_morph, settle_ends
 from ballmorph_core.drawing.pipeline import PairMorph
 from ballmorph_core.drawing.registration import FIT_SAMPLES, fit_pairs
 from ballmorph_core.geometry.ragged import Ragged
@@ -28,6 +28,30 @@ def test_a_longer_stroke_overhangs_and_the_common_parts_share_their_ends():
     np.testing.assert_allclose(ends.keep_q[0], [0.0, np.pi], atol=2e-3)  # Q past 180 degrees overhangs
     rc, qc = ends.common_p.curve(0), ends.common_q.curve(0)
     np.testing.assert_allclose(rc[[0, -1]], qc[[0, -1]], atol=1e-12)
+
+
+def test_overhangs_slide_along_their_curves_alone_and_joined():
+    # An overhang shrinking into its curve's end and one growing out of another curve: each
+    # evaluated on its own, and both joined into one evaluation (as the layout does), agree.
+    a, b = arc(0, 180), arc(0, 90, n=40, radius=2.0)
+    shrink = overhang_morph(a, 2.0, np.pi, 2.0, np.array([0.1, 0.0]), False, 0.05)
+    grow = overhang_morph(b, 0.0, 1.5, 1.5, np.array([0.0, -0.2]), True, 0.05)
+    np.testing.assert_allclose(
+        shrink(0.0), batch(a).point_at(np.zeros(len(shrink.u_p), int), 2.0 + (np.pi - 2.0) * shrink.u_p), atol=1e-12
+    )
+    np.testing.assert_allclose(
+        shrink(1.0),
+        np.broadcast_to(batch(a).point_at(np.array([0]), np.array([2.0])) + [0.1, 0.0], (len(shrink.u_p), 2)),
+        atol=1e-12,
+    )
+    np.testing.assert_allclose(
+        grow(0.0),
+        np.broadcast_to(batch(b).point_at(np.array([0]), np.array([1.5])) - [0.0, -0.2], (len(grow.u_p), 2)),
+        atol=1e-12,
+    )
+    both = type(shrink.paths).join([(shrink.paths, np.arange(len(shrink.u_p))), (grow.paths, np.arange(len(grow.u_p)))])
+    for t in (0.0, 0.3, 1.0):
+        np.testing.assert_allclose(both.at(t), np.concatenate([shrink(t), grow(t)]), atol=1e-12)
 
 
 def test_pairs_not_settled_stay_exactly_as_they_are():

@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 from shapes import circle, distance_to_polyline
 
 from ballmorph_core.ballmap.onemap import OneWayMap
+from ballmorph_core.geometry import projection
 from ballmorph_core.geometry.circles import circumcircles
 from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, self_crossings
 from ballmorph_core.geometry.polyline import (
@@ -59,6 +60,22 @@ def test_group_argmin_finds_the_first_minimum_of_each_group():
     values = np.array([3.0, 1.0, 1.0, 5.0, 0.5, 7.0])
     owner = np.array([0, 0, 0, 2, 2, 3])
     assert group_argmin(values, owner, 4).tolist() == [1, 0, 4, 5]
+    # A group whose minimum is NaN gets 0 like an empty one; the others are untouched.
+    values[3:5] = np.nan
+    assert group_argmin(values, owner, 4).tolist() == [1, 0, 0, 5]
+
+
+def test_global_arc_lengths_are_made_once_and_shifted_per_curve():
+    batch = Ragged.from_list(
+        [np.array([[0.0, 0.0], [3.0, 4.0]]), np.array([[1.0, 1.0], [1.0, 2.0], [2.0, 2.0]])], False
+    )
+    g, base = batch.global_s()
+    assert batch.global_s()[0] is g  # the default gap's is kept for every locate
+    np.testing.assert_array_equal(base, [0.0, 6.0])
+    np.testing.assert_array_equal(g, [0.0, 5.0, 6.0, 7.0, 8.0])
+    g2, base2 = batch.global_s(gap=0.5)
+    np.testing.assert_array_equal(base2, [0.0, 5.5])
+    np.testing.assert_array_equal(g2, [0.0, 5.0, 5.5, 6.5, 7.5])
 
 
 def test_ragged_measures_each_curve_as_the_single_curve_functions_do():
@@ -150,6 +167,29 @@ def test_point_tree_nearest_and_within_match_brute_force(points, queries):
     radii = np.full(len(queries), 0.3)
     q, p = tree.within(queries, radii)
     assert sorted(zip(q.tolist(), p.tolist())) == sorted(zip(*np.nonzero(d2 < 0.09)))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_point_tree_nodes_hold_their_items_split_at_the_median_of_the_wider_side(seed):
+    # Boxes on a coarse grid (many equal coordinates) in three groups, rebuilt level by level:
+    # every node's box is its items' box, and its children are its items in (stable) order of
+    # their centres along its wider side, cut in half.
+    rng = np.random.default_rng(seed)
+    lows = np.round(rng.random((2000, 2)) * 6) / 6
+    highs = lows + np.round(rng.random((2000, 2)) * 3) / 30
+    tree = PointTree(lows, 4, highs=highs, groups=np.array([0, 40, 41, 2000]))
+    centres = 0.5 * (lows + highs)
+    perm = np.arange(2000)
+    for depth, (starts, ends, boxes) in enumerate(tree.levels):
+        for k in np.flatnonzero(ends > starts):
+            mine = perm[starts[k] : ends[k]]
+            np.testing.assert_array_equal(boxes[:, k], [*lows[mine].min(axis=0), *highs[mine].max(axis=0)])
+            if depth + 1 < len(tree.levels):
+                axis = int(boxes[2, k] - boxes[0, k] < boxes[3, k] - boxes[1, k])
+                perm[starts[k] : ends[k]] = mine[np.argsort(centres[mine, axis], kind="stable")]
+        if depth + 1 < len(tree.levels):
+            np.testing.assert_array_equal(tree.levels[depth + 1][0][::2], starts)
+    np.testing.assert_array_equal(perm, tree.perm)
 
 
 def test_curve_tree_searches_only_the_curves_named():
@@ -244,6 +284,30 @@ def test_nearest_edges_match_brute_force_edge_and_fraction(seed, kind):
     one = nearest_within(points, owner, batch, reach)
     for g, w in zip(one, want):
         np.testing.assert_array_equal(g, w)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_few_queries_per_curve_measure_every_edge_as_the_tree_would(seed, monkeypatch):
+    # One query per curve (the ends of strokes): every edge of its curve is measured and no
+    # tree is built; the very answers of the tree's search and of the brute force.
+    rng = np.random.default_rng(seed)
+    curves = [np.cumsum(rng.normal(0, 0.05, (int(rng.integers(2, 120)), 2)), axis=0) for _ in range(7)]
+    curves[0][3 % len(curves[0])] = curves[0][0]  # a zero-length edge or an exact tie
+    batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
+    owner = rng.permutation(len(curves))
+    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 2, len(owner))]
+    points = np.where(rng.random((len(owner), 1)) < 0.3, on_vertex, rng.uniform(-0.5, 1.5, (len(owner), 2)))
+    reach = rng.choice([0.01, 0.1, 0.5, np.inf], len(owner))
+    want = _nearest_edges_brute(points, owner, batch, reach)
+    direct = NearestEdges(batch)
+    got = direct.within(points, owner, reach)
+    assert "_index" not in vars(direct)
+    monkeypatch.setattr(projection, "_DIRECT_PAIRS_PER_EDGE", 0)
+    searched = NearestEdges(batch)
+    for g, t, w in zip(got, searched.within(points, owner, reach), want):
+        np.testing.assert_array_equal(g, w)
+        np.testing.assert_array_equal(t, w)
+    assert "_index" in vars(searched)
 
 
 def _drifting(rng, batch, owner, points, rows):

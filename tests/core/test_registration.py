@@ -23,3 +23,22 @@ def test_area_moments_of_a_batch_are_each_loops_own():
     # A w x h rectangle: w^2 / 12 and h^2 / 12, whichever way it runs.
     np.testing.assert_allclose(cov[:2], np.broadcast_to(np.diag([16.0, 4.0]) / 12.0, (2, 2, 2)), atol=1e-12)
     assert np.isnan(cov[2]).all()  # no area: no shape to fit
+
+
+def test_carriers_apply_each_pairs_motion_to_its_points():
+    # Two moving pairs and a still one: every point gets its own pair's C_t = M z + c, and the
+    # still pair's points come back exactly.
+    rng = np.random.default_rng(2)
+    A = np.array([[[0.0, -2.0], [2.0, 0.0]], [[1.5, 0.3], [-0.3, 1.5]], [[1.0, 0.0], [0.0, 1.0]]])
+    theta = np.arctan2(A[:, 1, 0], A[:, 0, 0])
+    stretch = np.array([np.hypot(*A[k, :, 0]) * np.eye(2) for k in range(3)])
+    motions = registration.Motions(
+        A, rng.normal(size=(3, 2)), theta, stretch, rng.normal(size=(3, 2)), np.array([True, True, False])
+    )
+    points, pair = rng.normal(size=(60, 2)), rng.integers(0, 3, 60)
+    for t in (0.0, 0.4, 1.0):
+        M, c = motions.at(t)
+        want = np.where((pair == 2)[:, None], points, np.einsum("kij,kj->ki", M[pair], points) + c[pair])
+        got = motions.apply(t, points, pair)
+        np.testing.assert_allclose(got, want, atol=1e-12)
+        np.testing.assert_array_equal(got[pair == 2], points[pair == 2])
