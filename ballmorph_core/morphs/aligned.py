@@ -32,9 +32,10 @@ ALIGN_SAMPLES = 256
 #: Steps of the warp its fractions are averaged over (odd): about 2 % of a warp of 256 x 256.
 WARP_SMOOTHING = 9
 
-#: Alignment cells held at once (pairs are aligned in chunks of about this many cells; each
-#: takes about 20 bytes, twice over for the padding of the anti-diagonal layout).
-_CELL_BUDGET = 2_000_000
+#: Alignment cells held at once (pairs are aligned in chunks of about this many cells: the
+#: anti-diagonal tables of cost and total, float64, hold twice that each, about 16 MB in all,
+#: seven pairs of 256 x 256).
+_CELL_BUDGET = 500_000
 
 
 def align(ps, qs):
