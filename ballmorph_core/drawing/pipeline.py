@@ -405,7 +405,10 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     settle = ~closed & ~coincident & ((carrier != "none") | pieces)
     ends = settle_ends(R, Q, scale, settle, trim=settle & ~pieces)
     Rc, Qc = ends.common_p, ends.common_q
-    residual = identity_residual(Rc, Qc)  # of the common parts
+    # Of the common parts: only settled pairs have other curves than the whole ones measured above.
+    settled = np.flatnonzero(settle)
+    if len(settled):
+        residual[settled] = identity_residual(Rc.take(settled), Qc.take(settled))
     coincident |= residual <= tol.OVERLAP * scale
     near = (residual <= NEAR * scale) & motions.moving & ~coincident
     # A near pair that crosses takes the near road whatever its events: they are not sought.
