@@ -321,9 +321,9 @@ class Layout:
 
 def _carry(motions, t, frame, sizes):
     """Each pair's carrier ``C_t`` (:meth:`Motions.at <.registration.Motions.at>`) applied to its
-    samples in place: what ``Motions.apply`` gives, with each pair's coefficients repeated over
-    its run of samples instead of a (K, 2, 2) gather and einsum (5 times faster at 20,000
-    samples).
+    samples in place (pairs that do not move keep theirs exactly), with each pair's coefficients
+    repeated over its run of samples instead of a (K, 2, 2) gather and einsum (5 times faster at
+    20,000 samples).
 
     Parameters
     ----------

@@ -346,18 +346,6 @@ class Motions:
         Mi = M @ _inverses(self.A)
         return Mi, c - np.einsum("lij,lj->li", Mi, self.b)
 
-    def apply(self, t, points, pair_of):
-        """``C_t`` of each point's pair applied to it, shape (K, 2) (unchanged if no pair moves)."""
-        if not self.moving.any():
-            return points
-        M, c = self.at(t)
-        M, c = np.where(self.moving[:, None, None], M, np.eye(2)), np.where(self.moving[:, None], c, 0.0)
-        # Coordinate by coordinate from (6, C) rows (single-value gathers); "+ 0.0" is einsum's
-        # zero start, so a -0.0 sum comes out +0.0 as it did.
-        m00, m01, m10, m11, cx, cy = np.take(np.concatenate([M.reshape(-1, 4).T, c.T]), pair_of, axis=1)
-        x, y = points[:, 0], points[:, 1]
-        return np.stack([(m00 * x + m01 * y + 0.0) + cx, (m10 * x + m11 * y + 0.0) + cy], axis=1)
-
     def take(self, rows):
         """The motions of some pairs (Motions)."""
         return Motions(

@@ -7,6 +7,7 @@ import pytest
 from shapes import circle, distance_to_polyline
 
 import ballmorph_core as bm
+from ballmorph_core.drawing.layout import _carry
 from ballmorph_core.drawing.pipeline import PairMorph
 from ballmorph_core.drawing.registration import Fits, endpoint_similarity, fit_similarity, motions
 from ballmorph_core.drawing.splitting import split_pair
@@ -58,8 +59,10 @@ def test_carrier_undoes_registration_at_start_and_is_identity_at_end(kind):
     moved = motions(P, Fits(A, np.array([[s.b.real, s.b.imag]]), np.zeros(1)), kind, np.ones(1), np.ones(1, bool))
     pts = np.array([[0.0, 1.0], [3.0, -2.0]])
     registered = np.einsum("ij,kj->ki", moved.A[0], pts) + moved.b[0]
-    np.testing.assert_allclose(moved.apply(0.0, registered, np.zeros(2, int)), pts, atol=1e-12)
-    np.testing.assert_allclose(moved.apply(1.0, pts, np.zeros(2, int)), pts, atol=1e-12)
+    for t, given in ((0.0, registered), (1.0, pts)):
+        frame = given.copy()
+        _carry(moved, t, frame, np.array([2]))
+        np.testing.assert_allclose(frame, pts, atol=1e-12)
     # The turn is steady: half-way, half the angle.
     M, _ = moved.partial(0.5)
     assert np.isclose(np.arctan2(M[0, 1, 0], M[0, 0, 0]), -0.2)
