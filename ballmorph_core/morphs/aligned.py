@@ -14,6 +14,8 @@ product), for a batch of pairs at once; the morph's own samples then follow the 
 between arc lengths.
 """
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..geometry.ragged import Ragged
@@ -119,24 +121,54 @@ def _align_chunk(ps, qs):
 
 
 def _uniform(curve, closed, count):
-    """``count`` uniform arc-length samples of a curve (a loop's first one repeated at the end)."""
+    """A curve as a batch of one, and ``count`` uniform arc-length samples of it, shape
+    (count, 2) (a loop's first one repeated at the end)."""
     rg = Ragged.from_list([curve], [closed])
     s = np.linspace(0.0, rg.length[0], count)
-    return rg, s, rg.point_at(np.zeros(count, dtype=np.int64), s, smooth=True)
+    return rg, rg.point_at(np.zeros(count, dtype=np.int64), s, smooth=True)
 
 
-def _setup(P, Q, closed, spacing):
-    """One pair's alignment samples: ``(count, rp, rq, xp, xq_in_order, shift, backwards, k)``."""
-    count = sample_count(P, Q, closed, spacing, "symmetric")
-    k = min(ALIGN_SAMPLES, max(count, 3))
-    rp, _, xp = _uniform(P, closed, k + closed)
-    rq, _, xq = _uniform(Q, closed, k + closed)
-    shift, backwards = 0, False
-    if closed:
-        shift, backwards = best_cyclic_alignment(xp[:-1], xq[:-1])
-    # Q's samples in the order P meets them: from its shift, forwards or backwards.
-    order = (shift + (-1 if backwards else 1) * np.arange(k + closed)) % k if closed else np.arange(k)
-    return count, rp, rq, xp, xq[order], shift, backwards, k
+@dataclass
+class _Setup:
+    """One pair ready to align.
+
+    Attributes
+    ----------
+    count : int
+        Samples of the morph.
+    rp, rq : Ragged
+        P and Q, batches of one.
+    xp, xq : ndarray, shape (k + closed, 2)
+        Their alignment samples, Q's in the order P meets them.
+    shift : int
+    backwards : bool
+        Loops: Q's sample ``shift`` meets P's first, and Q is met backwards.
+    k : int
+        Alignment samples per curve (a loop's first not repeated).
+    """
+
+    count: int
+    rp: Ragged
+    rq: Ragged
+    xp: np.ndarray
+    xq: np.ndarray
+    shift: int
+    backwards: bool
+    k: int
+
+    @classmethod
+    def of(cls, P, Q, closed, spacing):
+        """The setup of curves P, Q (shapes (N, 2), (M, 2)) at ``spacing``."""
+        count = sample_count(P, Q, closed, spacing, "symmetric")
+        k = min(ALIGN_SAMPLES, max(count, 3))
+        rp, xp = _uniform(P, closed, k + closed)
+        rq, xq = _uniform(Q, closed, k + closed)
+        shift, backwards = 0, False
+        if closed:
+            shift, backwards = best_cyclic_alignment(xp[:-1], xq[:-1])
+        # Q's samples in the order P meets them: from its shift, forwards or backwards.
+        order = (shift + (-1 if backwards else 1) * np.arange(k + closed)) % k if closed else np.arange(k)
+        return cls(count, rp, rq, xp, xq[order], shift, backwards, k)
 
 
 def _smoothed(f):
@@ -154,15 +186,15 @@ def _smoothed(f):
 
 
 def _morph(setup, closed, i, j):
-    """The PathMorph of one pair from its setup and its warp ``(i, j)``."""
-    count, rp, rq, xp, xq, shift, backwards, k = setup
+    """The PathMorph of one pair from its _Setup and its warp ``(i, j)``."""
+    count, rp, rq, shift, k = setup.count, setup.rp, setup.rq, setup.shift, setup.k
     # Along the warp both fractions grow; their sum grows strictly: the morph's samples are
     # spread evenly over it.
-    fp, fq = _smoothed(i / (len(xp) - 1)), _smoothed(j / (len(xq) - 1))
+    fp, fq = _smoothed(i / (len(setup.xp) - 1)), _smoothed(j / (len(setup.xq) - 1))
     walk = fp + fq
     w = np.linspace(0.0, walk[-1], count, endpoint=not closed)
     u_p, t_q = np.interp(w, walk, fp), np.interp(w, walk, fq)
-    u_q = (shift / k + (-1.0 if backwards else 1.0) * t_q) % 1.0 if closed else t_q
+    u_q = (shift / k + (-1.0 if setup.backwards else 1.0) * t_q) % 1.0 if closed else t_q
     if not closed:
         u_p[-1], u_q[-1] = 1.0, 1.0
     zero = np.zeros(count, dtype=np.int64)
@@ -187,8 +219,8 @@ def aligned_morphs(pairs, spacing):
     list of PathMorph
         Method :data:`METHOD`.
     """
-    setups = [_setup(P, Q, closed, h) for (P, Q, closed), h in zip(pairs, spacing)]
-    warps = align([s[3] for s in setups], [s[4] for s in setups])
+    setups = [_Setup.of(P, Q, closed, h) for (P, Q, closed), h in zip(pairs, spacing)]
+    warps = align([s.xp for s in setups], [s.xq for s in setups])
     return [_morph(s, closed, i, j) for s, (_, _, closed), (i, j) in zip(setups, pairs, warps)]
 
 
