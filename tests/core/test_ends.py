@@ -3,6 +3,9 @@ finds strokes lying along each other (drawing/registration.py)."""
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from shapes import distance_to_polyline
 
 from ballmorph_core.drawing import sliding
 from ballmorph_core.drawing.ends import overhang_morph, settle_ends
@@ -127,12 +130,14 @@ def test_an_outline_started_elsewhere_passes_the_coarse_gate(monkeypatch):
     np.testing.assert_allclose(fits.A[0], np.eye(2), atol=5e-3)
 
 
-def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monkeypatch):
+@pytest.mark.parametrize("move", [0.1, 3.0])
+def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monkeypatch, move):
     """A stroke redrawn with a wobble fits loosely end to end and sliding cannot help: the
-    coarse fit says so, the full one never runs, and the fit is the one it would have left."""
+    coarse fit says so, the full one never runs, and the fit is the one it would have left.
+    Moved far (3 lengths), the start from where P lies finds no overlap: that is no fit."""
     s = np.linspace(0.0, 1.0, 200)
     P = np.c_[s, 0.2 * np.sin(np.pi * s)]
-    Q = np.c_[1.05 * s + 0.1, 0.2 * np.sin(np.pi * s) + 0.04 * np.sin(3 * np.pi * s + 0.5)]
+    Q = np.c_[1.05 * s + move, 0.2 * np.sin(np.pi * s) + 0.04 * np.sin(3 * np.pi * s + 0.5)]
     with monkeypatch.context() as ungated:
         ungated.setattr(sliding, "SLIDE_MARGIN", np.inf)
         calls = _full_sliding_fits(ungated)
@@ -140,6 +145,28 @@ def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monke
         assert calls == [1]  # loose: the full fit runs without the gate, and loses
     calls = _full_sliding_fits(monkeypatch)
     fits = fit_pairs(batch(P), batch(Q))
-    assert calls == [0]
+    assert not any(calls)  # the full fit does not run (or runs on no pair)
     for name in ("A", "b", "residual"):
         np.testing.assert_array_equal(getattr(fits, name), getattr(want, name))
+
+
+def _dense(curve, per_edge=8):
+    """Points along a polyline's edges, ``per_edge`` per edge, shape (K, 2)."""
+    f = np.arange(per_edge)[:, None, None] / per_edge
+    return (curve[:-1] + f * np.diff(curve, axis=0)).reshape(-1, 2)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(2, 7))
+@settings(max_examples=30)
+def test_the_gates_coarse_curve_lies_within_its_stated_distance(seed, step):
+    """Every ``step``-th vertex of a wandering stroke (and its last): each curve lies within
+    the returned deviation of the other, and its kept vertices are the original ones."""
+    rng = np.random.default_rng(seed)
+    curves = [np.cumsum(rng.normal(size=(n, 2)), axis=0) for n in rng.integers(2, 40, 3)]
+    coarse, deviation = sliding._coarse(Ragged.from_list(curves, [False] * 3), np.array([2, 0]), step)
+    for c, original in enumerate([curves[2], curves[0]]):
+        mine = coarse.curve(c)
+        np.testing.assert_array_equal(mine, original[np.unique(np.r_[0 : len(original) : step, len(original) - 1])])
+        slack = 1e-9 * (1 + np.abs(original).max())
+        assert distance_to_polyline(_dense(original), mine, False).max() <= deviation[c] + slack
+        assert distance_to_polyline(_dense(mine), original, False).max() <= deviation[c] + slack
