@@ -41,14 +41,18 @@ def ink_lengths(strokes):
     count = len(offsets) - 1
     if len(positions) < 2:
         return np.zeros(count)
-    step = np.diff(positions, axis=0)
-    # Edge i joins points i and i + 1 (the columns summed by hand: a reduction along a row of
-    # 3 costs numpy about 8 times more).
-    edges = np.sqrt(step[:, 0] ** 2 + step[:, 1] ** 2 + step[:, 2] ** 2)
-    point_owner = np.repeat(np.arange(count), np.diff(offsets))
-    owner = point_owner[:-1]
-    edges[owner != point_owner[1:]] = 0.0  # from a stroke's last point to the next one's first
-    lengths = np.bincount(owner, edges, minlength=count).astype(np.float64)
+    # Edge i joins points i and i + 1; summed stroke by stroke with reduceat (a redo measures
+    # every frame: a per-point owner array and a weighted bincount cost 5 times more).
+    step = positions[1:] - positions[:-1]
+    edges = np.sqrt(np.einsum("ij,ij->i", step, step))
+    junction = offsets[1:-1] - 1  # from a stroke's last point to the next one's first
+    edges[junction[(junction >= 0) & (junction < len(edges))]] = 0.0
+    # Strokes with an edge start before the last point; what lies between one's end and the
+    # next one's start (junctions, one-point strokes) is zero.
+    lengths = np.zeros(count)
+    inked = strokes.sizes >= 2
+    if inked.any():
+        lengths[inked] = np.add.reduceat(edges, offsets[:-1][inked])
     closing = strokes.cyclic & (strokes.sizes > 2)
     first, last = offsets[:-1][closing], offsets[1:][closing] - 1
     lengths[closing] += np.linalg.norm(positions[last] - positions[first], axis=1)
