@@ -314,6 +314,25 @@ def _loop_shapes(a, b):
     return np.clip(1.0 - best / norms, 0.0, 1.0)
 
 
+def _oriented_loop_shapes(a, b, sign_a, sign_b):
+    """:func:`_loop_shapes` of every loop pair, B's loop read backwards where the two run opposite
+    ways (``sign_a``, ``sign_b``: their areas' signs, shapes (L_a,), (L_b,)), shape (L_a, L_b).
+
+    Loops of one sign against B's of the opposite sign are read backwards, every other block
+    forwards: each pair's correlation is computed once, in the direction it needs (the same
+    values as both directions for every pair and a choice after).
+    """
+    out = np.empty((len(a), len(b)))
+    backwards = _backwards(b)
+    for sign in np.unique(sign_a):
+        rows = np.flatnonzero(sign_a == sign)
+        opposite = sign_b * sign < 0
+        for cols, samples in ((np.flatnonzero(~opposite), b), (np.flatnonzero(opposite), backwards)):
+            if len(cols):
+                out[np.ix_(rows, cols)] = _loop_shapes(a[rows], samples[cols])
+    return out
+
+
 def _backwards(samples):
     """Loop samples read the other way round, keeping the first (shape (..., m))."""
     return np.concatenate([samples[..., :1], samples[..., :0:-1]], axis=-1)
@@ -348,9 +367,9 @@ class _CostTable:
             ra = _complex(key_a.ring[la]) - self.ca[la, None]
             rb = _complex(key_b.ring[lb]) - self.cb[lb, None]
             # A loop drawn the other way (its area's sign) is read backwards before fitting.
-            flip = np.sign(key_a.areas()[la])[:, None] * np.sign(key_b.areas()[lb])[None, :] < 0
-            same, other = _loop_shapes(ra, rb), _loop_shapes(ra, _backwards(rb))
-            e[np.ix_(la, lb)] = np.where(flip, other, same)
+            sign_a, sign_b = np.sign(key_a.areas()[la]), np.sign(key_b.areas()[lb])
+            flip = sign_a[:, None] * sign_b[None, :] < 0
+            e[np.ix_(la, lb)] = _oriented_loop_shapes(ra, rb, sign_a, sign_b)
             self._loops = (la, lb, flip)
         self.shape = np.sqrt(e)
         both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)

@@ -13,7 +13,9 @@ from ballmorph_core.drawing import matching
 from ballmorph_core.drawing.assignment import solve_assignment
 from ballmorph_core.drawing.matching import (
     _assign_within,
+    _backwards,
     _loop_shapes,
+    _oriented_loop_shapes,
     _padded_total,
     match_strokes,
 )
@@ -294,6 +296,20 @@ def test_loop_shapes_match_explicit_shifts_and_similarities(seed):
                 k = np.vdot(a[i], q) / np.vdot(a[i], a[i])  # least-squares similarity a -> q
                 residuals.append(np.sum(np.abs(k * a[i] - q) ** 2) / np.sum(np.abs(q) ** 2))
             assert got[i, j] == pytest.approx(min(residuals), rel=1e-9, abs=1e-12)
+
+
+@given(st.integers(0, 2**32 - 1))
+def test_each_loop_pair_is_fitted_in_the_direction_it_needs(seed):
+    """Blocks by area sign give exactly the values of both directions for every pair and a
+    choice after: backwards where the loops run opposite ways (a zero area is neither)."""
+    rng = np.random.default_rng(seed)
+    la, lb, m = rng.integers(1, 7), rng.integers(1, 7), 8
+    a = rng.normal(size=(la, m)) + 1j * rng.normal(size=(la, m))
+    b = rng.normal(size=(lb, m)) + 1j * rng.normal(size=(lb, m))
+    sign_a, sign_b = rng.integers(-1, 2, la).astype(float), rng.integers(-1, 2, lb).astype(float)
+    flip = sign_a[:, None] * sign_b[None, :] < 0
+    want = np.where(flip, _loop_shapes(a, _backwards(b)), _loop_shapes(a, b))
+    np.testing.assert_array_equal(_oriented_loop_shapes(a, b, sign_a, sign_b), want)
 
 
 def test_turned_and_scaled_strokes_pair_whatever_the_angle():
