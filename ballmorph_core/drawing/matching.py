@@ -50,7 +50,7 @@ import numpy as np
 from .. import tolerances as tol
 from ..errors import InvalidCurveError
 from ..geometry.polyline import as_curve, curve_length, resample
-from ..geometry.ragged import Ragged, budget_slices
+from ..geometry.ragged import Ragged, budget_slices, ragged_arange
 from ..options import MATCHINGS, check_option
 from .assignment import solve_assignment
 
@@ -229,10 +229,15 @@ class _Key:
         self.open[dot] = self.ring[dot] = first[dot][:, None, :]
         keep = np.flatnonzero(self.valid & ~dot)
         if len(keep):
-            idx = np.concatenate([np.arange(offsets[i], offsets[i + 1]) for i in keep])
-            sub = np.concatenate([[0], np.cumsum(sizes[keep])])
-            opened = Ragged(pts[idx], sub, np.zeros(len(keep), dtype=bool))
-            looped = Ragged(pts[idx], sub, closed[keep])
+            # Usually every stroke is kept: then the batch read open is ``line`` itself, and
+            # read as drawn it is the same again unless a stroke is a loop.
+            if len(keep) == len(sizes):
+                opened = line
+            else:
+                owner, local = ragged_arange(sizes[keep])
+                sub = np.concatenate([[0], np.cumsum(sizes[keep])])
+                opened = Ragged(pts[offsets[keep][owner] + local], sub, np.zeros(len(keep), dtype=bool))
+            looped = Ragged(opened.pts, opened.offsets, closed[keep]) if closed[keep].any() else opened
             self.open[keep] = opened.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
             ring = looped.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
             self.ring[keep] = np.where(closed[keep][:, None, None], ring, self.open[keep])

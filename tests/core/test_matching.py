@@ -389,3 +389,19 @@ def test_four_hundred_strokes_timing():
     elapsed = time.perf_counter() - start
     print(f"\nmatch_strokes 400 x 400 strokes: {elapsed:.3f} s ({m.method})")
     assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
+
+
+@given(st.integers(0, 2**32 - 1))
+def test_the_batched_key_descriptors_are_the_stroke_by_stroke_ones(seed):
+    """Keys read at once (every stroke kept, or with dots and empty strokes left out of the
+    resampling) describe each stroke as reading them one by one does."""
+    rng = np.random.default_rng(seed)
+    sizes = rng.choice([0, 1, 2, 5, 9], size=rng.integers(1, 6))
+    strokes = [np.cumsum(rng.normal(size=(n, 2)), axis=0) for n in sizes]
+    closed = rng.random(len(sizes)) < 0.5
+    batched = matching._Key(strokes, closed, "s", "c", 8)
+    with pytest.MonkeyPatch.context() as one_by_one:
+        one_by_one.setattr(matching._Key, "_batched", lambda *args: False)
+        single = matching._Key(strokes, closed, "s", "c", 8)
+    for name in ("valid", "open", "ring", "length", "diagonal"):
+        np.testing.assert_allclose(getattr(batched, name), getattr(single, name), rtol=1e-12, atol=1e-12)
