@@ -12,11 +12,16 @@ from .ragged import budget_slices, ragged_arange
 __all__ = ["box_pairs", "box_pair_chunks", "PointTree", "CurveTree"]
 
 
-def _cells(boxes, origin, cell, ny):
-    ix0 = np.floor((boxes[:, 0] - origin[0]) / cell).astype(np.int64)
-    iy0 = np.floor((boxes[:, 1] - origin[1]) / cell).astype(np.int64)
-    ix1 = np.floor((boxes[:, 2] - origin[0]) / cell).astype(np.int64)
-    iy1 = np.floor((boxes[:, 3] - origin[1]) / cell).astype(np.int64)
+def _cell_ranges(boxes, origin, cell):
+    """First and last grid cell of every box along x and y: ``ix0, iy0, ix1, iy1``, each int64
+    of shape (N,) (coordinate by coordinate: a (N, 2) slice of the (N, 4) boxes costs a copy)."""
+    return [np.floor((boxes[:, k] - origin[k % 2]) / cell).astype(np.int64) for k in range(4)]
+
+
+def _cells(ranges, ny):
+    """Every (cell, box) entry of boxes spanning ``ranges`` (:func:`_cell_ranges`): the cells'
+    keys ``cx * ny + cy`` and their boxes, box after box, shape (M,) each."""
+    ix0, iy0, ix1, iy1 = ranges
     nx, nyy = ix1 - ix0 + 1, iy1 - iy0 + 1
     owner, local = ragged_arange(nx * nyy)
     cx = ix0[owner] + local % nx[owner]
@@ -28,10 +33,10 @@ def _typical_size(boxes):
     return float(np.median(np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1])))
 
 
-def _cell_entries(boxes, origin, cell):
-    lo = np.floor((boxes[:, :2] - origin) / cell)
-    hi = np.floor((boxes[:, 2:] - origin) / cell)
-    return float(np.prod(hi - lo + 1, axis=1).sum())
+def _cell_entries(ranges):
+    """How many cells boxes spanning ``ranges`` (:func:`_cell_ranges`) fill in all."""
+    ix0, iy0, ix1, iy1 = ranges
+    return float(((ix1 - ix0 + 1) * (iy1 - iy0 + 1)).sum())
 
 
 #: Candidate (box, box) entries expanded at once (memory bound: about 40 bytes each). Long
@@ -41,7 +46,7 @@ PAIR_BUDGET = 1 << 18
 
 def _grid_cell(a, b, origin, extent, cell):
     """The grid's cell size: the given one, else the larger typical box size, grown while long
-    boxes would fill too many cells."""
+    boxes would fill too many cells; and both sets' :func:`_cell_ranges` at that size."""
     if cell is None:
         # The larger of the two sets' typical box sizes: tiny boxes (points) against long ones
         # (a coarse polygon's edges) must not make every long box span millions of cells.
@@ -49,10 +54,13 @@ def _grid_cell(a, b, origin, extent, cell):
     cell = max(cell, extent / 4096.0, 1e-300)
     # Bound the number of (box, cell) entries: grow the cells while long boxes would fill too many.
     for _ in range(16):
-        if _cell_entries(a, origin, cell) + _cell_entries(b, origin, cell) <= 16 * (len(a) + len(b)) + 1024:
+        ranges_a, ranges_b = _cell_ranges(a, origin, cell), _cell_ranges(b, origin, cell)
+        if _cell_entries(ranges_a) + _cell_entries(ranges_b) <= 16 * (len(a) + len(b)) + 1024:
             break
         cell *= 2.0
-    return cell
+    else:
+        ranges_a, ranges_b = _cell_ranges(a, origin, cell), _cell_ranges(b, origin, cell)
+    return cell, ranges_a, ranges_b
 
 
 def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active=None):
@@ -84,18 +92,23 @@ def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active
     b = a if same else np.asarray(boxes_b, dtype=np.float64).reshape(-1, 4)
     if len(a) == 0 or len(b) == 0:
         return
-    both = np.concatenate([a, b])
-    origin = both[:, :2].min(axis=0)
-    extent = float(max((both[:, 2:] - origin).max(), 1e-300))
-    cell = _grid_cell(a, b, origin, extent, cell)
+    # Column by column (no (A + B, 4) copy of both sets).
+    origin = np.array([min(a[:, k].min(), b[:, k].min()) for k in range(2)])
+    extent = max(max(float(a[:, k].max()), float(b[:, k].max())) - origin[k - 2] for k in range(2, 4))
+    extent = float(max(extent, 1e-300))
+    cell, ranges_a, ranges_b = _grid_cell(a, b, origin, extent, cell)
     ny = int(extent / cell) + 2
     # The grid holds b; every run of a looks its cells up in it.
-    key_a, own_a = _cells(a, origin, cell, ny)
-    key_b, own_b = (key_a, own_a) if same else _cells(b, origin, cell, ny)
+    key_a, own_a = _cells(ranges_a, ny)
+    key_b, own_b = (key_a, own_a) if same else _cells(ranges_b, ny)
     order = np.argsort(key_b, kind="stable")
     key_b, own_b = key_b[order], own_b[order]
-    lo = np.searchsorted(key_b, key_a, side="left")
-    count = np.searchsorted(key_b, key_a, side="right") - lo
+    # Each occupied cell of b once: a's entries look it up in that shorter list, once.
+    run = np.flatnonzero(np.r_[True, key_b[1:] != key_b[:-1]])
+    at = np.minimum(np.searchsorted(key_b[run], key_a), len(run) - 1)
+    found = key_b[run][at] == key_a
+    lo = run[at]
+    count = np.where(found, np.diff(np.r_[run, len(key_b)])[at], 0)
     # own_a is sorted (entries come box after box), so a run of boxes is a run of entries.
     first_entry = np.searchsorted(own_a, np.arange(len(a) + 1))
     cost = np.bincount(own_a, weights=count, minlength=len(a))

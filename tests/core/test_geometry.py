@@ -141,6 +141,30 @@ def test_box_pairs_finds_exactly_the_overlapping_boxes(a, b):
     assert sorted(zip(i.tolist(), j.tolist())) == sorted(zip(*np.nonzero(overlap)))
 
 
+def _overlapping(ba, bb):
+    """Brute force: (i, j) of every pair of overlapping boxes, sorted."""
+    ba, bb = ba[:, None], bb[None]
+    overlap = (ba[..., 0] <= bb[..., 2]) & (bb[..., 0] <= ba[..., 2]) & (ba[..., 1] <= bb[..., 3])
+    return sorted(zip(*np.nonzero(overlap & (bb[..., 1] <= ba[..., 3]))))
+
+
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=30)
+def test_box_pairs_of_points_tiny_and_long_boxes_are_exact(seed):
+    """Points, tiny boxes and boxes spanning the whole set (the grid grows its cells for them),
+    far from the origin, between two sets and within one (i < j)."""
+    rng = np.random.default_rng(seed)
+    sets = []
+    for n in rng.integers(1, 60, 2):
+        low = rng.uniform(-1, 1, (n, 2)) + 1e3
+        size = rng.choice([0.0, 1e-3, 0.05, 3.0], size=(n, 1)) * rng.uniform(0, 1, (n, 2))
+        sets.append(np.c_[low, low + size])
+    i, j = box_pairs(*sets)
+    assert sorted(zip(i.tolist(), j.tolist())) == _overlapping(*sets)
+    i, j = box_pairs(sets[0])
+    assert sorted(zip(i.tolist(), j.tolist())) == [(p, q) for p, q in _overlapping(sets[0], sets[0]) if p < q]
+
+
 @given(POINTS, st.integers(1, 400))
 @settings(max_examples=20)
 def test_box_pair_runs_join_into_box_pairs_and_skip_inactive_boxes(a, budget):
