@@ -339,18 +339,45 @@ def default_spacings(*batches):
     -------
     ndarray, shape (C,)
     """
-    owner = np.concatenate([b.owner[b.nxt >= 0] for b in batches])
-    length = np.concatenate([b.length_of_edge[b.nxt >= 0] for b in batches])
-    order = np.lexsort((length, owner))
-    owner, length = owner[order], length[order]
     n = len(batches[0])
-    start = np.searchsorted(owner, np.arange(n + 1))
-    count = np.diff(start)
-    lo = np.minimum(start[:-1] + (count - 1) // 2, len(length) - 1)
-    hi = np.minimum(start[:-1] + count // 2, len(length) - 1)
-    median = 0.5 * (length[lo] + length[hi])
+    count = sum(np.bincount(b.owner[b.nxt >= 0], minlength=n) for b in batches)
+    widest = int(count.max(initial=0))
+    if n * widest <= 2 * int(count.sum()) + 1024:
+        median = _padded_medians(batches, count, widest)
+    else:
+        # Curves of very different sizes (a padded table would be mostly padding).
+        owner = np.concatenate([b.owner[b.nxt >= 0] for b in batches])
+        length = np.concatenate([b.length_of_edge[b.nxt >= 0] for b in batches])
+        order = np.lexsort((length, owner))
+        owner, length = owner[order], length[order]
+        start = np.searchsorted(owner, np.arange(n + 1))
+        lo = np.minimum(start[:-1] + (count - 1) // 2, len(length) - 1)
+        hi = np.minimum(start[:-1] + count // 2, len(length) - 1)
+        median = np.where(count > 0, 0.5 * (length[lo] + length[hi]), 0.0)
     longest = np.max([b.length for b in batches], axis=0)
     return np.clip(median, longest / DEFAULT_SAMPLES_MAX, longest / DEFAULT_SAMPLES_MIN)
+
+
+def _padded_medians(batches, count, widest):
+    """Median edge length of each group of curves (curve ``c`` of every batch), shape (C,)
+    (0 without edges): each group's lengths are a row of a table padded with inf, and the rows
+    are sorted each on its own (several times faster than one lexsort of every edge by curve).
+
+    ``count``: edges per group, shape (C,); ``widest``: its maximum.
+    """
+    table = np.full((len(count), max(widest, 1)), np.inf)
+    filled = np.zeros(len(count), dtype=np.int64)
+    for b in batches:
+        e = np.flatnonzero(b.nxt >= 0)
+        owner = b.owner[e]  # edges come curve after curve
+        mine = np.bincount(owner, minlength=len(count))
+        slot = np.arange(len(e)) - np.repeat(np.cumsum(mine) - mine, mine) + filled[owner]
+        table[owner, slot] = b.length_of_edge[e]
+        filled += mine
+    table.sort(axis=1)
+    rows = np.arange(len(count))
+    lo, hi = table[rows, np.maximum(count - 1, 0) // 2], table[rows, np.minimum(count // 2, table.shape[1] - 1)]
+    return np.where(count > 0, 0.5 * (lo + hi), 0.0)
 
 
 def signed_area(loop):

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 from shapes import circle, distance_to_polyline
 
 from ballmorph_core.ballmap.onemap import OneWayMap
-from ballmorph_core.geometry import projection
+from ballmorph_core.geometry import polyline, projection
 from ballmorph_core.geometry.circles import circumcircles
 from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, self_crossings
 from ballmorph_core.geometry.polyline import (
@@ -120,6 +120,38 @@ def test_batched_spacings_and_scales_are_the_single_ones():
     want = [default_spacing(a, b, closed=True) for a, b in zip(curves_a, curves_b)]
     np.testing.assert_allclose(default_spacings(A, B), want, rtol=1e-12)
     np.testing.assert_allclose(pair_scales(A, B), [scale_of(a, b) for a, b in zip(curves_a, curves_b)], rtol=1e-12)
+
+
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=30)
+def test_default_spacings_take_each_groups_exact_median_edge(seed):
+    """Curve c of every batch is one group: its spacing comes from the median of all their edge
+    lengths (np.median, exactly), whether the groups are of similar sizes (a padded table) or
+    one dwarfs the others (one sort of every edge)."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 6))
+    sizes = rng.integers(0, 12, (2, n))
+    if rng.random() < 0.5:
+        sizes[0, 0] = 600  # one group far larger: the padded table would be mostly padding
+    batches = [
+        Ragged.from_list([np.cumsum(rng.normal(size=(k, 2)), axis=0) for k in row], rng.random(n) < 0.5)
+        for row in sizes
+    ]
+    got = default_spacings(*batches)
+    for c in range(n):
+        edges = np.concatenate(
+            [
+                b.length_of_edge[b.offsets[c] : b.offsets[c + 1]][b.nxt[b.offsets[c] : b.offsets[c + 1]] >= 0]
+                for b in batches
+            ]
+        )
+        longest = max(b.length[c] for b in batches)
+        want = np.clip(
+            np.median(edges) if len(edges) else 0.0,
+            longest / polyline.DEFAULT_SAMPLES_MAX,
+            longest / polyline.DEFAULT_SAMPLES_MIN,
+        )
+        assert got[c] == want
 
 
 # ------------------------------------------------------------------ spatial search
