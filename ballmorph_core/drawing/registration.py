@@ -100,7 +100,9 @@ def similarity_matrices(a):
 
 def _samples(rg, index, k):
     """``k`` uniform arc-length samples (on the chords) of curves ``index``, complex, shape (len, k)."""
-    sub = rg.take(index)
+    # Every curve, in order (all loops of a drawing of loops): no copy of the batch first.
+    whole = len(index) == len(rg) and np.array_equal(index, np.arange(len(rg)))
+    sub = rg if whole else rg.take(index)
     return as_complex(sub.resample(np.full(len(index), k), smooth=False).pts).reshape(len(index), k)
 
 
@@ -202,8 +204,10 @@ def _sqrtm(m):
     return root, inv
 
 
-def _affine_loops(P, Q, index, res_sim, k):
-    """Affine registrations of loops whose area moments say they are squashed or stretched.
+def _affine_loops(P, Q, index, res_sim, xp, xq):
+    """Affine registrations of loops ``index`` whose area moments say they are squashed or
+    stretched (``xp``, ``xq``: their uniform samples, complex, shape (L, k); ``res_sim``: their
+    similarities' residuals, shape (L,)).
 
     ``A = C_Q^(1/2) R C_P^(-1/2)``: whiten both loops by their second moments of area, fit the
     turn ``R`` between the whitened loops (over every cyclic shift), colour back. Kept where the
@@ -227,7 +231,6 @@ def _affine_loops(P, Q, index, res_sim, k):
     mp, mq = np.where(ok[:, None, None], mp, np.eye(2)), np.where(ok[:, None, None], mq, np.eye(2))
     root_q, inv_q = _sqrtm(mq)
     _, inv_p = _sqrtm(mp)
-    xp, xq = _samples(P, index, k), _samples(Q, index, k)
     wp = as_complex(np.einsum("lij,lkj->lki", inv_p, from_complex(xp) - cp[:, None]))
     wq = as_complex(np.einsum("lij,lkj->lki", inv_q, from_complex(xq) - cq[:, None]))
     a, _, _ = _loop_fits(wp, wq)
@@ -262,12 +265,13 @@ def fit_pairs(P, Q, affine=True, turn=0.0):
     residual = np.zeros(n)
     loops, opened = np.flatnonzero(P.closed), np.flatnonzero(~P.closed)
     if len(loops):
-        a[loops], b[loops], residual[loops] = _loop_fits(_samples(P, loops, k), _samples(Q, loops, k), turn)
+        loop_samples = _samples(P, loops, k), _samples(Q, loops, k)
+        a[loops], b[loops], residual[loops] = _loop_fits(*loop_samples, turn)
     if len(opened):
         a[opened], b[opened], residual[opened] = _open_fits(P, Q, opened, k, turn)
     A, bb = similarity_matrices(a), from_complex(b)
     if affine and len(loops):
-        use, A_aff, b_aff, res_aff = _affine_loops(P, Q, loops, residual[loops], k)
+        use, A_aff, b_aff, res_aff = _affine_loops(P, Q, loops, residual[loops], *loop_samples)
         A[loops[use]], bb[loops[use]], residual[loops[use]] = A_aff[use], b_aff[use], res_aff[use]
     return Fits(A, bb, residual)
 
