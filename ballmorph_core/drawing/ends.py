@@ -167,6 +167,8 @@ def settle_ends(R, Q, scale, opened, trim=None):
     """
     n = len(R)
     keep_p, keep_q = _trims(R, Q, scale, opened if trim is None else opened & trim)
+    if not opened.any():  # a drawing of loops: every pair stays exactly as it is
+        return Ends(keep_p, keep_q, np.zeros((n, 2, 2)), R, Q, R.s / np.maximum(R.length, 1e-300)[R.owner])
     idx = np.arange(n)
     part_p, part_q = R.pieces(idx, keep_p[:, 0], keep_p[:, 1]), Q.pieces(idx, keep_q[:, 0], keep_q[:, 1])
     first = part_q.pts[part_q.offsets[:-1]] - part_p.pts[part_p.offsets[:-1]]
@@ -177,7 +179,8 @@ def settle_ends(R, Q, scale, opened, trim=None):
     u = part_p.s / np.maximum(part_p.length, 1e-300)[part_p.owner]
     shift = (1 - u)[:, None] * gap[part_p.owner, 0] + u[:, None] * gap[part_p.owner, 1]
     common_p = Ragged(part_p.pts + shift, part_p.offsets, R.closed)
-    common_q = Ragged(part_q.pts, part_q.offsets, Q.closed)
+    # The pieces are open curves: of open pairs they are the common parts as they come.
+    common_q = Ragged(part_q.pts, part_q.offsets, Q.closed) if Q.closed.any() else part_q
     whole = ~opened
     if whole.any():  # loops (and pairs not settled) stay exactly as they are
         common_p, common_q = _merge(common_p, R, whole), _merge(common_q, Q, whole)

@@ -63,6 +63,14 @@ def test_pairs_not_settled_stay_exactly_as_they_are():
     np.testing.assert_array_equal(ends.common_p.curve(0), P.curve(0))
     np.testing.assert_array_equal(ends.common_q.curve(0), Q.curve(0))
     assert not np.any(ends.gap[0])
+    # None settled (a drawing of loops): the same curves, fractions and ranges as one by one.
+    none = settle_ends(P, Q, np.array([2.0, 2.0]), np.array([False, False]))
+    for c in range(2):
+        np.testing.assert_array_equal(none.common_p.curve(c), P.curve(c))
+        np.testing.assert_array_equal(none.common_q.curve(c), Q.curve(c))
+    np.testing.assert_array_equal(none.u, P.s / P.length[P.owner])
+    np.testing.assert_array_equal(none.keep_p, np.c_[np.zeros(2), P.length])
+    assert not np.any(none.gap) and not np.any(none.settled)
 
 
 @pytest.mark.parametrize("stop", [240.0, 120.0])
