@@ -389,3 +389,39 @@ def test_tangent_disks_are_the_smallest_disk_touching_each_edge():
         if np.isfinite(r[i]):
             contact = ai + u[i] * (bi - ai)
             assert np.linalg.norm(xi + r[i] * ni - contact) == pytest.approx(r[i], rel=1e-6, abs=1e-9)
+
+
+# ---------------------------------------------------------------- the disk check's search
+
+
+def _per_disk(query, point, n):
+    """Each disk's vertices in the order they were reported."""
+    return [point[query == k].tolist() for k in range(n)]
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_disks_asked_in_runs_find_the_vertices_each_disk_finds(seed):
+    # Three chains of two wavy curves each; disks walk along each chain's gap a little apart,
+    # small ones (empty: their runs are cleared at once) and some reaching the curves.
+    from ballmorph_core.geometry.spatial import CurveTree
+
+    rng = np.random.default_rng(seed)
+    curves, disks = [], []
+    for c in range(3):
+        x = np.linspace(0, 1, rng.integers(20, 120))
+        wave = 0.02 * np.sin(rng.uniform(3, 12) * x + rng.uniform(0, 6))
+        curves.append((np.c_[x, wave + 0.1] + c, np.c_[x, wave - 0.1] + c))
+        k = rng.integers(1, 60)
+        centre = np.c_[np.sort(rng.uniform(0, 1, k)), rng.normal(0, 0.01, k)] + c
+        radius = np.where(rng.random(k) < 0.15, rng.uniform(0.1, 0.3, k), rng.uniform(0.0, 0.07, k))
+        disks.append((centre, radius, np.full(k, c)))
+    pts = np.concatenate([p for p, _ in curves] + [q for _, q in curves])
+    sizes = [len(p) for p, _ in curves] + [len(q) for _, q in curves]
+    tree = CurveTree(pts, np.r_[0, np.cumsum(sizes)])
+    centres, radii, chain = (np.concatenate(v) for v in zip(*disks))
+    own = np.c_[chain, chain + 3]
+    want = _per_disk(*tree.within(centres, radii, own, first_only=True), len(centres))
+    got = _per_disk(*check._entered(tree, centres, radii, own, chain), len(centres))
+    assert got == want
+    # Both kinds of disk occur: empty ones and ones a curve enters.
+    assert any(want) and not all(want)
