@@ -14,7 +14,7 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..geometry.circles import circumcircles
-from ..geometry.ragged import budget_slices, group_argmin, ragged_arange
+from ..geometry.ragged import budget_slices
 from .candidates import tangent_disks
 from .onemap import OneWayMap
 
@@ -23,6 +23,26 @@ __all__ = ["one_way", "full_search", "contacts", "refine", "same_lap", "disk_map
 #: Most (sample, edge) candidate pairs evaluated at once by the searches: bounds their
 #: temporary arrays (about 0.2 KB per pair) without slowing them down noticeably.
 CANDIDATE_BUDGET = 500_000
+
+
+def _first_minima(values, counts):
+    """Index of the first minimum of each group of consecutive ``values``, shape (G,).
+
+    ``counts`` (shape (G,)) sizes the groups; as :func:`~ballmorph_core.geometry.ragged.group_argmin`,
+    a group without entries (or without a minimum: NaN) gets 0.
+    """
+    ends = np.cumsum(counts)
+    starts = ends - counts
+    filled = counts > 0
+    best = np.zeros(len(counts), dtype=np.int64)
+    if not filled.any():
+        return best
+    first = starts[filled]
+    mins = np.minimum.reduceat(values, first)
+    at = np.where(values == np.repeat(mins, counts[filled]), np.arange(len(values)), len(values))
+    best[filled] = np.minimum.reduceat(at, first)
+    best[best == len(values)] = 0
+    return best
 
 
 def _search(x, n, dst, chain, e_lo, e_hi, eps):
@@ -34,23 +54,33 @@ def _search(x, n, dst, chain, e_lo, e_hi, eps):
     x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
     counts = e_hi - e_lo + 1
     r, pos = np.full(x.shape[1], np.inf), np.zeros(x.shape[1])
+    # Without loops a sample's edges are one run of the target's: no lap to wrap round.
+    wraps = bool(rg.closed[chain].any())
+    first_edge = rg.offsets[chain] + e_lo
     for sl in budget_slices(counts, CANDIDATE_BUDGET):
-        owner, local = ragged_arange(counts[sl])
-        if not len(owner):
+        cnt = counts[sl]
+        total = int(cnt.sum())
+        if not total:
             continue
-        c = chain[sl][owner]
-        e_local = e_lo[sl][owner] + local
-        g = rg.offsets[c] + np.where(rg.closed[c], e_local % np.maximum(rg.n_edges[c], 1), e_local)
-        a, i = np.take(pts, g, axis=1), owner + sl.start
+        # Every sample's edges, sample after sample (the samples' rows repeated, not gathered).
+        local = np.arange(total) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+        e_local = np.repeat(e_lo[sl], cnt) + local
+        if wraps:
+            c = np.repeat(chain[sl], cnt)
+            g = rg.offsets[c] + np.where(rg.closed[c], e_local % np.maximum(rg.n_edges[c], 1), e_local)
+        else:
+            g = np.repeat(first_edge[sl], cnt) + local
+        # The indices are in range: take's 'wrap' mode skips the bounds check.
+        a = np.take(pts, g, axis=1, mode="wrap")
         rr, uu = tangent_disks(
-            np.take(x, i, axis=1),
-            np.take(n, i, axis=1),
+            np.repeat(x[:, sl], cnt, axis=1),
+            np.repeat(n[:, sl], cnt, axis=1),
             a,
-            a + np.take(edge, g, axis=1),
-            np.take(normals, g, axis=1),
+            a + np.take(edge, g, axis=1, mode="wrap"),
+            np.take(normals, g, axis=1, mode="wrap"),
             eps,
         )
-        best = group_argmin(rr, owner, sl.stop - sl.start)
+        best = _first_minima(rr, cnt)
         r[sl], pos[sl] = rr[best], e_local[best] + uu[best]
     return r, pos
 

@@ -425,3 +425,70 @@ def test_disks_asked_in_runs_find_the_vertices_each_disk_finds(seed):
     assert got == want
     # Both kinds of disk occur: empty ones and ones a curve enters.
     assert any(want) and not all(want)
+
+
+def _plain_tangent_disks(x, n, a, b, N, eps):
+    """tangent_disks as plain expressions (its first version): the in-place one must match it bit for bit."""
+    (xx, xy), (nx, ny), (ax, ay), (Nx, Ny) = x, n, a, N
+    dx, dy = b[0] - ax, b[1] - ay
+    len2 = dx * dx + dy * dy
+    num = (xx - ax) * Nx + (xy - ay) * Ny
+    den = 1.0 - (nx * Nx + ny * Ny)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r_e = np.where(den > 1e-12, num / den, np.inf)
+    r_e = np.where(r_e >= -eps, np.maximum(r_e, 0.0), np.inf)
+    step = np.where(np.isfinite(r_e), r_e, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = ((xx + step * (nx - Nx) - ax) * dx + (xy + step * (ny - Ny) - ay) * dy) / len2
+    r_e = np.where((u >= -1e-9) & (u <= 1 + 1e-9), r_e, np.inf)
+    u = np.clip(np.nan_to_num(u), 0.0, 1.0)
+    best_r, best_u = r_e, u
+    for (vx, vy), uu in ((a, 0.0), (b, 1.0)):
+        ex, ey = vx - xx, vy - xy
+        dist2 = ex * ex + ey * ey
+        den_v = 2.0 * (ex * nx + ey * ny)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r_v = np.where(den_v > 0, dist2 / den_v, np.inf)
+        r_v = np.where(dist2 <= eps * eps, 0.0, r_v)
+        better = r_v < best_r
+        best_r = np.where(better, r_v, best_r)
+        best_u = np.where(better, uu, best_u)
+    return best_r, best_u
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_tangent_disks_are_bitwise_the_plain_expressions(seed):
+    # Random samples and edges, with the special cases mixed in: zero-length edges, edges
+    # facing the normal (parallel), samples on a vertex or on the edge's line.
+    rng = np.random.default_rng(seed)
+    k = 3000
+    x, a, b = rng.uniform(-1, 1, (3, 2, k))
+    n = rng.normal(size=(2, k))
+    n /= np.linalg.norm(n, axis=0)
+    b[:, ::17] = a[:, ::17]
+    x[:, 5::19] = a[:, 5::19]
+    x[:, 7::23] = a[:, 7::23] + rng.uniform(0, 1, len(range(7, k, 23))) * (b - a)[:, 7::23]
+    N = np.array([a[1] - b[1], b[0] - a[0]]) * rng.choice([-1.0, 1.0], k)
+    with np.errstate(invalid="ignore"):
+        N /= np.linalg.norm(N, axis=0)
+    N = np.nan_to_num(N)
+    N[:, 3::29] = n[:, 3::29]
+    for eps in (1e-12, 1e-3):
+        got, want = tangent_disks(x, n, a, b, N, eps), _plain_tangent_disks(x, n, a, b, N, eps)
+        for g, w in zip(got, want):
+            np.testing.assert_array_equal(g.view(np.int64), w.view(np.int64))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_first_minima_of_groups_match_group_argmin(seed):
+    # Groups of every size (empty ones too), values with many ties and a few NaNs.
+    from ballmorph_core.ballmap.lacing import _first_minima
+    from ballmorph_core.geometry.ragged import group_argmin, ragged_arange
+
+    rng = np.random.default_rng(seed)
+    counts = rng.integers(0, 6, 200)
+    counts[:2] = [0, 3]
+    owner, _ = ragged_arange(counts)
+    values = rng.integers(0, 4, len(owner)).astype(float)
+    values[rng.random(len(owner)) < 0.03] = np.nan
+    np.testing.assert_array_equal(_first_minima(values, counts), group_argmin(values, owner, len(counts)))
