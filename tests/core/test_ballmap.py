@@ -492,3 +492,27 @@ def test_first_minima_of_groups_match_group_argmin(seed):
     values = rng.integers(0, 4, len(owner)).astype(float)
     values[rng.random(len(owner)) < 0.03] = np.nan
     np.testing.assert_array_equal(_first_minima(values, counts), group_argmin(values, owner, len(counts)))
+
+
+@pytest.mark.parametrize("closed", [False, True])
+def test_local_depths_are_the_nearest_vertex_of_the_window_round_each_contact(closed):
+    # Brute force, row by row: the vertices LOCAL_WINDOW before to LOCAL_WINDOW + 1 after the
+    # contact's edge (wrapping round a loop, stopping at a stroke's ends), the nearest one.
+    from ballmorph_core.ballmap.sides import Sides
+
+    rng = np.random.default_rng(3)
+    curves = [circle(1.0 + c, 40 + 30 * c)[: None if closed else 25 + 20 * c] for c in range(3)]
+    side = Sides(curves, np.full(3, closed), np.ones(3), np.full(3, 0.05))
+    rg = side.rg
+    chain = np.sort(rng.integers(0, 3, 300))
+    s = rng.uniform(-0.1, 1.1, 300) * rg.length[chain]
+    centres, radii = rng.uniform(-2, 2, (300, 2)), rng.uniform(0, 1, 300)
+    depth, witness = check._local_depths(side, chain, s, centres, radii)
+    edge, _ = rg.locate(chain, s)
+    for k, c in enumerate(chain):
+        local = edge[k] - rg.offsets[c] + np.arange(-check.LOCAL_WINDOW, check.LOCAL_WINDOW + 2)
+        local = local % rg.n[c] if closed else np.clip(local, 0, rg.n[c] - 1)
+        g = rg.offsets[c] + local
+        d = np.linalg.norm(rg.pts[g] - centres[k], axis=1)
+        assert witness[k] == g[np.argmin(d)]
+        assert depth[k] == pytest.approx(radii[k] - d.min(), abs=1e-12)
