@@ -516,3 +516,54 @@ def test_local_depths_are_the_nearest_vertex_of_the_window_round_each_contact(cl
         d = np.linalg.norm(rg.pts[g] - centres[k], axis=1)
         assert witness[k] == g[np.argmin(d)]
         assert depth[k] == pytest.approx(radii[k] - d.min(), abs=1e-12)
+
+
+def _wavy_sides(rng, count, shift):
+    """Sides of a few open wavy strokes (gap above), shifted by ``shift``."""
+    from ballmorph_core.ballmap.sides import Sides
+
+    curves = []
+    for c in range(count):
+        x = np.linspace(0, 1, 50)
+        curves.append(np.c_[x, 0.05 * np.sin(rng.uniform(2, 9) * x + rng.uniform(0, 6))] + [0, shift + 3 * c])
+    return Sides(curves, np.zeros(count, bool), np.full(count, 1.0), np.full(count, rng.uniform(0.003, 0.02)))
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_pruned_search_finds_what_the_whole_window_finds(seed):
+    # Samples above wavy strokes (some exactly on them: zero disks), searched over random wide
+    # windows with good and bad guesses of the contact: bit for bit the unpruned search.
+    from ballmorph_core.ballmap import lacing
+
+    rng = np.random.default_rng(seed)
+    dst = _wavy_sides(rng, 3, 0.0)
+    src = _wavy_sides(rng, 3, rng.uniform(0.01, 0.2))
+    rg = src.rg
+    k = rng.integers(0, len(rg.pts), 400)
+    chain = rg.owner[k]
+    x, n = rg.pts[k].copy(), src.vnormals[k]
+    on = rng.random(400) < 0.1
+    x[on] = dst.rg.pts[np.minimum(k[on], dst.rg.offsets[chain[on] + 1] - 1)]
+    n_e = dst.rg.n_edges[chain]
+    e_lo = rng.integers(0, n_e // 2)
+    e_hi = np.minimum(e_lo + rng.integers(0, n_e), n_e - 1)
+    good = (k - rg.offsets[chain]) * n_e / np.maximum(rg.n[chain] - 1, 1)
+    for guess in (good, rng.uniform(0, n_e)):
+        want = lacing._search(x, n, dst, chain, e_lo, e_hi, 1e-9)
+        got = lacing._search(x, n, dst, chain, e_lo, e_hi, 1e-9, guess)
+        assert (e_hi - e_lo + 1 > lacing.WIDE_WINDOW).sum() > 100
+        for g, w in zip(got, want):
+            np.testing.assert_array_equal(g.view(np.int64), w.view(np.int64))
+
+
+def test_edge_blocks_hold_their_edges():
+    from ballmorph_core.ballmap.sides import EDGE_BLOCK
+
+    side = _wavy_sides(np.random.default_rng(2), 3, 0.0)
+    (x, y), (ex, ey) = side.columns[0], side.columns[1]
+    x0, y0, x1, y1, longest = side.blocks
+    b = side.block_of(np.arange(len(x)))
+    for px, py in ((x, y), (x + ex, y + ey)):
+        assert np.all((x0[b] <= px) & (px <= x1[b]) & (y0[b] <= py) & (py <= y1[b]))
+    assert np.all(np.hypot(ex, ey) <= longest[b] * (1 + 1e-15))
+    assert len(longest) == -(-len(x) // EDGE_BLOCK)
