@@ -115,7 +115,39 @@ def _entered(tree, centres, radii, curves, chain):
     return again[qi], pi
 
 
-def _depths(one_way, src, dst, spacing, eps):
+class _Trees:
+    """One :class:`CurveTree` over the curves of both sides, shared by both directions' checks.
+
+    Built for the first (source, target) asked; the other direction names the same curves the
+    other way round. A disk's traversal depends only on its curves' subtrees and the order it
+    names them in, so either tree gives the same vertices in the same order.
+    """
+
+    def __init__(self):
+        self._built = {}
+
+    def entered(self, src, dst, centres, radii, chain):
+        """Vertices of each disk's chain strictly inside it (:func:`_entered`), numbered as in
+        ``concatenate([src.rg.pts, dst.rg.pts])``: query, point, shape (M,)."""
+        flipped = (id(dst), id(src)) in self._built
+        first, second = (dst, src) if flipped else (src, dst)
+        key = (id(first), id(second))
+        if key not in self._built:
+            n_first = len(first.rg.pts)
+            verts = np.concatenate([first.rg.pts, second.rg.pts])
+            self._built[key] = CurveTree(verts, np.concatenate([first.rg.offsets, second.rg.offsets[1:] + n_first]))
+        tree, n_chains = self._built[key], len(src.rg)
+        # The chain's two curves, the source first (in the tree, the first side's come first).
+        at_src, at_dst = (chain + n_chains, chain) if flipped else (chain, chain + n_chains)
+        own = np.stack([at_src, at_dst], axis=1)
+        qi, pi = _entered(tree, centres, radii, own, chain)
+        if flipped:
+            n_dst = len(dst.rg.pts)
+            pi = np.where(pi < n_dst, pi + len(src.rg.pts), pi - n_dst)
+        return qi, pi
+
+
+def _depths(one_way, src, dst, spacing, eps, trees):
     """How deep each disk is entered, by which vertex (index into both curves' vertices), and
     whether that fails the check."""
     m, r, ok, chain = one_way.m, one_way.r, one_way.ok, one_way.chain
@@ -130,9 +162,7 @@ def _depths(one_way, src, dst, spacing, eps):
     # Other parts of the same chain's curves reaching into a disk.
     radius = r * (1.0 - NONLOCAL_RELATIVE) - NONLOCAL_PENETRATION * h
     query = np.flatnonzero((radius > 0) & ok)
-    tree = CurveTree(verts, np.concatenate([src.rg.offsets, dst.rg.offsets[1:] + n_src]))
-    own = np.stack([chain[query], chain[query] + len(src.rg)], axis=1)  # the chain's two curves
-    qi, pi = _entered(tree, m[query], radius[query], own, chain[query])
+    qi, pi = trees.entered(src, dst, m[query], radius[query], chain[query])
     k = query[qi]
     far = r[k] - np.linalg.norm(verts[pi] - m[k], axis=1)
     deeper = far > np.where(bad[k], depth[k], -np.inf)
@@ -141,12 +171,13 @@ def _depths(one_way, src, dst, spacing, eps):
     return depth, witness, verts, bad & ok
 
 
-def _check(one_way, src, dst, spacing, eps, driver, reports):
+def _check(one_way, src, dst, spacing, eps, driver, reports, trees):
     """Mark (``one_way.bad``) and report the maximal disks entered by either curve.
 
-    ``spacing`` is the dense spacing per chain, shape (C,); ``driver`` the source curve's name.
+    ``spacing`` is the dense spacing per chain, shape (C,); ``driver`` the source curve's name;
+    ``trees`` the :class:`_Trees` of the check.
     """
-    depth, witness, verts, bad = _depths(one_way, src, dst, spacing, eps)
+    depth, witness, verts, bad = _depths(one_way, src, dst, spacing, eps, trees)
     ok, chain = one_way.ok, one_way.chain
     one_way.bad = bad | ~ok
     flagged = np.flatnonzero(one_way.bad)
@@ -213,8 +244,9 @@ def check_maps(maps, spacing, eps, reports):
     reports : list of CompatibilityReport
         One per chain; violations are appended. Every map's ``bad`` is set.
     """
+    trees = _Trees()
     for one_way, src, dst, driver in maps:
-        _check(one_way, src, dst, spacing, eps, driver, reports)
+        _check(one_way, src, dst, spacing, eps, driver, reports, trees)
     failing = [c for c, rep in enumerate(reports) if rep.violations]
     if not failing:
         return
@@ -225,5 +257,5 @@ def check_maps(maps, spacing, eps, reports):
         one_way.bad &= again
         _repair(one_way, src, dst, eps)
         sub = one_way.take(again)
-        _check(sub, src, dst, spacing, eps, driver, reports)
+        _check(sub, src, dst, spacing, eps, driver, reports, trees)
         one_way.bad[again] = sub.bad

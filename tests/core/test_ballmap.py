@@ -567,3 +567,27 @@ def test_edge_blocks_hold_their_edges():
         assert np.all((x0[b] <= px) & (px <= x1[b]) & (y0[b] <= py) & (py <= y1[b]))
     assert np.all(np.hypot(ex, ey) <= longest[b] * (1 + 1e-15))
     assert len(longest) == -(-len(x) // EDGE_BLOCK)
+
+
+def test_one_tree_answers_both_directions_as_a_tree_of_their_own_would():
+    # Disks between two sides, asked from P to Q, then from Q to P of the same shared tree:
+    # each direction gets the vertices (numbered source first) a tree of its own finds.
+    from ballmorph_core.geometry.spatial import CurveTree
+
+    rng = np.random.default_rng(4)
+    sp, sq = _wavy_sides(rng, 3, 0.0), _wavy_sides(rng, 3, 0.08)
+    trees = check._Trees()
+    for src, dst in ((sp, sq), (sq, sp)):
+        k = np.sort(rng.integers(0, len(src.rg.pts), 300))
+        chain = src.rg.owner[k]
+        centres = src.rg.pts[k] + rng.normal(0, 0.03, (300, 2))
+        radii = rng.uniform(0, 0.08, 300)
+        n_src = len(src.rg.pts)
+        own_tree = CurveTree(
+            np.concatenate([src.rg.pts, dst.rg.pts]), np.r_[src.rg.offsets, dst.rg.offsets[1:] + n_src]
+        )
+        want = own_tree.within(centres, radii, np.c_[chain, chain + 3], first_only=True)
+        got = trees.entered(src, dst, centres, radii, chain)
+        assert _per_disk(*got, 300) == _per_disk(*want, 300)
+        assert any(_per_disk(*want, 300))
+    assert len(trees._built) == 1
