@@ -6,7 +6,7 @@ from functools import cached_property
 import numpy as np
 
 from ..geometry.ragged import Ragged
-from ..geometry.spline import densify
+from ..geometry.spline import SUBDIVIDE_EDGE_RATIO, densify
 
 __all__ = ["Sides", "Side", "EDGE_BLOCK"]
 
@@ -39,9 +39,16 @@ class Sides:
 
     def __init__(self, curves, closed, sides, spacing):
         spacing = np.asarray(spacing, dtype=np.float64)
-        # Coarse, hand-placed polylines get a few interpolating subdivision steps first.
-        curves = [densify(c, cl, h) for c, cl, h in zip(curves, closed, spacing)]
         raw = Ragged.from_list(curves, closed)
+        # Coarse, hand-placed polylines get a few interpolating subdivision steps first: only
+        # those whose longest edge densify would find too long are handed to it (the same test
+        # on the same edges, batched; the others it would return unchanged).
+        if len(raw):
+            longest = np.maximum.reduceat(np.linalg.norm(raw.edge, axis=1), raw.offsets[:-1])
+            coarse = ~(longest / (SUBDIVIDE_EDGE_RATIO * spacing) <= 1)
+            if coarse.any():
+                curves = [densify(c, cl, h) if f else c for c, cl, h, f in zip(curves, closed, spacing, coarse)]
+                raw = Ragged.from_list(curves, closed)
         counts = np.round(raw.length / spacing).astype(np.int64) + np.where(raw.closed, 0, 1)
         self.rg = raw.resample(counts)
         side = np.asarray(sides, dtype=np.float64)[self.rg.owner][:, None]

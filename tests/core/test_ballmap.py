@@ -591,3 +591,21 @@ def test_one_tree_answers_both_directions_as_a_tree_of_their_own_would():
         assert _per_disk(*got, 300) == _per_disk(*want, 300)
         assert any(_per_disk(*want, 300))
     assert len(trees._built) == 1
+
+
+def test_sides_densify_exactly_the_coarse_curves():
+    # Coarse polygons (subdivided first) among dense curves, loops and strokes: the dense
+    # curves are those of every curve handed to densify, bit for bit.
+    from ballmorph_core.ballmap.sides import Sides
+    from ballmorph_core.geometry.ragged import Ragged
+    from ballmorph_core.geometry.spline import densify
+
+    curves = [circle(1.0, 6), circle(2.0, 300), graph_stroke(0.2, (), 5), graph_stroke(0.1, (0.01,), 200)]
+    closed = np.array([True, True, False, False])
+    spacing = np.array([0.02, 0.05, 0.01, 0.03])
+    side = Sides(curves, closed, np.ones(4), spacing)
+    raw = Ragged.from_list([densify(c, cl, h) for c, cl, h in zip(curves, closed, spacing)], closed)
+    want = raw.resample(np.round(raw.length / spacing).astype(np.int64) + np.where(closed, 0, 1))
+    assert len(raw.pts) > sum(len(c) for c in curves)  # the coarse ones were subdivided
+    np.testing.assert_array_equal(side.rg.pts, want.pts)
+    np.testing.assert_array_equal(side.rg.offsets, want.offsets)
