@@ -44,32 +44,57 @@ def tangent_disks(x, n, a, b, N, eps):
     u : ndarray, shape (K,)
         The contact's position along the edge in [0, 1].
     """
+    # In place where it can be (every full-size temporary is a fresh allocation), each value
+    # by the same operations in the same order as the plain expressions: bitwise the same.
     (xx, xy), (nx, ny), (ax, ay), (Nx, Ny) = x, n, a, N
     dx, dy = b[0] - ax, b[1] - ay
-    len2 = dx * dx + dy * dy
+    len2 = dx * dx
+    len2 += dy * dy
+    wx, wy = xx - ax, xy - ay  # x - a
     # Edge (eq. 4, 5).
-    num = (xx - ax) * Nx + (xy - ay) * Ny
-    den = 1.0 - (nx * Nx + ny * Ny)
+    r_e = wx * Nx
+    r_e += wy * Ny
+    den = nx * Nx
+    den += ny * Ny
+    np.subtract(1.0, den, out=den)
     with np.errstate(divide="ignore", invalid="ignore"):
-        r_e = np.where(den > PARALLEL, num / den, np.inf)
-    r_e = np.where(r_e >= -eps, np.maximum(r_e, 0.0), np.inf)
+        r_e /= den
+    r_e[~(den > PARALLEL)] = np.inf
+    reached = r_e >= -eps
+    np.maximum(r_e, 0.0, out=r_e)
+    r_e[~reached] = np.inf
     step = np.where(np.isfinite(r_e), r_e, 0.0)
+    u = nx - Nx
+    u *= step
+    u += xx
+    u -= ax
+    u *= dx
+    uy = ny - Ny
+    uy *= step
+    uy += xy
+    uy -= ay
+    uy *= dy
+    u += uy
     with np.errstate(divide="ignore", invalid="ignore"):
-        u = ((xx + step * (nx - Nx) - ax) * dx + (xy + step * (ny - Ny) - ay) * dy) / len2
-    r_e = np.where((u >= -ON_EDGE) & (u <= 1 + ON_EDGE), r_e, np.inf)
-    u = np.clip(np.nan_to_num(u), 0.0, 1.0)
-    # Vertices (eq. 3): r = |v - x|^2 / (2 (v - x) . n).
+        u /= len2
+    r_e[~((u >= -ON_EDGE) & (u <= 1 + ON_EDGE))] = np.inf
+    np.clip(u, 0.0, 1.0, out=u)
+    u[np.isnan(u)] = 0.0
+    # Vertices (eq. 3): r = |v - x|^2 / (2 (v - x) . n); for a, v - x is -(x - a), exactly.
     best_r, best_u = r_e, u
-    for (vx, vy), uu in ((a, 0.0), (b, 1.0)):
-        ex, ey = vx - xx, vy - xy
-        dist2 = ex * ex + ey * ey
-        den_v = 2.0 * (ex * nx + ey * ny)
+    for (ex, ey), twice, uu in (((wx, wy), -2.0, 0.0), ((b[0] - xx, b[1] - xy), 2.0, 1.0)):
+        dist2 = ex * ex
+        dist2 += ey * ey
+        den_v = ex * nx
+        den_v += ey * ny
+        den_v *= twice
         with np.errstate(divide="ignore", invalid="ignore"):
-            r_v = np.where(den_v > 0, dist2 / den_v, np.inf)
-        r_v = np.where(dist2 <= eps * eps, 0.0, r_v)
+            r_v = dist2 / den_v
+        r_v[~(den_v > 0)] = np.inf
+        r_v[dist2 <= eps * eps] = 0.0
         better = r_v < best_r
-        best_r = np.where(better, r_v, best_r)
-        best_u = np.where(better, uu, best_u)
+        np.copyto(best_r, r_v, where=better)
+        best_u[better] = uu
     return best_r, best_u
 
 

@@ -14,9 +14,10 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..geometry.circles import circumcircles
-from ..geometry.ragged import budget_slices, group_argmin, ragged_arange
-from .candidates import tangent_disks
+from ..geometry.ragged import budget_slices
+from .candidates import ON_EDGE, tangent_disks
 from .onemap import OneWayMap
+from .sides import EDGE_BLOCK
 
 __all__ = ["one_way", "full_search", "contacts", "refine", "same_lap", "disk_map"]
 
@@ -24,34 +25,130 @@ __all__ = ["one_way", "full_search", "contacts", "refine", "same_lap", "disk_map
 #: temporary arrays (about 0.2 KB per pair) without slowing them down noticeably.
 CANDIDATE_BUDGET = 500_000
 
+#: Samples searching more target edges than this (the first bisection levels) first measure
+#: the three edges round their expected contact, then only the blocks of ``EDGE_BLOCK`` edges
+#: that can hold a disk as small (:func:`_pruned`).
+WIDE_WINDOW = 32
 
-def _search(x, n, dst, chain, e_lo, e_hi, eps):
+#: Relative round-off allowed when a block of edges is shown to hold no smaller disk (of the
+#: radius' and the coordinates' size): far more than the few ulps the distances can be off.
+SEARCH_SLACK = 1e-9
+
+
+def _first_minima(values, counts):
+    """Index of the first minimum of each group of consecutive ``values``, shape (G,).
+
+    ``counts`` (shape (G,)) sizes the groups; as :func:`~ballmorph_core.geometry.ragged.group_argmin`,
+    a group without entries (or without a minimum: NaN) gets 0.
+    """
+    ends = np.cumsum(counts)
+    starts = ends - counts
+    filled = counts > 0
+    best = np.zeros(len(counts), dtype=np.int64)
+    if not filled.any():
+        return best
+    first = starts[filled]
+    mins = np.minimum.reduceat(values, first)
+    at = np.where(values == np.repeat(mins, counts[filled]), np.arange(len(values)), len(values))
+    best[filled] = np.minimum.reduceat(at, first)
+    best[best == len(values)] = 0
+    return best
+
+
+def _smallest(x, n, dst, g, cnt, eps):
+    """Smallest disk over each sample's run of target edges ``g`` (global indices, ``cnt`` per
+    sample, sample after sample): radii and the index into ``g`` of each sample's first best
+    edge, with its contact's fraction ``u`` along that edge."""
+    pts, edge, normals = dst.columns
+    # The indices are in range: take's 'wrap' mode skips the bounds check.
+    a = np.take(pts, g, axis=1, mode="wrap")
+    rr, uu = tangent_disks(
+        np.repeat(x, cnt, axis=1),
+        np.repeat(n, cnt, axis=1),
+        a,
+        a + np.take(edge, g, axis=1, mode="wrap"),
+        np.take(normals, g, axis=1, mode="wrap"),
+        eps,
+    )
+    best = _first_minima(rr, cnt)
+    return rr[best], best, uu[best]
+
+
+def _runs(starts, cnt):
+    """Concatenated ``arange(start, start + c)`` of every run, shape (sum(cnt),)."""
+    total = int(cnt.sum())
+    return np.arange(total) - np.repeat(np.cumsum(cnt) - cnt - starts, cnt)
+
+
+def _pruned(x, n, dst, first, last, guess, eps):
+    """:func:`_smallest` over target edges ``first..last`` (global) of each sample, skipping
+    blocks of edges that provably hold no disk as small as the guessed edges' (radii, best edges).
+
+    Disks tangent at ``x`` along ``n`` are nested, so an edge whose disk has radius ``r <= R``
+    has its contact in the disk of radius ``R`` (centre ``x + R n``): a block whose box lies
+    farther from that centre than ``R`` (plus the contact test's slack) holds only larger disks,
+    never the first smallest one. ``R`` is the smallest of the three edges round ``guess``.
+    """
+    lo, hi = dst.block_of(first), dst.block_of(last)
+    near = np.clip(np.floor(guess).astype(np.int64)[None, :] + np.array([-1, 0, 1])[:, None], first, last)
+    ring = np.ascontiguousarray(near.T).ravel()
+    r_guess, _, _ = _smallest(x, n, dst, ring, np.full(len(first), 3), eps)
+    # The rows' (sample, block) pairs, and the distance from each block's box to the centre.
+    nb = hi - lo + 1
+    owner = np.repeat(np.arange(len(first)), nb)
+    block = _runs(lo, nb)
+    finite = np.isfinite(r_guess)
+    radius = np.where(finite, r_guess, 0.0)
+    mx, my = (np.take(x[i] + radius * n[i], owner, mode="wrap") for i in (0, 1))
+    x0, y0, x1, y1, longest = (np.take(v, block, mode="wrap") for v in dst.blocks)
+    dx = np.maximum(np.maximum(x0 - mx, mx - x1), 0.0)
+    dy = np.maximum(np.maximum(y0 - my, my - y1), 0.0)
+    reach = np.take(radius, owner) + 2.0 * eps + ON_EDGE * longest
+    reach += SEARCH_SLACK * (reach + np.abs(mx) + np.abs(my))
+    keep = (dx * dx + dy * dy <= reach * reach) | ~np.take(finite, owner)
+    owner, block = owner[keep], block[keep]
+    # The kept blocks' edges within each sample's run, in order.
+    e0 = np.maximum(block * EDGE_BLOCK, first[owner])
+    e1 = np.minimum(block * EDGE_BLOCK + EDGE_BLOCK - 1, last[owner])
+    g = _runs(e0, e1 - e0 + 1)
+    cnt = np.bincount(owner, weights=e1 - e0 + 1, minlength=len(first)).astype(np.int64)
+    r, best, u = _smallest(x, n, dst, g, cnt, eps)
+    return r, g[best], u
+
+
+def _search(x, n, dst, chain, e_lo, e_hi, eps, guess=None):
     """Smallest disk at each sample over target edges ``e_lo..e_hi`` of its chain (laps unrolled).
 
-    Returns radii (inf where none) and contact positions in units of target edges (``e + u``).
+    ``guess`` (edge units, optional) is where each contact is expected: samples with more than
+    ``WIDE_WINDOW`` edges skip the blocks of edges that cannot hold their smallest disk
+    (:func:`_pruned`; the same answer). Returns radii (inf where none) and contact positions in
+    units of target edges (``e + u``).
     """
-    rg, (pts, edge, normals) = dst.rg, dst.columns
+    rg = dst.rg
     x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
     counts = e_hi - e_lo + 1
     r, pos = np.full(x.shape[1], np.inf), np.zeros(x.shape[1])
-    for sl in budget_slices(counts, CANDIDATE_BUDGET):
-        owner, local = ragged_arange(counts[sl])
-        if not len(owner):
+    # Without loops a sample's edges are one run of the target's: no lap to wrap round.
+    wraps = bool(rg.closed[chain].any())
+    base = rg.offsets[chain]
+    wide = np.zeros(len(counts), bool) if wraps or guess is None else counts > WIDE_WINDOW
+    for sl in budget_slices(np.where(wide, 0, counts), CANDIDATE_BUDGET):
+        cnt = np.where(wide[sl], 0, counts[sl])
+        if not cnt.any():
             continue
-        c = chain[sl][owner]
-        e_local = e_lo[sl][owner] + local
-        g = rg.offsets[c] + np.where(rg.closed[c], e_local % np.maximum(rg.n_edges[c], 1), e_local)
-        a, i = np.take(pts, g, axis=1), owner + sl.start
-        rr, uu = tangent_disks(
-            np.take(x, i, axis=1),
-            np.take(n, i, axis=1),
-            a,
-            a + np.take(edge, g, axis=1),
-            np.take(normals, g, axis=1),
-            eps,
-        )
-        best = group_argmin(rr, owner, sl.stop - sl.start)
-        r[sl], pos[sl] = rr[best], e_local[best] + uu[best]
+        e_local = _runs(e_lo[sl], cnt)
+        if wraps:
+            c = np.repeat(chain[sl], cnt)
+            g = rg.offsets[c] + np.where(rg.closed[c], e_local % np.maximum(rg.n_edges[c], 1), e_local)
+        else:
+            g = e_local + np.repeat(base[sl], cnt)
+        rr, best, uu = _smallest(x[:, sl], n[:, sl], dst, g, cnt, eps)
+        r[sl], pos[sl] = rr, e_local[best] + uu
+    rows = np.flatnonzero(wide)
+    for sl in budget_slices(counts[rows], CANDIDATE_BUDGET):
+        k = rows[sl]
+        rr, g, uu = _pruned(x[:, k], n[:, k], dst, base[k] + e_lo[k], base[k] + e_hi[k], base[k] + guess[k], eps)
+        r[k], pos[k] = rr, (g - base[k]) + uu
     return r, pos
 
 
@@ -92,7 +189,9 @@ def _lace(src, dst, eps):
         laps = np.where(closed[chain], 2 * n_e[chain], n_e[chain])
         e_lo = np.clip(np.floor(p_lo).astype(np.int64), 0, laps - 1)
         e_hi = np.clip(np.ceil(p_hi).astype(np.int64) - 1, e_lo, laps - 1)
-        rr, pp = _search(X[mid], NX[mid], dst, chain, e_lo, e_hi, eps)
+        # The contact is expected in proportion between its bracket's (only a hint: see _search).
+        guess = p_lo + (p_hi - p_lo) * ((mid - lo) / (hi - lo))
+        rr, pp = _search(X[mid], NX[mid], dst, chain, e_lo, e_hi, eps, guess)
         # The window is whole edges, so the best contact may lie just outside the bracket: then
         # the true image does not advance monotonically (or sits on the bracket's end). Clipping
         # it would move the contact off its disk, so beyond round-off it counts as no disk found

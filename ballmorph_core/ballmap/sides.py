@@ -1,13 +1,17 @@
 """The curves a ball-map runs on: every chain's curve densely resampled, with gap normals."""
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from ..geometry.ragged import Ragged
-from ..geometry.spline import densify
+from ..geometry.spline import SUBDIVIDE_EDGE_RATIO, densify
 
-__all__ = ["Sides", "Side"]
+__all__ = ["Sides", "Side", "EDGE_BLOCK"]
+
+#: Consecutive edges (by global first vertex) sharing one bounding box in :attr:`Sides.blocks`.
+EDGE_BLOCK = 8
 
 
 class Sides:
@@ -35,15 +39,46 @@ class Sides:
 
     def __init__(self, curves, closed, sides, spacing):
         spacing = np.asarray(spacing, dtype=np.float64)
-        # Coarse, hand-placed polylines get a few interpolating subdivision steps first.
-        curves = [densify(c, cl, h) for c, cl, h in zip(curves, closed, spacing)]
         raw = Ragged.from_list(curves, closed)
+        # Coarse, hand-placed polylines get a few interpolating subdivision steps first: only
+        # those whose longest edge densify would find too long are handed to it (the same test
+        # on the same edges, batched; the others it would return unchanged).
+        if len(raw):
+            longest = np.maximum.reduceat(np.linalg.norm(raw.edge, axis=1), raw.offsets[:-1])
+            coarse = ~(longest / (SUBDIVIDE_EDGE_RATIO * spacing) <= 1)
+            if coarse.any():
+                curves = [densify(c, cl, h) if f else c for c, cl, h, f in zip(curves, closed, spacing, coarse)]
+                raw = Ragged.from_list(curves, closed)
         counts = np.round(raw.length / spacing).astype(np.int64) + np.where(raw.closed, 0, 1)
         self.rg = raw.resample(counts)
         side = np.asarray(sides, dtype=np.float64)[self.rg.owner][:, None]
         self.vnormals = side * self.rg.vertex_normals()
         self.enormals = side * self.rg.edge_normals()
         self.columns = tuple(np.ascontiguousarray(v.T) for v in (self.rg.pts, self.rg.edge, self.enormals))
+
+    @cached_property
+    def blocks(self):
+        """Every run of ``EDGE_BLOCK`` edges (by global first vertex, ``g // EDGE_BLOCK``; a run
+        may span two chains): its box and its longest edge, ``xmin, ymin, xmax, ymax, longest``,
+        each shape (B,). The box holds each edge from ``a`` to ``a + edge`` as the lacing
+        computes them (an open curve's last vertex, which starts no edge, is a point)."""
+        (x, y), (ex, ey) = self.columns[0], self.columns[1]
+        starts = np.arange(0, len(x), EDGE_BLOCK)
+        if not len(starts):
+            return tuple(np.zeros(0) for _ in range(5))
+        bx, by = x + ex, y + ey
+        return (
+            np.minimum.reduceat(np.minimum(x, bx), starts),
+            np.minimum.reduceat(np.minimum(y, by), starts),
+            np.maximum.reduceat(np.maximum(x, bx), starts),
+            np.maximum.reduceat(np.maximum(y, by), starts),
+            np.maximum.reduceat(np.sqrt(ex * ex + ey * ey), starts),
+        )
+
+    @staticmethod
+    def block_of(edge):
+        """The block (see :attr:`blocks`) of global edges ``edge``, ndarray of int."""
+        return edge // EDGE_BLOCK
 
     def view(self, c):
         """Curve ``c`` alone (Side)."""

@@ -389,3 +389,223 @@ def test_tangent_disks_are_the_smallest_disk_touching_each_edge():
         if np.isfinite(r[i]):
             contact = ai + u[i] * (bi - ai)
             assert np.linalg.norm(xi + r[i] * ni - contact) == pytest.approx(r[i], rel=1e-6, abs=1e-9)
+
+
+# ---------------------------------------------------------------- the disk check's search
+
+
+def _per_disk(query, point, n):
+    """Each disk's vertices in the order they were reported."""
+    return [point[query == k].tolist() for k in range(n)]
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_disks_asked_in_runs_find_the_vertices_each_disk_finds(seed):
+    # Three chains of two wavy curves each; disks walk along each chain's gap a little apart,
+    # small ones (empty: their runs are cleared at once) and some reaching the curves.
+    from ballmorph_core.geometry.spatial import CurveTree
+
+    rng = np.random.default_rng(seed)
+    curves, disks = [], []
+    for c in range(3):
+        x = np.linspace(0, 1, rng.integers(20, 120))
+        wave = 0.02 * np.sin(rng.uniform(3, 12) * x + rng.uniform(0, 6))
+        curves.append((np.c_[x, wave + 0.1] + c, np.c_[x, wave - 0.1] + c))
+        k = rng.integers(1, 60)
+        centre = np.c_[np.sort(rng.uniform(0, 1, k)), rng.normal(0, 0.01, k)] + c
+        radius = np.where(rng.random(k) < 0.15, rng.uniform(0.1, 0.3, k), rng.uniform(0.0, 0.07, k))
+        disks.append((centre, radius, np.full(k, c)))
+    pts = np.concatenate([p for p, _ in curves] + [q for _, q in curves])
+    sizes = [len(p) for p, _ in curves] + [len(q) for _, q in curves]
+    tree = CurveTree(pts, np.r_[0, np.cumsum(sizes)])
+    centres, radii, chain = (np.concatenate(v) for v in zip(*disks))
+    own = np.c_[chain, chain + 3]
+    want = _per_disk(*tree.within(centres, radii, own, first_only=True), len(centres))
+    got = _per_disk(*check._entered(tree, centres, radii, own, chain), len(centres))
+    assert got == want
+    # Both kinds of disk occur: empty ones and ones a curve enters.
+    assert any(want) and not all(want)
+
+
+def _plain_tangent_disks(x, n, a, b, N, eps):
+    """tangent_disks as plain expressions (its first version): the in-place one must match it bit for bit."""
+    (xx, xy), (nx, ny), (ax, ay), (Nx, Ny) = x, n, a, N
+    dx, dy = b[0] - ax, b[1] - ay
+    len2 = dx * dx + dy * dy
+    num = (xx - ax) * Nx + (xy - ay) * Ny
+    den = 1.0 - (nx * Nx + ny * Ny)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r_e = np.where(den > 1e-12, num / den, np.inf)
+    r_e = np.where(r_e >= -eps, np.maximum(r_e, 0.0), np.inf)
+    step = np.where(np.isfinite(r_e), r_e, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = ((xx + step * (nx - Nx) - ax) * dx + (xy + step * (ny - Ny) - ay) * dy) / len2
+    r_e = np.where((u >= -1e-9) & (u <= 1 + 1e-9), r_e, np.inf)
+    u = np.clip(np.nan_to_num(u), 0.0, 1.0)
+    best_r, best_u = r_e, u
+    for (vx, vy), uu in ((a, 0.0), (b, 1.0)):
+        ex, ey = vx - xx, vy - xy
+        dist2 = ex * ex + ey * ey
+        den_v = 2.0 * (ex * nx + ey * ny)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r_v = np.where(den_v > 0, dist2 / den_v, np.inf)
+        r_v = np.where(dist2 <= eps * eps, 0.0, r_v)
+        better = r_v < best_r
+        best_r = np.where(better, r_v, best_r)
+        best_u = np.where(better, uu, best_u)
+    return best_r, best_u
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_tangent_disks_are_bitwise_the_plain_expressions(seed):
+    # Random samples and edges, with the special cases mixed in: zero-length edges, edges
+    # facing the normal (parallel), samples on a vertex or on the edge's line.
+    rng = np.random.default_rng(seed)
+    k = 3000
+    x, a, b = rng.uniform(-1, 1, (3, 2, k))
+    n = rng.normal(size=(2, k))
+    n /= np.linalg.norm(n, axis=0)
+    b[:, ::17] = a[:, ::17]
+    x[:, 5::19] = a[:, 5::19]
+    x[:, 7::23] = a[:, 7::23] + rng.uniform(0, 1, len(range(7, k, 23))) * (b - a)[:, 7::23]
+    N = np.array([a[1] - b[1], b[0] - a[0]]) * rng.choice([-1.0, 1.0], k)
+    with np.errstate(invalid="ignore"):
+        N /= np.linalg.norm(N, axis=0)
+    N = np.nan_to_num(N)
+    N[:, 3::29] = n[:, 3::29]
+    for eps in (1e-12, 1e-3):
+        got, want = tangent_disks(x, n, a, b, N, eps), _plain_tangent_disks(x, n, a, b, N, eps)
+        for g, w in zip(got, want):
+            np.testing.assert_array_equal(g.view(np.int64), w.view(np.int64))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_first_minima_of_groups_match_group_argmin(seed):
+    # Groups of every size (empty ones too), values with many ties and a few NaNs.
+    from ballmorph_core.ballmap.lacing import _first_minima
+    from ballmorph_core.geometry.ragged import group_argmin, ragged_arange
+
+    rng = np.random.default_rng(seed)
+    counts = rng.integers(0, 6, 200)
+    counts[:2] = [0, 3]
+    owner, _ = ragged_arange(counts)
+    values = rng.integers(0, 4, len(owner)).astype(float)
+    values[rng.random(len(owner)) < 0.03] = np.nan
+    np.testing.assert_array_equal(_first_minima(values, counts), group_argmin(values, owner, len(counts)))
+
+
+@pytest.mark.parametrize("closed", [False, True])
+def test_local_depths_are_the_nearest_vertex_of_the_window_round_each_contact(closed):
+    # Brute force, row by row: the vertices LOCAL_WINDOW before to LOCAL_WINDOW + 1 after the
+    # contact's edge (wrapping round a loop, stopping at a stroke's ends), the nearest one.
+    from ballmorph_core.ballmap.sides import Sides
+
+    rng = np.random.default_rng(3)
+    curves = [circle(1.0 + c, 40 + 30 * c)[: None if closed else 25 + 20 * c] for c in range(3)]
+    side = Sides(curves, np.full(3, closed), np.ones(3), np.full(3, 0.05))
+    rg = side.rg
+    chain = np.sort(rng.integers(0, 3, 300))
+    s = rng.uniform(-0.1, 1.1, 300) * rg.length[chain]
+    centres, radii = rng.uniform(-2, 2, (300, 2)), rng.uniform(0, 1, 300)
+    depth, witness = check._local_depths(side, chain, s, centres, radii)
+    edge, _ = rg.locate(chain, s)
+    for k, c in enumerate(chain):
+        local = edge[k] - rg.offsets[c] + np.arange(-check.LOCAL_WINDOW, check.LOCAL_WINDOW + 2)
+        local = local % rg.n[c] if closed else np.clip(local, 0, rg.n[c] - 1)
+        g = rg.offsets[c] + local
+        d = np.linalg.norm(rg.pts[g] - centres[k], axis=1)
+        assert witness[k] == g[np.argmin(d)]
+        assert depth[k] == pytest.approx(radii[k] - d.min(), abs=1e-12)
+
+
+def _wavy_sides(rng, count, shift):
+    """Sides of a few open wavy strokes (gap above), shifted by ``shift``."""
+    from ballmorph_core.ballmap.sides import Sides
+
+    curves = []
+    for c in range(count):
+        x = np.linspace(0, 1, 50)
+        curves.append(np.c_[x, 0.05 * np.sin(rng.uniform(2, 9) * x + rng.uniform(0, 6))] + [0, shift + 3 * c])
+    return Sides(curves, np.zeros(count, bool), np.full(count, 1.0), np.full(count, rng.uniform(0.003, 0.02)))
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_pruned_search_finds_what_the_whole_window_finds(seed):
+    # Samples above wavy strokes (some exactly on them: zero disks), searched over random wide
+    # windows with good and bad guesses of the contact: bit for bit the unpruned search.
+    from ballmorph_core.ballmap import lacing
+
+    rng = np.random.default_rng(seed)
+    dst = _wavy_sides(rng, 3, 0.0)
+    src = _wavy_sides(rng, 3, rng.uniform(0.01, 0.2))
+    rg = src.rg
+    k = rng.integers(0, len(rg.pts), 400)
+    chain = rg.owner[k]
+    x, n = rg.pts[k].copy(), src.vnormals[k]
+    on = rng.random(400) < 0.1
+    x[on] = dst.rg.pts[np.minimum(k[on], dst.rg.offsets[chain[on] + 1] - 1)]
+    n_e = dst.rg.n_edges[chain]
+    e_lo = rng.integers(0, n_e // 2)
+    e_hi = np.minimum(e_lo + rng.integers(0, n_e), n_e - 1)
+    good = (k - rg.offsets[chain]) * n_e / np.maximum(rg.n[chain] - 1, 1)
+    for guess in (good, rng.uniform(0, n_e)):
+        want = lacing._search(x, n, dst, chain, e_lo, e_hi, 1e-9)
+        got = lacing._search(x, n, dst, chain, e_lo, e_hi, 1e-9, guess)
+        assert (e_hi - e_lo + 1 > lacing.WIDE_WINDOW).sum() > 100
+        for g, w in zip(got, want):
+            np.testing.assert_array_equal(g.view(np.int64), w.view(np.int64))
+
+
+def test_edge_blocks_hold_their_edges():
+    from ballmorph_core.ballmap.sides import EDGE_BLOCK
+
+    side = _wavy_sides(np.random.default_rng(2), 3, 0.0)
+    (x, y), (ex, ey) = side.columns[0], side.columns[1]
+    x0, y0, x1, y1, longest = side.blocks
+    b = side.block_of(np.arange(len(x)))
+    for px, py in ((x, y), (x + ex, y + ey)):
+        assert np.all((x0[b] <= px) & (px <= x1[b]) & (y0[b] <= py) & (py <= y1[b]))
+    assert np.all(np.hypot(ex, ey) <= longest[b] * (1 + 1e-15))
+    assert len(longest) == -(-len(x) // EDGE_BLOCK)
+
+
+def test_one_tree_answers_both_directions_as_a_tree_of_their_own_would():
+    # Disks between two sides, asked from P to Q, then from Q to P of the same shared tree:
+    # each direction gets the vertices (numbered source first) a tree of its own finds.
+    from ballmorph_core.geometry.spatial import CurveTree
+
+    rng = np.random.default_rng(4)
+    sp, sq = _wavy_sides(rng, 3, 0.0), _wavy_sides(rng, 3, 0.08)
+    trees = check._Trees()
+    for src, dst in ((sp, sq), (sq, sp)):
+        k = np.sort(rng.integers(0, len(src.rg.pts), 300))
+        chain = src.rg.owner[k]
+        centres = src.rg.pts[k] + rng.normal(0, 0.03, (300, 2))
+        radii = rng.uniform(0, 0.08, 300)
+        n_src = len(src.rg.pts)
+        own_tree = CurveTree(
+            np.concatenate([src.rg.pts, dst.rg.pts]), np.r_[src.rg.offsets, dst.rg.offsets[1:] + n_src]
+        )
+        want = own_tree.within(centres, radii, np.c_[chain, chain + 3], first_only=True)
+        got = trees.entered(src, dst, centres, radii, chain)
+        assert _per_disk(*got, 300) == _per_disk(*want, 300)
+        assert any(_per_disk(*want, 300))
+    assert len(trees._built) == 1
+
+
+def test_sides_densify_exactly_the_coarse_curves():
+    # Coarse polygons (subdivided first) among dense curves, loops and strokes: the dense
+    # curves are those of every curve handed to densify, bit for bit.
+    from ballmorph_core.ballmap.sides import Sides
+    from ballmorph_core.geometry.ragged import Ragged
+    from ballmorph_core.geometry.spline import densify
+
+    curves = [circle(1.0, 6), circle(2.0, 300), graph_stroke(0.2, (), 5), graph_stroke(0.1, (0.01,), 200)]
+    closed = np.array([True, True, False, False])
+    spacing = np.array([0.02, 0.05, 0.01, 0.03])
+    side = Sides(curves, closed, np.ones(4), spacing)
+    raw = Ragged.from_list([densify(c, cl, h) for c, cl, h in zip(curves, closed, spacing)], closed)
+    want = raw.resample(np.round(raw.length / spacing).astype(np.int64) + np.where(closed, 0, 1))
+    assert len(raw.pts) > sum(len(c) for c in curves)  # the coarse ones were subdivided
+    np.testing.assert_array_equal(side.rg.pts, want.pts)
+    np.testing.assert_array_equal(side.rg.offsets, want.offsets)
