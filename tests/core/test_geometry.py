@@ -365,6 +365,59 @@ def test_followed_queries_that_barely_move_do_not_search_the_tree_again():
     assert asked == [len(points)]
 
 
+@given(st.integers(0, 2**32 - 1), st.sampled_from([1, 3, 8]))
+@settings(max_examples=20, deadline=None)
+def test_followed_queries_with_more_candidates_than_kept_answer_as_the_tree_does(seed, kept):
+    # A query whose search finds more than _KEPT candidates keeps its nearest _KEPT and holds
+    # only as far as the first one dropped: still the very answers of the tree.
+    rng = np.random.default_rng(seed)
+    curves = [np.cumsum(rng.normal(0, 0.05, (int(rng.integers(2, 150)), 2)), axis=0) for _ in range(2)]
+    batch = Ragged.from_list(curves, [False, True])
+    search, k = NearestEdges(batch), 60
+    owner = rng.integers(0, 2, k)
+    points = rng.uniform(-0.5, 1.0, (k, 2))
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(projection, "_KEPT", kept)
+        followed = FollowedQueries(search, owner, 0.1)
+        for _ in range(6):
+            rows = np.flatnonzero(rng.random(k) < 0.8)
+            points = _drifting(rng, batch, owner, points, rows)
+            reach = rng.choice([0.05, 0.3, np.inf], len(rows))
+            got = followed.within(rows, points[rows], reach)
+            want = search.within(points[rows], owner[rows], reach)
+            for g, w in zip(got, want):
+                np.testing.assert_array_equal(g, w)
+
+
+def test_followed_queries_settle_on_a_kept_edge_and_measure_only_those_within_reach():
+    # Asked with no reach (the far corner of the curve, far beyond what they hold), queries
+    # drifting 0.002 still settle: their closest kept edge lies within what they hold, so no
+    # other edge can be closer. Of the edges kept 0.3 wider, only those within their last
+    # foot's distance plus their move are measured.
+    rng = np.random.default_rng(5)
+    t = np.linspace(0, 3, 300)
+    batch = Ragged.from_list([np.c_[t, np.sin(t)]], [False])
+    search = NearestEdges(batch)
+    asked, measured = [], []
+    tree_candidates, closest = search.tree.nearest_candidates, search._closest
+    search.tree.nearest_candidates = lambda x, *args: asked.append(len(x)) or tree_candidates(x, *args)
+    search._closest = lambda out, rows, x, i, *args: measured.append(len(i)) or closest(out, rows, x, i, *args)
+    points = np.c_[t[::3], np.sin(t[::3]) + 0.05]
+    followed = FollowedQueries(search, np.zeros(len(points), np.int64), 0.3)
+    for _ in range(3):
+        followed.within(np.arange(len(points)), points, np.full(len(points), np.inf))
+        points = points + rng.normal(0, 0.002, points.shape)
+    assert asked == [len(points)]
+    foot = NearestEdges(batch).within(points, np.zeros(len(points), np.int64), np.inf)
+    reach = foot[0] * (1 + 1e-9)
+    measured.clear()
+    got = followed.within(np.arange(len(points)), points, reach)
+    for g, w in zip(got, foot):
+        np.testing.assert_array_equal(g, w)
+    assert asked == [len(points)]
+    assert measured[0] < 0.25 * np.isfinite(followed.kept_d).sum()
+
+
 @given(st.integers(0, 2**32 - 1), st.booleans())
 @settings(max_examples=40)
 def test_is_simple_stops_early_but_agrees_with_every_self_crossing(seed, closed):
