@@ -33,7 +33,7 @@ from ballmorph_core.geometry.projection import (
     nearest_within,
 )
 from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange
-from ballmorph_core.geometry.spatial import CurveTree, PointTree, box_pair_chunks, box_pairs
+from ballmorph_core.geometry.spatial import CurveTree, PointTree, _box_reach, box_pair_chunks, box_pairs
 
 POINTS = st.integers(0, 2**32 - 1).map(lambda seed: np.random.default_rng(seed).uniform(-1, 1, (60, 2)))
 
@@ -235,6 +235,26 @@ def test_nearest_edge_on_long_edges_matches_brute_force(seed, reach):
     np.testing.assert_allclose(near[np.isfinite(near)], brute[np.isfinite(near)], atol=1e-12)
     feet = curve[edge] + frac[:, None] * (curve[np.minimum(edge + 1, len(curve) - 1)] - curve[edge])
     np.testing.assert_allclose(np.linalg.norm(feet - queries, axis=1)[np.isfinite(near)], near[np.isfinite(near)])
+
+
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=30)
+def test_box_reach_is_the_nearest_and_farthest_point_of_each_box(seed):
+    # Points inside, beside and on the boxes, boxes of zero size, and empty nodes (NaN): the
+    # squared distances to the nearest and farthest points, operation for operation.
+    rng = np.random.default_rng(seed)
+    k = 200
+    lo = rng.uniform(-1, 1, (k, 2))
+    hi = lo + rng.choice([0.0, 0.3, 1.0], (k, 1)) * rng.random((k, 2))
+    boxes = np.concatenate([lo, hi], axis=1).T.copy()
+    boxes[:, rng.random(k) < 0.1] = np.nan
+    centres = np.where(rng.random((k, 1)) < 0.2, lo, rng.uniform(-1.5, 1.5, (k, 2))).T.copy()
+    (x0, y0, x1, y1), (cx, cy) = boxes, centres
+    dx, dy = np.maximum(np.maximum(x0 - cx, cx - x1), 0.0), np.maximum(np.maximum(y0 - cy, cy - y1), 0.0)
+    fx, fy = np.maximum(np.abs(x0 - cx), np.abs(x1 - cx)), np.maximum(np.abs(y0 - cy), np.abs(y1 - cy))
+    near2, far2 = _box_reach(boxes, centres)
+    np.testing.assert_array_equal(near2, dx * dx + dy * dy)
+    np.testing.assert_array_equal(far2, fx * fx + fy * fy)
 
 
 def _nearest_edges_brute(points, owner, curves, reach):
