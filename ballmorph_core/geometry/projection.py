@@ -235,10 +235,14 @@ class NearestEdges:
         least[i[run]] = np.minimum.reduceat(d2, run)
         first = np.flatnonzero(d2 == np.take(least, i, mode="wrap"))
         owner = i[first]
-        if (owner[1:] == owner[:-1]).any():
-            # Ties (rare): the lowest edge first, then the first of each query.
-            first = first[np.lexsort((j[first], owner))]
-            first = first[np.concatenate(([True], i[first][1:] != i[first][:-1]))]
+        again = owner[1:] == owner[:-1]
+        if again.any():
+            # Ties (a foot on a shared vertex, pieces of one edge): among the queries that have
+            # them, the lowest edge first, then the first of each query.
+            tied = np.concatenate((again, [False])) | np.concatenate(([False], again))
+            some = first[tied]
+            some = some[np.lexsort((j[some], i[some]))]
+            first = np.concatenate((first[~tied], some[np.concatenate(([True], i[some][1:] != i[some][:-1]))]))
         # Every edge within the bound is a candidate, so the best one is the closest.
         first = first[d2[first] <= np.square(reach[i[first]])]
         hit = rows[i[first]]
