@@ -257,6 +257,21 @@ def test_box_reach_is_the_nearest_and_farthest_point_of_each_box(seed):
     np.testing.assert_array_equal(far2, fx * fx + fy * fy)
 
 
+@given(st.integers(0, 2**32 - 1), st.integers(1, 9))
+@settings(max_examples=30)
+def test_leaf_items_are_the_leaf_points(seed, leaf_size):
+    # nearest_candidates' own leaf expansion: the very (query, item) pairs of _leaf_points.
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 300))
+    groups = np.unique(np.r_[0, rng.integers(0, n, 3), n])
+    tree = PointTree(rng.random((n, 2)), leaf_size, groups=groups)
+    leaves = len(tree.levels[-1][0])
+    q = np.sort(rng.integers(0, 50, 80))
+    node = rng.integers(0, leaves, 80)
+    for got, want in zip(tree._leaf_items(q, node), tree._leaf_points(q, node)):
+        np.testing.assert_array_equal(got, want)
+
+
 def _nearest_edges_brute(points, owner, curves, reach):
     # Every edge of the query's curve, measured as the search measures it; ties to the lower edge.
     e = np.flatnonzero(curves.nxt >= 0)
