@@ -11,7 +11,7 @@ import numpy as np
 from .. import tolerances as tol
 from ..geometry.projection import FollowedQueries, NearestEdges
 from ..geometry.ragged import Ragged
-from ..geometry.similarity import as_complex, from_complex
+from ..geometry.similarity import as_complex
 
 __all__ = ["slide"]
 
@@ -70,7 +70,7 @@ def _finite_median(d):
     return np.where(count > 0, middle, 0.0)
 
 
-def _sliding_fits(xp, search, index, starts, size, overlap=SLIDE_OVERLAP):
+def _sliding_fits(xp, Q, index, search, starts, size, overlap=SLIDE_OVERLAP):
     """Strokes that lie partly along each other (an outline started elsewhere, a line drawn
     longer, an open circle whose gap changed): the similarity taking P's samples onto Q where
     they overlap, by trimmed iterative closest points.
@@ -82,10 +82,12 @@ def _sliding_fits(xp, search, index, starts, size, overlap=SLIDE_OVERLAP):
     ----------
     xp : ndarray of complex, shape (L, k)
         P's uniform samples.
-    search : NearestEdges
-        Q's edges (Q stays put through every start and iteration: its search is built once).
+    Q : Ragged
     index : ndarray of int, shape (L,)
         The pairs (curves of Q).
+    search : NearestEdges
+        The edges of ``Q.take(index)``: row ``i`` searches its curve ``i`` (Q stays put
+        through every start and iteration: its search is built once, for these curves only).
     starts : list of (ndarray, ndarray)
         Starting similarities ``(a, b)``, complex, shape (L,) each.
     size : ndarray, shape (L,)
@@ -98,11 +100,11 @@ def _sliding_fits(xp, search, index, starts, size, overlap=SLIDE_OVERLAP):
     residual : ndarray, shape (L,)
         RMS distance of the overlapping samples (inf where the overlap is too short).
     """
-    Q, (L, k), n = search.curves, xp.shape, len(starts)
+    (L, k), n = xp.shape, len(starts)
     xp, index, size = np.tile(xp, (n, 1)), np.tile(index, n), np.tile(size, n)
     a = np.concatenate([np.asarray(a, dtype=complex) for a, _ in starts])
     b = np.concatenate([np.asarray(b, dtype=complex) for _, b in starts])
-    d, w, s_q = _iterate(xp, search, index, size, a, b)
+    d, w, s_q = _iterate(xp, Q, index, search, size, a, b)
     covered_p = w.mean(axis=1)
     s_kept = np.where(w > 0, s_q.reshape(n * L, k), np.nan)
     span_q = (np.nanmax(s_kept, axis=1, initial=-np.inf) - np.nanmin(s_kept, axis=1, initial=np.inf)) / np.maximum(
@@ -122,13 +124,16 @@ def _sliding_fits(xp, search, index, starts, size, overlap=SLIDE_OVERLAP):
     return best
 
 
-def _iterate(xp, search, index, size, a, b):
+def _iterate(xp, Q, index, search, size, a, b):
     """The trimmed iterative closest points of :func:`_sliding_fits` (arguments as there, one
-    start per row): ``a``, ``b`` updated in place; returns the last iteration's distances ``d``
-    (inf off Q's interior) and weights ``w``, shape (L, k), and arc lengths on Q, shape (L k,)."""
-    Q = search.curves
+    start per row, row ``i`` searching the search's curve ``i % len(search.curves)``): ``a``,
+    ``b`` updated in place; returns the last iteration's distances ``d`` (inf off Q's
+    interior) and weights ``w``, shape (L, k), and arc lengths on Q, shape (L k,)."""
     L, k = xp.shape
-    owner = np.repeat(index, k)
+    local = np.arange(L) % len(search.curves)
+    # The search's vertices are Q's, curve by curve: its edge e is Q's e + shift.
+    shift = np.repeat(Q.offsets[index] - search.curves.offsets[local], k)
+    owner = np.repeat(local, k)
     end_eps = tol.SHARED_ENDPOINT * np.repeat(size, k)
     length_q = np.repeat(Q.length[index], k)
     reach = SLIDE_REACH * np.repeat(size, k)
@@ -140,23 +145,38 @@ def _iterate(xp, search, index, size, a, b):
     for step in range(SLIDE_ITERATIONS):
         if not len(active):
             break
+        # Rows, queries and edges are in range: take(mode="wrap") skips the bounds checks
+        # (2-3x faster gathers than fancy indexing).
         q = (active[:, None] * k + cols).ravel()
-        z = (a[active, None] * xp[active] + b[active, None]).ravel()
+        xa, aa, ba = (np.take(v, active, axis=0, mode="wrap") for v in (xp, a, b))
+        z = (aa[:, None] * xa + ba[:, None]).ravel()
+        reach_q = np.take(reach, q, mode="wrap")
         # The last iteration's foot is still on Q: the closest point lies no farther than it,
         # which bounds the search as the fit settles (the same answer, found sooner; fmin: a
         # query that found nothing keeps its reach).
-        bound = reach[q] if step == 0 else np.fmin(reach[q], np.abs(z - foot[q]) * (1.0 + 1e-9) + 1e-300)
-        dist, edge, frac = followed.within(q, from_complex(z), bound)
-        s_q[q] = Q.s[edge] + frac * Q.length_of_edge[edge]
-        inner = np.isfinite(dist) & (s_q[q] > end_eps[q]) & (s_q[q] < length_q[q] - end_eps[q])
-        d[active] = np.where(inner, dist, np.inf).reshape(-1, k)
-        limit = np.maximum(3.0 * _finite_median(d[active]), 1e-3 * size[active])
-        w[active] = d[active] <= limit[:, None]
-        target = as_complex(Q.pts[edge] + frac[:, None] * Q.edge[edge])
-        foot[q] = np.where(np.isfinite(dist), target, np.nan)
-        new_a, new_b = _weighted_similarity(xp[active], target.reshape(-1, k), w[active])
+        bound = reach_q
+        if step:
+            bound = np.fmin(reach_q, np.abs(z - np.take(foot, q, mode="wrap")) * (1.0 + 1e-9) + 1e-300)
+        # z's (real, imaginary) pairs are the points' (x, y) rows.
+        dist, edge, frac = followed.within(q, z.view(np.float64).reshape(-1, 2), bound)
+        found = np.isfinite(dist)
+        np.add(edge, np.take(shift, q, mode="wrap"), out=edge, where=found)
+        along = np.take(Q.s, edge, mode="wrap") + frac * np.take(Q.length_of_edge, edge, mode="wrap")
+        s_q[q] = along
+        eps = np.take(end_eps, q, mode="wrap")
+        inner = found & (along > eps) & (along < np.take(length_q, q, mode="wrap") - eps)
+        d_a = np.where(inner, dist, np.inf).reshape(-1, k)
+        d[active] = d_a
+        limit = np.maximum(3.0 * _finite_median(d_a), 1e-3 * np.take(size, active, mode="wrap"))
+        w_a = (d_a <= limit[:, None]).astype(np.float64)
+        w[active] = w_a
+        target = np.take(Q.pts, edge, axis=0, mode="wrap")
+        target += frac[:, None] * np.take(Q.edge, edge, axis=0, mode="wrap")
+        target = as_complex(target)
+        foot[q] = np.where(found, target, np.nan)
+        new_a, new_b = _weighted_similarity(xa, target.reshape(-1, k), w_a)
         # A fit that did not move is a fixed point: every later iteration would repeat it.
-        moved = (new_a != a[active]) | (new_b != b[active])
+        moved = (new_a != aa) | (new_b != ba)
         a[active], b[active] = new_a, new_b
         active = active[moved]
     return d, w, s_q
@@ -192,8 +212,10 @@ def _worth_sliding(xp, Q, index, size, a, b, residual):
     of bool (arguments as for :func:`slide`)."""
     coarse_q, deviation = _coarse(Q, index, SLIDE_COARSE)
     starts = [(np.ones(len(xp), complex), np.zeros(len(xp), complex)), (a, b)]
-    search, rows = NearestEdges(coarse_q), np.arange(len(xp))
-    _, _, fit = _sliding_fits(xp[:, ::SLIDE_COARSE], search, rows, starts, size, overlap=SLIDE_GATE_OVERLAP)
+    rows = np.arange(len(xp))
+    _, _, fit = _sliding_fits(
+        xp[:, ::SLIDE_COARSE], coarse_q, rows, NearestEdges(coarse_q), starts, size, overlap=SLIDE_GATE_OVERLAP
+    )
     return fit - deviation < SLIDE_MARGIN * SLIDE_GAIN * residual
 
 
@@ -221,9 +243,11 @@ def slide(xp, Q, index, size, a, b, residual):
     rows = rows[_worth_sliding(xp[rows], Q, index[rows], size[rows], a[rows], b[rows], residual[rows])]
     if not len(rows):
         return
-    search = NearestEdges(Q)
+    # A tree over the few pairs' curves of Q only, not over all of them (400 strokes of 500
+    # points: 26 ms against 150).
+    search = NearestEdges(Q.take(index[rows]))
     starts = [(np.ones(len(rows), complex), np.zeros(len(rows), complex)), (a[rows], b[rows])]
-    sa, sb, sr = _sliding_fits(xp[rows], search, index[rows], starts, size[rows])
+    sa, sb, sr = _sliding_fits(xp[rows], Q, index[rows], search, starts, size[rows])
     better = sr < SLIDE_GAIN * residual[rows]
     rows = rows[better]
     a[rows], b[rows], residual[rows] = sa[better], sb[better], sr[better]

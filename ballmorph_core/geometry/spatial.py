@@ -166,11 +166,23 @@ def _box_reach(boxes, centres):
         NaN where the box is empty.
     """
     (x0, y0, x1, y1), (cx, cy) = boxes, centres
-    dx = np.maximum(np.maximum(x0 - cx, cx - x1), 0.0)
-    dy = np.maximum(np.maximum(y0 - cy, cy - y1), 0.0)
-    fx = np.maximum(np.abs(x0 - cx), np.abs(x1 - cx))
-    fy = np.maximum(np.abs(y0 - cy), np.abs(y1 - cy))
-    return dx * dx + dy * dy, fx * fx + fy * fy
+    near2, far2 = _side_reach(x0, x1, cx)
+    near_y, far_y = _side_reach(y0, y1, cy)
+    near2 += near_y
+    far2 += far_y
+    return near2, far2
+
+
+def _side_reach(lo, hi, c):
+    """Along one axis: the squared distances from ``c`` to the nearest and to the farthest
+    point of ``[lo, hi]`` (each shape (K,)), from the two offsets computed once and in place
+    (|hi - c| is |c - hi| exactly)."""
+    below, above = np.subtract(lo, c), np.subtract(c, hi)
+    far = np.abs(below)
+    np.maximum(below, above, out=below)
+    np.maximum(below, 0.0, out=below)
+    np.maximum(far, np.abs(above, out=above), out=far)
+    return np.square(below, out=below), np.square(far, out=far)
 
 
 class PointTree:
@@ -306,31 +318,44 @@ class PointTree:
         q, node = np.arange(x.shape[1]), np.asarray(group, dtype=np.int64)
         slack = np.asarray(slack, dtype=np.float64)
         limit = np.asarray(reach, dtype=np.float64) + slack
+        # Nodes and items are in range: mode="wrap" skips the bounds checks (2-3x faster gathers).
         for depth, (_, _, boxes) in enumerate(self.levels):
-            q, node = self._nearer(x, q, node, np.take(boxes, node, axis=1), limit, slack)
+            q, node = self._nearer(x, q, node, np.take(boxes, node, axis=1, mode="wrap"), limit, slack)
             q, node = self._descend(depth, q, node)
-        q, item = self._leaf_points(q, node)
+        q, item = self._leaf_items(q, node)
         if self.item_boxes is None:
-            boxes = np.tile(np.take(self.xy, item, axis=1), (2, 1))
+            boxes = np.tile(np.take(self.xy, item, axis=1, mode="wrap"), (2, 1))
         else:
-            boxes = np.take(self.item_boxes, item, axis=1)
+            boxes = np.take(self.item_boxes, item, axis=1, mode="wrap")
         q, item = self._nearer(x, q, item, boxes, limit, slack)
         return q, item
+
+    def _leaf_items(self, q, node):
+        """:meth:`_leaf_points` (every (query, item) of the (query, leaf) pairs ``q``, ``node``),
+        with in-range gathers by take(mode="wrap") and the queries repeated, not gathered."""
+        starts, ends, _ = self.levels[-1]
+        first = np.take(starts, node, mode="wrap")
+        counts = np.take(ends, node, mode="wrap") - first
+        # Entry e (counted over all pairs) of pair p is perm[first[p] + e - entries before p].
+        at = np.arange(int(counts.sum())) + np.repeat(first - (np.cumsum(counts) - counts), counts)
+        return np.repeat(q, counts), np.take(self.perm, at, mode="wrap")
 
     @staticmethod
     def _nearer(x, q, node, boxes, limit, slack):
         """The (query, node) pairs, sorted by query, whose box lies within the query's bound
         (``x``, shape (2, K), and ``boxes``, shape (4, M), coordinate by coordinate)."""
         # An empty node's NaNs: fmin passes them over, and NaN <= bound drops the node.
-        near2, far2 = _box_reach(boxes, np.take(x, q, axis=1))
+        near2, far2 = _box_reach(boxes, np.take(x, q, axis=1, mode="wrap"))
         bound = limit.copy()
         if len(q):
-            first = np.flatnonzero(np.r_[True, q[1:] != q[:-1]])
-            bound[q[first]] = np.fmin(
-                bound[q[first]],
-                np.sqrt(np.fmin.reduceat(far2, first)) + (slack if slack.ndim == 0 else slack[q[first]]),
+            first = np.flatnonzero(np.concatenate(([True], q[1:] != q[:-1])))
+            head = q[first]
+            bound[head] = np.fmin(
+                bound[head],
+                np.sqrt(np.fmin.reduceat(far2, first)) + (slack if slack.ndim == 0 else slack[head]),
             )
-        keep = near2 <= np.square(bound[q])
+        # Squared per query, then gathered (the same values as gathered, then squared).
+        keep = near2 <= np.take(np.square(bound, out=bound), q, mode="wrap")
         return q[keep], node[keep]
 
     def within(self, centres, radii, first_only=False):

@@ -12,6 +12,7 @@ from ballmorph_core.drawing.ends import overhang_morph, settle_ends
 from ballmorph_core.drawing.pipeline import PairMorph
 from ballmorph_core.drawing.registration import FIT_SAMPLES, fit_pairs
 from ballmorph_core.geometry.ragged import Ragged
+from ballmorph_core.geometry.similarity import as_complex
 
 
 def arc(start, stop, n=90, radius=1.0):
@@ -178,3 +179,28 @@ def test_the_gates_coarse_curve_lies_within_its_stated_distance(seed, step):
         slack = 1e-9 * (1 + np.abs(original).max())
         assert distance_to_polyline(_dense(original), mine, False).max() <= deviation[c] + slack
         assert distance_to_polyline(_dense(mine), original, False).max() <= deviation[c] + slack
+
+
+def test_the_full_sliding_fit_searches_its_pairs_curves_only_and_fits_each_as_alone(monkeypatch):
+    """Two pairs of four Q curves, out of order: the full fit's search holds those two curves
+    only, and each pair gets the fit it gets alone (its edges mapped back to Q's)."""
+    searched = []
+    real = sliding.NearestEdges
+    monkeypatch.setattr(sliding, "NearestEdges", lambda curves: searched.append(len(curves)) or real(curves))
+    oval = [1.0, 0.8]
+    Q = batch(arc(0, 90, 40), arc(100, 430, 110) * oval, arc(-50, 200, 70), arc(30, 380, 120) * 1.3)
+    index = np.array([3, 1])
+    xp = as_complex(np.stack([arc(0, 330, FIT_SAMPLES) * 1.3, arc(-20, 300, FIT_SAMPLES) * oval]))
+    size = np.full(2, 2.0)
+    a, b, residual = np.ones(2, complex), np.zeros(2, complex), np.ones(2)
+    sliding.slide(xp, Q, index, size, a, b, residual)
+    assert searched[-1] == 2 and residual.max() < 1e-2  # both pairs slide
+
+    def start(n):
+        return [(np.ones(n, complex), np.zeros(n, complex))]
+
+    both = sliding._sliding_fits(xp, Q, index, real(Q.take(index)), start(2), size)
+    for i, c in enumerate(index):
+        one = batch(Q.curve(c))
+        alone = sliding._sliding_fits(xp[[i]], one, np.array([0]), real(one), start(1), size[[i]])
+        np.testing.assert_allclose([x[i] for x in both], [x[0] for x in alone], rtol=1e-12, atol=1e-12)

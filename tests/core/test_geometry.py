@@ -33,7 +33,7 @@ from ballmorph_core.geometry.projection import (
     nearest_within,
 )
 from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange
-from ballmorph_core.geometry.spatial import CurveTree, PointTree, box_pair_chunks, box_pairs
+from ballmorph_core.geometry.spatial import CurveTree, PointTree, _box_reach, box_pair_chunks, box_pairs
 
 POINTS = st.integers(0, 2**32 - 1).map(lambda seed: np.random.default_rng(seed).uniform(-1, 1, (60, 2)))
 
@@ -293,6 +293,41 @@ def test_nearest_edge_on_long_edges_matches_brute_force(seed, reach):
     np.testing.assert_allclose(np.linalg.norm(feet - queries, axis=1)[np.isfinite(near)], near[np.isfinite(near)])
 
 
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=30)
+def test_box_reach_is_the_nearest_and_farthest_point_of_each_box(seed):
+    # Points inside, beside and on the boxes, boxes of zero size, and empty nodes (NaN): the
+    # squared distances to the nearest and farthest points, operation for operation.
+    rng = np.random.default_rng(seed)
+    k = 200
+    lo = rng.uniform(-1, 1, (k, 2))
+    hi = lo + rng.choice([0.0, 0.3, 1.0], (k, 1)) * rng.random((k, 2))
+    boxes = np.concatenate([lo, hi], axis=1).T.copy()
+    boxes[:, rng.random(k) < 0.1] = np.nan
+    centres = np.where(rng.random((k, 1)) < 0.2, lo, rng.uniform(-1.5, 1.5, (k, 2))).T.copy()
+    (x0, y0, x1, y1), (cx, cy) = boxes, centres
+    dx, dy = np.maximum(np.maximum(x0 - cx, cx - x1), 0.0), np.maximum(np.maximum(y0 - cy, cy - y1), 0.0)
+    fx, fy = np.maximum(np.abs(x0 - cx), np.abs(x1 - cx)), np.maximum(np.abs(y0 - cy), np.abs(y1 - cy))
+    near2, far2 = _box_reach(boxes, centres)
+    np.testing.assert_array_equal(near2, dx * dx + dy * dy)
+    np.testing.assert_array_equal(far2, fx * fx + fy * fy)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(1, 9))
+@settings(max_examples=30)
+def test_leaf_items_are_the_leaf_points(seed, leaf_size):
+    # nearest_candidates' own leaf expansion: the very (query, item) pairs of _leaf_points.
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 300))
+    groups = np.unique(np.r_[0, rng.integers(0, n, 3), n])
+    tree = PointTree(rng.random((n, 2)), leaf_size, groups=groups)
+    leaves = len(tree.levels[-1][0])
+    q = np.sort(rng.integers(0, 50, 80))
+    node = rng.integers(0, leaves, 80)
+    for got, want in zip(tree._leaf_items(q, node), tree._leaf_points(q, node)):
+        np.testing.assert_array_equal(got, want)
+
+
 def _nearest_edges_brute(points, owner, curves, reach):
     # Every edge of the query's curve, measured as the search measures it; ties to the lower edge.
     e = np.flatnonzero(curves.nxt >= 0)
@@ -419,6 +454,59 @@ def test_followed_queries_that_barely_move_do_not_search_the_tree_again():
         points = points + rng.normal(0, 0.002, points.shape)
         reach = np.linalg.norm(points - foot, axis=1) * (1 + 1e-9)  # as the sliding fit bounds them
     assert asked == [len(points)]
+
+
+@given(st.integers(0, 2**32 - 1), st.sampled_from([1, 3, 8]))
+@settings(max_examples=20, deadline=None)
+def test_followed_queries_with_more_candidates_than_kept_answer_as_the_tree_does(seed, kept):
+    # A query whose search finds more than _KEPT candidates keeps its nearest _KEPT and holds
+    # only as far as the first one dropped: still the very answers of the tree.
+    rng = np.random.default_rng(seed)
+    curves = [np.cumsum(rng.normal(0, 0.05, (int(rng.integers(2, 150)), 2)), axis=0) for _ in range(2)]
+    batch = Ragged.from_list(curves, [False, True])
+    search, k = NearestEdges(batch), 60
+    owner = rng.integers(0, 2, k)
+    points = rng.uniform(-0.5, 1.0, (k, 2))
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(projection, "_KEPT", kept)
+        followed = FollowedQueries(search, owner, 0.1)
+        for _ in range(6):
+            rows = np.flatnonzero(rng.random(k) < 0.8)
+            points = _drifting(rng, batch, owner, points, rows)
+            reach = rng.choice([0.05, 0.3, np.inf], len(rows))
+            got = followed.within(rows, points[rows], reach)
+            want = search.within(points[rows], owner[rows], reach)
+            for g, w in zip(got, want):
+                np.testing.assert_array_equal(g, w)
+
+
+def test_followed_queries_settle_on_a_kept_edge_and_measure_only_those_within_reach():
+    # Asked with no reach (the far corner of the curve, far beyond what they hold), queries
+    # drifting 0.002 still settle: their closest kept edge lies within what they hold, so no
+    # other edge can be closer. Of the edges kept 0.3 wider, only those within their last
+    # foot's distance plus their move are measured.
+    rng = np.random.default_rng(5)
+    t = np.linspace(0, 3, 300)
+    batch = Ragged.from_list([np.c_[t, np.sin(t)]], [False])
+    search = NearestEdges(batch)
+    asked, measured = [], []
+    tree_candidates, closest = search.tree.nearest_candidates, search._closest
+    search.tree.nearest_candidates = lambda x, *args: asked.append(len(x)) or tree_candidates(x, *args)
+    search._closest = lambda out, rows, x, i, *args: measured.append(len(i)) or closest(out, rows, x, i, *args)
+    points = np.c_[t[::3], np.sin(t[::3]) + 0.05]
+    followed = FollowedQueries(search, np.zeros(len(points), np.int64), 0.3)
+    for _ in range(3):
+        followed.within(np.arange(len(points)), points, np.full(len(points), np.inf))
+        points = points + rng.normal(0, 0.002, points.shape)
+    assert asked == [len(points)]
+    foot = NearestEdges(batch).within(points, np.zeros(len(points), np.int64), np.inf)
+    reach = foot[0] * (1 + 1e-9)
+    measured.clear()
+    got = followed.within(np.arange(len(points)), points, reach)
+    for g, w in zip(got, foot):
+        np.testing.assert_array_equal(g, w)
+    assert asked == [len(points)]
+    assert measured[0] < 0.25 * np.isfinite(followed.kept_d).sum()
 
 
 @given(st.integers(0, 2**32 - 1), st.booleans())
