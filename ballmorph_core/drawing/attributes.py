@@ -188,18 +188,27 @@ class _Mix:
             mixed = {j: (va[:, lo + j].copy(), vb[:, lo + j].copy()) for j in np.flatnonzero(self.differ[lo:hi])}
             shared = None if len(mixed) == hi - lo == 1 else va[:, lo:hi].copy()
             self._blocks[lo] = shared, mixed
+        # t b's work column, kept: a fresh one each frame is page-faulted anew in a bpy process.
+        self._term = np.empty(len(va)) if self.differ.any() else None
 
-    def block(self, lo, t):
-        """The block starting at column ``lo`` at time ``t``, shape (K, hi - lo)."""
+    def block(self, lo, t, out=None):
+        """The block starting at column ``lo`` at time ``t``, shape (K, hi - lo); a mixed block
+        of one column is written into ``out`` (K,) when given (else a new array)."""
         shared, mixed = self._blocks[lo]
         if not mixed:
             return shared
         if shared is None:
             ((a, b),) = mixed.values()
-            return ((1 - t) * a + t * b)[:, None]
+            return self._mixed(a, b, t, np.empty(len(a)) if out is None else out)[:, None]
         out = shared.copy()
         for j, (a, b) in mixed.items():
-            out[:, j] = (1 - t) * a + t * b
+            self._mixed(a, b, t, out[:, j])
+        return out
+
+    def _mixed(self, a, b, t, out):
+        """``(1 - t) a + t b`` into ``out``."""
+        np.multiply(a, 1 - t, out=out)
+        out += np.multiply(b, t, out=self._term)
         return out
 
 
@@ -244,8 +253,11 @@ class FrameValues:
         """One StrokeSet per time (:func:`assemble_frames`)."""
         held, plane, unmatched, extras, mix = plan.held, plan.plane, plan.unmatched, plan.extras, self.mix
         out = []
+        # The plane offsets are lifted at once: one work column for every frame's.
+        depth = np.empty(len(parts.u_a)) if mix.differ[0] else self.depth
         for ti, t in enumerate(times):
-            depth = mix.block(0, t)[:, 0] if mix.differ[0] else self.depth
+            if mix.differ[0]:
+                mix.block(0, t, out=depth)
             points, curves = self.discrete.at(t)
             points.update(extras.from_columns(mix.block(_BASE, t)))
             drawing = StrokeSet(

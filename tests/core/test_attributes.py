@@ -1,0 +1,23 @@
+"""The per-sample attributes of in-betweens (``drawing/attributes.py``): what the keys agree on
+is shared by every frame, what differs is mixed as ``(1 - t) a + t b``."""
+
+import numpy as np
+
+from ballmorph_core.drawing.attributes import _Mix
+
+
+def test_mixed_blocks_are_the_blend_bit_for_bit_into_a_buffer_or_not():
+    rng = np.random.default_rng(7)
+    va = rng.normal(size=(30, 7))
+    vb = va.copy()
+    vb[:, 1] += rng.normal(size=30)  # radius differs
+    vb[:, 4] += rng.normal(size=30)  # one colour channel differs
+    mix = _Mix(va, vb, ((0, 1), (1, 2), (2, 3), (3, 7)))
+    out = np.empty(30)
+    for t in (0.3, 0.0, 1.0, 0.3):
+        blend = (1 - t) * va + t * vb
+        assert mix.block(0, t) is mix.block(0, 1 - t)  # shared: the same array every frame
+        np.testing.assert_array_equal(mix.block(1, t)[:, 0], blend[:, 1])
+        assert np.shares_memory(mix.block(1, t, out=out), out)
+        np.testing.assert_array_equal(out, blend[:, 1])
+        np.testing.assert_array_equal(mix.block(3, t), np.c_[va[:, 3], blend[:, 4], va[:, 5:7]])
