@@ -54,6 +54,18 @@ class _Work:
         return self.step[:n], self.edges[:n]
 
 
+def _norms(step, out):
+    """The length of each row of ``step`` (n, 3) into ``out`` (n,); ``step`` is squared in place.
+
+    The sum of squares is the one ``np.einsum("ij,ij->i", step, step)`` makes (numpy 1.26 adds x
+    and z, then y: tested), in three passes over columns instead of its slow rows of three.
+    """
+    np.multiply(step, step, out=step)
+    np.add(step[:, 0], step[:, 2], out=out)
+    out += step[:, 1]
+    return np.sqrt(out, out=out)
+
+
 def _ink_lengths(strokes, work):
     """:func:`ink_lengths` with the work buffers ``work`` (_Work)."""
     positions, offsets = strokes.positions, strokes.offsets
@@ -63,8 +75,7 @@ def _ink_lengths(strokes, work):
     # Edge i joins points i and i + 1; summed stroke by stroke with reduceat (a redo measures
     # every frame: a per-point owner array and a weighted bincount cost 5 times more).
     step, edges = work.get(len(positions) - 1)
-    np.subtract(positions[1:], positions[:-1], out=step)
-    np.sqrt(np.einsum("ij,ij->i", step, step, out=edges), out=edges)
+    edges = _norms(np.subtract(positions[1:], positions[:-1], out=step), edges)
     junction = offsets[1:-1] - 1  # from a stroke's last point to the next one's first
     edges[junction[(junction >= 0) & (junction < len(edges))]] = 0.0
     # Strokes with an edge start before the last point; what lies between one's end and the

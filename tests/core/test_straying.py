@@ -105,3 +105,14 @@ def test_work_buffers_shared_by_drawings_of_any_size_give_each_its_own_lengths()
     work = _Work()
     for drawing in drawings + drawings[::-1]:
         np.testing.assert_array_equal(_ink_lengths(drawing, work), bm.ink_lengths(drawing))
+
+
+def test_edge_lengths_are_the_einsum_norms_bit_for_bit():
+    """_norms sums the squares as np.einsum('ij,ij->i') does (x + z, then y, in numpy 1.26): a
+    numpy that sums otherwise fails here (the deviations would move in their last bits)."""
+    from ballmorph_core.drawing.straying import _norms
+
+    rng = np.random.default_rng(8)
+    step = rng.normal(size=(200_000, 3)) * np.exp(rng.uniform(-30, 30, size=(200_000, 3)))
+    want = np.sqrt(np.einsum("ij,ij->i", step, step))
+    np.testing.assert_array_equal(_norms(step.copy(), np.empty(len(step))), want)
