@@ -9,6 +9,7 @@ stroke, of the key nearer in time (the first key before ``t = 0.5``). An extra a
 key has is 0 on the other (Blender's value for a missing attribute).
 """
 
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -17,7 +18,7 @@ from .hints import HINT
 from .strokes import StrokeSet
 from .unmatched import Anchors, shown_strokes
 
-__all__ = ["Held", "Extras", "FrameValues", "assemble_frames"]
+__all__ = ["Held", "Extras", "FrameValues", "Recycled", "assemble_frames"]
 
 #: Columns of ProjectedKey.values() before the extra floats: plane offset, radius, opacity, RGBA.
 _BASE = 7
@@ -212,6 +213,41 @@ class _Mix:
         return out
 
 
+class Recycled:
+    """The arrays an evaluation hands out (each in-between's positions, its mixed radius and
+    opacity), given again to the next evaluation once nothing else refers to them.
+
+    A redo's frames are written to Blender and dropped; in a bpy process a fresh array of their
+    size is a fresh mapping, page-faulted anew (about 2 us a page: a tenth of a redo). An array
+    is reused only when this pool holds its one reference (no frame, no view of it is alive),
+    and only the last evaluation's are kept.
+    """
+
+    def __init__(self):
+        self._free, self._given = [], []
+
+    def begin(self):
+        """An evaluation starts: the arrays of the last one are candidates."""
+        self._free, self._given = self._free + self._given, []
+
+    def end(self):
+        """It ended: keep its arrays only."""
+        self._free = []
+
+    def empty(self, shape):
+        """A float array of ``shape``: one nothing refers to any more, else a new one."""
+        free = self._free
+        for i in range(len(free)):
+            # Two references: the list's and getrefcount's argument.
+            if free[i].shape == shape and sys.getrefcount(free[i]) == 2:
+                array = free.pop(i)
+                break
+        else:
+            array = np.empty(shape)
+        self._given.append(array)
+        return array
+
+
 class FrameValues:
     """What the in-betweens take from the keys at the pairs' samples, whatever the time: their
     attributes on both keys (:class:`_Mix`), the discrete ones, the strokes without a partner.
@@ -249,10 +285,11 @@ class FrameValues:
         self.mix = _Mix(va, vb, ((0, 1), (1, 2), (2, 3), (3, _BASE), (_BASE, va.shape[1])))
         self.depth = None if self.mix.differ[0] or not np.any(va[:, 0]) else self.mix.block(0, 0.0)[:, 0]
 
-    def frames(self, parts, plan, times):
+    def frames(self, parts, plan, times, recycled=None):
         """One StrokeSet per time (:func:`assemble_frames`)."""
         held, plane, unmatched, extras, mix = plan.held, plan.plane, plan.unmatched, plan.extras, self.mix
-        out = []
+        recycled = Recycled() if recycled is None else recycled
+        size, out = len(parts.u_a), []
         # The plane offsets are lifted at once: one work column for every frame's.
         depth = np.empty(len(parts.u_a)) if mix.differ[0] else self.depth
         for ti, t in enumerate(times):
@@ -261,12 +298,12 @@ class FrameValues:
             points, curves = self.discrete.at(t)
             points.update(extras.from_columns(mix.block(_BASE, t)))
             drawing = StrokeSet(
-                positions=plane.to_3d(parts.frames[ti], depth),
+                positions=plane.to_3d(parts.frames[ti], depth, out=recycled.empty((size, 3))),
                 offsets=parts.offsets,
                 cyclic=parts.closed,
                 material_index=self.materials[0] if t < 0.5 else self.materials[1],
-                radius=mix.block(1, t)[:, 0],
-                opacity=mix.block(2, t)[:, 0],
+                radius=mix.block(1, t, out=recycled.empty((size,)) if mix.differ[1] else None)[:, 0],
+                opacity=mix.block(2, t, out=recycled.empty((size,)) if mix.differ[2] else None)[:, 0],
                 vertex_color=mix.block(3, t),
                 origin=self.origin,
                 point_attributes=points,
@@ -278,7 +315,7 @@ class FrameValues:
         return out
 
 
-def assemble_frames(parts, plan, times, values=None):
+def assemble_frames(parts, plan, times, values=None, recycled=None):
     """One StrokeSet per time from every pair's frames and the strokes without a partner.
 
     Parameters
@@ -291,9 +328,11 @@ def assemble_frames(parts, plan, times, values=None):
     times : ndarray, shape (T,)
     values : FrameValues, optional
         Made from these samples before (else made here).
+    recycled : Recycled, optional
+        Where the frames' arrays come from (the plan's, kept from one evaluation to the next).
 
     Returns
     -------
     list of StrokeSet
     """
-    return (FrameValues(parts, plan) if values is None else values).frames(parts, plan, times)
+    return (FrameValues(parts, plan) if values is None else values).frames(parts, plan, times, recycled)

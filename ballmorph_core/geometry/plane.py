@@ -36,8 +36,9 @@ class Plane:
         rel = np.asarray(points, dtype=np.float64).reshape(-1, 3) - self.origin
         return np.stack([rel @ self.u, rel @ self.v], axis=1), rel @ self.normal
 
-    def to_3d(self, coords, offsets=None):
-        """Lift coordinates (N, 2) (and optional normal offsets (N,)) back to 3D, shape (N, 3)."""
+    def to_3d(self, coords, offsets=None, out=None):
+        """Lift coordinates (N, 2) (and optional normal offsets (N,)) back to 3D, shape (N, 3)
+        (into ``out`` when given)."""
         coords = np.asarray(coords, dtype=np.float64).reshape(-1, 2)
         if offsets is not None:
             offsets = np.asarray(offsets, dtype=np.float64).reshape(-1)
@@ -45,7 +46,7 @@ class Plane:
         # several times faster than a (N, 2) @ (2, 3) product on every in-between. Each column
         # is origin + u x + v y + n offset, summed in that order; its first term is written
         # with the origin (one pass less over a column of a fresh array).
-        out = np.empty((len(coords), 3))
+        out = np.empty((len(coords), 3)) if out is None else out
         terms = [(coords[:, 0], self.u), (coords[:, 1], self.v)]
         if offsets is not None:
             terms.append((offsets, self.normal))

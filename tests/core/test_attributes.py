@@ -21,3 +21,26 @@ def test_mixed_blocks_are_the_blend_bit_for_bit_into_a_buffer_or_not():
         assert np.shares_memory(mix.block(1, t, out=out), out)
         np.testing.assert_array_equal(out, blend[:, 1])
         np.testing.assert_array_equal(mix.block(3, t), np.c_[va[:, 3], blend[:, 4], va[:, 5:7]])
+
+
+def test_recycled_arrays_are_given_again_only_when_nothing_refers_to_them():
+    from ballmorph_core.drawing.attributes import Recycled
+
+    recycled = Recycled()
+    recycled.begin()
+    kept, dropped = recycled.empty((4, 3)), recycled.empty((4, 3))
+    view = kept.reshape(-1, 3)  # a StrokeSet's positions are such a view
+    first = {id(kept), id(dropped)}
+    del kept, dropped
+    recycled.end()
+    recycled.begin()
+    again = [recycled.empty((4, 3)), recycled.empty((4, 3)), recycled.empty((4,))]
+    recycled.end()
+    assert id(again[0]) in first  # the dropped one
+    assert not np.shares_memory(again[1], view) and not np.shares_memory(again[0], view)
+    assert again[2].shape == (4,)
+    ids = {id(a) for a in again}
+    del view, again
+    recycled.begin()  # only the last evaluation's arrays are candidates: all three free now
+    given = [recycled.empty((4, 3)), recycled.empty((4, 3)), recycled.empty((4,))]
+    assert {id(a) for a in given} == ids

@@ -53,3 +53,26 @@ def test_the_cases_above_take_every_branch():
     assert any(j.shift is not None for j in layouts["mixed-index-hold"]._joined)
     assert layouts["mixed-curvature-interpolation"]._morphs
     assert layouts["squash-fall"]._gather is None
+
+
+def test_a_plan_stages_every_chunk_in_one_buffer_and_its_frames_own_their_memory(monkeypatch):
+    """The plan keeps one buffer for the pairs' 2D frames of a chunk of times: chunk after
+    chunk and evaluation after evaluation the in-betweens are the same, and those returned
+    earlier are not overwritten (they are lifted out of it)."""
+    from ballmorph_core.drawing import plan as plan_module
+
+    key_a, key_b, options = _CASES["head-turn"]
+    times = [0.2, 0.5, 0.9]
+    whole = [f.positions for f in bm.inbetween(key_a, key_b, times, **options).frames]
+    plan = bm.plan_inbetween(key_a, key_b, **options)
+    monkeypatch.setattr(plan_module, "EVALUATE_SAMPLES", 1)  # one time per chunk
+    first = plan.evaluate(times)
+    kept = [f.positions.copy() for f in first.frames]
+    staged = plan._staged
+    later = plan.evaluate(times[::-1])
+    assert plan._staged is staged and staged.shape[0] == 1  # one chunk's size, kept
+    for k in range(len(times)):
+        assert not np.shares_memory(first.frames[k].positions, staged)
+        np.testing.assert_array_equal(first.frames[k].positions, kept[k])
+        np.testing.assert_array_equal(first.frames[k].positions, whole[k])
+        np.testing.assert_array_equal(later.frames[len(times) - 1 - k].positions, whole[k])
