@@ -23,6 +23,11 @@ __all__ = ["Held", "Extras", "FrameValues", "Recycled", "assemble_frames"]
 #: Columns of ProjectedKey.values() before the extra floats: plane offset, radius, opacity, RGBA.
 _BASE = 7
 
+#: The most memory of one evaluation's in-betweens a plan keeps for the next (:class:`Recycled`):
+#: all of a 100 x 200 x 9 drawing's (6 MB), and a 400 x 500 x 23 one stays within its peak
+#: memory goal (issue 14: twice Blender's own Interpolate Sequence).
+RECYCLED_BYTES = 16 * 2**20
+
 
 @dataclass
 class Held:
@@ -220,7 +225,9 @@ class Recycled:
     A redo's frames are written to Blender and dropped; in a bpy process a fresh array of their
     size is a fresh mapping, page-faulted anew (about 2 us a page: a tenth of a redo). An array
     is reused only when this pool holds its one reference (no frame, no view of it is alive),
-    and only the last evaluation's are kept.
+    and only the last evaluation's are kept, up to :data:`RECYCLED_BYTES`: kept memory is not
+    let go while the frames are written (the writer drops each frame once Blender has its copy,
+    which bounds a big run's peak memory).
     """
 
     def __init__(self):
@@ -231,8 +238,14 @@ class Recycled:
         self._free, self._given = self._free + self._given, []
 
     def end(self):
-        """It ended: keep its arrays only."""
-        self._free = []
+        """It ended: keep its arrays only (the first of them, up to RECYCLED_BYTES)."""
+        kept, total = [], 0
+        for array in self._given:
+            total += array.nbytes
+            if total > RECYCLED_BYTES:
+                break
+            kept.append(array)
+        self._free, self._given = [], kept
 
     def empty(self, shape):
         """A float array of ``shape``: one nothing refers to any more, else a new one."""

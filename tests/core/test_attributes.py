@@ -44,3 +44,20 @@ def test_recycled_arrays_are_given_again_only_when_nothing_refers_to_them():
     recycled.begin()  # only the last evaluation's arrays are candidates: all three free now
     given = [recycled.empty((4, 3)), recycled.empty((4, 3)), recycled.empty((4,))]
     assert {id(a) for a in given} == ids
+
+
+def test_recycled_memory_is_bounded(monkeypatch):
+    """Only the first RECYCLED_BYTES of an evaluation's arrays are kept for the next: the rest
+    are let go with their frames (a big run's peak memory)."""
+    from ballmorph_core.drawing import attributes
+    from ballmorph_core.drawing.attributes import Recycled
+
+    monkeypatch.setattr(attributes, "RECYCLED_BYTES", 2 * 4 * 3 * 8)  # two arrays of (4, 3)
+    recycled = Recycled()
+    recycled.begin()
+    ids = [id(recycled.empty((4, 3))) for _ in range(3)]  # none kept alive by the caller
+    recycled.end()
+    recycled.begin()
+    again = [recycled.empty((4, 3)) for _ in range(3)]
+    assert [id(a) for a in again[:2]] == ids[:2]
+    assert len(recycled._free) == 0  # the third was not kept: made anew
