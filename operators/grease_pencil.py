@@ -21,6 +21,7 @@ __all__ = [
     "selected_points",
     "write_strokes",
     "fingerprint",
+    "Staging",
 ]
 
 # Attribute name -> (domain, data type, foreach key, width, numpy dtype, value Blender assumes
@@ -190,15 +191,38 @@ def read_strokes(drawing, matrix=None):
     )
 
 
-def _write(attributes, name, values):
+class Staging:
+    """Buffers the arrays handed to ``foreach_set`` are converted in, one per dtype, kept from
+    drawing to drawing (Blender copies what it is given): a fresh converted copy of every
+    attribute of every frame is page-faulted anew in Blender's process."""
+
+    def __init__(self):
+        self._buffers = {}
+
+    def flat(self, values, dtype):
+        """``values`` as a flat contiguous array of ``dtype``: itself when it is one, else
+        converted (as ``astype`` does) into this dtype's buffer, valid until the next call."""
+        values = np.asarray(values)
+        if values.dtype == dtype and values.flags.c_contiguous:
+            return values.reshape(-1)
+        dtype = np.dtype(dtype)
+        buffer = self._buffers.get(dtype)
+        if buffer is None or len(buffer) < values.size:
+            buffer = self._buffers[dtype] = np.empty(values.size, dtype)
+        out = buffer[: values.size]
+        np.copyto(out.reshape(values.shape), values, casting="unsafe")
+        return out
+
+
+def _write(attributes, name, values, staging):
     domain, data_type, key, _, dtype, _ = _ATTRIBUTES[name]
     attribute = attributes.get(name)
     if attribute is None:
         attribute = attributes.new(name, data_type, domain)
-    attribute.data.foreach_set(key, np.ascontiguousarray(values, dtype=dtype).reshape(-1))
+    attribute.data.foreach_set(key, staging.flat(values, dtype))
 
 
-def write_strokes(drawing, strokes, matrix=None):
+def write_strokes(drawing, strokes, matrix=None, staging=None):
     """Fill an empty drawing with strokes.
 
     Parameters
@@ -208,6 +232,8 @@ def write_strokes(drawing, strokes, matrix=None):
     strokes : StrokeSet
     matrix : ndarray, shape (4, 4), optional
         Applied to the positions (morph space -> layer space); None writes them as given.
+    staging : Staging, optional
+        Conversion buffers to reuse (a writer of many drawings passes one for them all).
 
     Returns
     -------
@@ -228,25 +254,28 @@ def write_strokes(drawing, strokes, matrix=None):
     sizes = strokes.sizes
     if np.any(sizes < 1):
         raise ValueError(f"write_strokes: stroke {int(np.argmin(sizes))} has no points")
+    staging = Staging() if staging is None else staging
     drawing.add_strokes(sizes.tolist())
     attributes = drawing.attributes
-    positions = np.ascontiguousarray(_transform(strokes.positions, matrix), dtype=np.float32)
-    _write(attributes, "position", positions)
-    _write(attributes, "radius", strokes.radius)
+    positions = staging.flat(_transform(strokes.positions, matrix), np.float32)
+    _write(attributes, "position", positions, staging)
+    # Now: the staging buffer is reused for the next attributes.
+    written = _fingerprint(np.concatenate([[0], np.cumsum(sizes)]), positions)
+    _write(attributes, "radius", strokes.radius, staging)
     # Always written: a new drawing has no opacity attribute, which Python reads as 0.
-    _write(attributes, "opacity", strokes.opacity)
+    _write(attributes, "opacity", strokes.opacity, staging)
     if np.any(strokes.vertex_color):
-        _write(attributes, "vertex_color", strokes.vertex_color)
-    _write(attributes, "cyclic", strokes.cyclic)
-    _write(attributes, "material_index", strokes.material_index)
+        _write(attributes, "vertex_color", strokes.vertex_color, staging)
+    _write(attributes, "cyclic", strokes.cyclic, staging)
+    _write(attributes, "material_index", strokes.material_index, staging)
     for domain, extras in (("POINT", strokes.point_attributes), ("CURVE", strokes.curve_attributes)):
         for name, values in extras.items():
-            _write_extra(attributes, name, domain, strokes.attribute_types.get(name), values)
+            _write_extra(attributes, name, domain, strokes.attribute_types.get(name), values, staging)
     drawing.tag_positions_changed()
-    return _fingerprint(np.concatenate([[0], np.cumsum(sizes)]), positions)
+    return written
 
 
-def _write_extra(attributes, name, domain, kind, values):
+def _write_extra(attributes, name, domain, kind, values, staging):
     """Write one carried attribute with its own data type (guessed from the values if unknown)."""
     values = np.asarray(values)
     if name == "curve_type":
@@ -261,7 +290,7 @@ def _write_extra(attributes, name, domain, kind, values):
         if attribute is not None:
             attributes.remove(attribute)
         attribute = attributes.new(name, kind, domain)
-    attribute.data.foreach_set(key, np.ascontiguousarray(values, dtype=dtype).reshape(-1))
+    attribute.data.foreach_set(key, staging.flat(values, dtype))
 
 
 def _guess_type(values):

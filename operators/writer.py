@@ -36,8 +36,9 @@ def _new_breakdown(layer, number):
     return frame
 
 
-def _fill(grease_pencil_data, layer, frame, strokes):
-    generated.mark(grease_pencil_data, layer, frame, grease_pencil.write_strokes(frame.drawing, strokes))
+def _fill(grease_pencil_data, layer, frame, strokes, staging):
+    written = grease_pencil.write_strokes(frame.drawing, strokes, staging=staging)
+    generated.mark(grease_pencil_data, layer, frame, written)
 
 
 def write_all(grease_pencil_data, morphed_list):
@@ -56,6 +57,7 @@ def write_all(grease_pencil_data, morphed_list):
     """
     created, removed = [], []
     record = generated.save(grease_pencil_data)
+    staging = grease_pencil.Staging()  # one set of conversion buffers for every frame
     try:
         for morphed in morphed_list:
             _remove_earlier(morphed, removed)
@@ -64,7 +66,7 @@ def write_all(grease_pencil_data, morphed_list):
             for i, number in enumerate(morphed.interval.targets.tolist()):
                 frame = _new_breakdown(layer, number)
                 created.append((layer, number))
-                _fill(grease_pencil_data, layer, frame, morphed.frames[i])
+                _fill(grease_pencil_data, layer, frame, morphed.frames[i], staging)
                 # Written: let it go, so Blender's copy of a big run's frames does not pile up on ours.
                 morphed.frames[i] = None
     except Exception:

@@ -9,6 +9,7 @@ stroke, of the key nearer in time (the first key before ``t = 0.5``). An extra a
 key has is 0 on the other (Blender's value for a missing attribute).
 """
 
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -17,10 +18,15 @@ from .hints import HINT
 from .strokes import StrokeSet
 from .unmatched import Anchors, shown_strokes
 
-__all__ = ["Held", "Extras", "FrameValues", "assemble_frames"]
+__all__ = ["Held", "Extras", "FrameValues", "Recycled", "assemble_frames"]
 
 #: Columns of ProjectedKey.values() before the extra floats: plane offset, radius, opacity, RGBA.
 _BASE = 7
+
+#: The most memory of one evaluation's in-betweens a plan keeps for the next (:class:`Recycled`):
+#: all of a 100 x 200 x 9 drawing's (6 MB), and a 400 x 500 x 23 one stays within its peak
+#: memory goal (issue 14: twice Blender's own Interpolate Sequence).
+RECYCLED_BYTES = 16 * 2**20
 
 
 @dataclass
@@ -188,19 +194,71 @@ class _Mix:
             mixed = {j: (va[:, lo + j].copy(), vb[:, lo + j].copy()) for j in np.flatnonzero(self.differ[lo:hi])}
             shared = None if len(mixed) == hi - lo == 1 else va[:, lo:hi].copy()
             self._blocks[lo] = shared, mixed
+        # t b's work column, kept: a fresh one each frame is page-faulted anew in a bpy process.
+        self._term = np.empty(len(va)) if self.differ.any() else None
 
-    def block(self, lo, t):
-        """The block starting at column ``lo`` at time ``t``, shape (K, hi - lo)."""
+    def block(self, lo, t, out=None):
+        """The block starting at column ``lo`` at time ``t``, shape (K, hi - lo); a mixed block
+        of one column is written into ``out`` (K,) when given (else a new array)."""
         shared, mixed = self._blocks[lo]
         if not mixed:
             return shared
         if shared is None:
             ((a, b),) = mixed.values()
-            return ((1 - t) * a + t * b)[:, None]
+            return self._mixed(a, b, t, np.empty(len(a)) if out is None else out)[:, None]
         out = shared.copy()
         for j, (a, b) in mixed.items():
-            out[:, j] = (1 - t) * a + t * b
+            self._mixed(a, b, t, out[:, j])
         return out
+
+    def _mixed(self, a, b, t, out):
+        """``(1 - t) a + t b`` into ``out``."""
+        np.multiply(a, 1 - t, out=out)
+        out += np.multiply(b, t, out=self._term)
+        return out
+
+
+class Recycled:
+    """The arrays an evaluation hands out (each in-between's positions, its mixed radius and
+    opacity), given again to the next evaluation once nothing else refers to them.
+
+    A redo's frames are written to Blender and dropped; in a bpy process a fresh array of their
+    size is a fresh mapping, page-faulted anew (about 2 us a page: a tenth of a redo). An array
+    is reused only when this pool holds its one reference (no frame, no view of it is alive),
+    and only the last evaluation's are kept, up to :data:`RECYCLED_BYTES`: kept memory is not
+    let go while the frames are written (the writer drops each frame once Blender has its copy,
+    which bounds a big run's peak memory).
+    """
+
+    def __init__(self):
+        self._free, self._given = [], []
+
+    def begin(self):
+        """An evaluation starts: the arrays of the last one are candidates."""
+        self._free, self._given = self._free + self._given, []
+
+    def end(self):
+        """It ended: keep its arrays only (the first of them, up to RECYCLED_BYTES)."""
+        kept, total = [], 0
+        for array in self._given:
+            total += array.nbytes
+            if total > RECYCLED_BYTES:
+                break
+            kept.append(array)
+        self._free, self._given = [], kept
+
+    def empty(self, shape):
+        """A float array of ``shape``: one nothing refers to any more, else a new one."""
+        free = self._free
+        for i in range(len(free)):
+            # Two references: the list's and getrefcount's argument.
+            if free[i].shape == shape and sys.getrefcount(free[i]) == 2:
+                array = free.pop(i)
+                break
+        else:
+            array = np.empty(shape)
+        self._given.append(array)
+        return array
 
 
 class FrameValues:
@@ -240,21 +298,25 @@ class FrameValues:
         self.mix = _Mix(va, vb, ((0, 1), (1, 2), (2, 3), (3, _BASE), (_BASE, va.shape[1])))
         self.depth = None if self.mix.differ[0] or not np.any(va[:, 0]) else self.mix.block(0, 0.0)[:, 0]
 
-    def frames(self, parts, plan, times):
+    def frames(self, parts, plan, times, recycled=None):
         """One StrokeSet per time (:func:`assemble_frames`)."""
         held, plane, unmatched, extras, mix = plan.held, plan.plane, plan.unmatched, plan.extras, self.mix
-        out = []
+        recycled = Recycled() if recycled is None else recycled
+        size, out = len(parts.u_a), []
+        # The plane offsets are lifted at once: one work column for every frame's.
+        depth = np.empty(len(parts.u_a)) if mix.differ[0] else self.depth
         for ti, t in enumerate(times):
-            depth = mix.block(0, t)[:, 0] if mix.differ[0] else self.depth
+            if mix.differ[0]:
+                mix.block(0, t, out=depth)
             points, curves = self.discrete.at(t)
             points.update(extras.from_columns(mix.block(_BASE, t)))
             drawing = StrokeSet(
-                positions=plane.to_3d(parts.frames[ti], depth),
+                positions=plane.to_3d(parts.frames[ti], depth, out=recycled.empty((size, 3))),
                 offsets=parts.offsets,
                 cyclic=parts.closed,
                 material_index=self.materials[0] if t < 0.5 else self.materials[1],
-                radius=mix.block(1, t)[:, 0],
-                opacity=mix.block(2, t)[:, 0],
+                radius=mix.block(1, t, out=recycled.empty((size,)) if mix.differ[1] else None)[:, 0],
+                opacity=mix.block(2, t, out=recycled.empty((size,)) if mix.differ[2] else None)[:, 0],
                 vertex_color=mix.block(3, t),
                 origin=self.origin,
                 point_attributes=points,
@@ -266,7 +328,7 @@ class FrameValues:
         return out
 
 
-def assemble_frames(parts, plan, times, values=None):
+def assemble_frames(parts, plan, times, values=None, recycled=None):
     """One StrokeSet per time from every pair's frames and the strokes without a partner.
 
     Parameters
@@ -279,9 +341,11 @@ def assemble_frames(parts, plan, times, values=None):
     times : ndarray, shape (T,)
     values : FrameValues, optional
         Made from these samples before (else made here).
+    recycled : Recycled, optional
+        Where the frames' arrays come from (the plan's, kept from one evaluation to the next).
 
     Returns
     -------
     list of StrokeSet
     """
-    return (FrameValues(parts, plan) if values is None else values).frames(parts, plan, times)
+    return (FrameValues(parts, plan) if values is None else values).frames(parts, plan, times, recycled)

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..geometry.ragged import ragged_arange
 from ..morphs.base import PathMorph
-from ..morphs.paths import BallPaths
+from ..morphs.paths import BallPaths, LinearPaths
 
 __all__ = ["BallRows", "Segment", "PairFrames", "Layout"]
 
@@ -158,41 +158,54 @@ def _chains(ball, segments):
     return pair, order, np.r_[ball.sizes, sizes].astype(np.int64), ranges
 
 
-class _Rows:
-    """Where a block of samples goes in a frame: a slice when the rows run in order (the
-    common case: a whole drawing of one road), else flat indices for np.put (fancy assignment
-    of (K, 2) rows is several times slower in numpy 1.26).
+def _run(rows):
+    """Indices as a slice when they run in order (cheaper to read and write), else as they are."""
+    rows = np.asarray(rows, dtype=np.int64)
+    if len(rows) and np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows))):
+        return slice(int(rows[0]), int(rows[0]) + len(rows))
+    return rows
 
-    Parameters
+
+@dataclass
+class _Shift:
+    """Samples of a block moved by ``(1 - t)`` times an offset (the end gaps of open strokes).
+
+    Attributes
     ----------
-    rows : ndarray of int, shape (K,)
+    rows : slice or ndarray of int
+        The J samples, within their block.
+    offset : ndarray, shape (2, J)
+        Their offsets, column by column.
     """
 
-    def __init__(self, rows):
-        rows = np.asarray(rows, dtype=np.int64)
-        run = len(rows) > 0 and np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows)))
-        self._rows = rows
-        self._slice = slice(int(rows[0]), int(rows[0]) + len(rows)) if run else None
-        self._flat = None if run else (2 * rows[:, None] + np.arange(2)).ravel()
+    rows: object
+    offset: np.ndarray
 
-    def __len__(self):
-        return len(self._rows)
+    @classmethod
+    def of(cls, rows, offset):
+        """From rows (J,) and offsets (J, 2); None for no row."""
+        if not len(rows):
+            return None
+        return cls(_run(rows), np.ascontiguousarray(np.reshape(offset, (-1, 2)).T))
 
-    def read(self, frame):
-        """``frame[rows]``, shape (K, 2)."""
-        return frame[self._slice] if self._slice is not None else np.take(frame, self._rows, axis=0)
-
-    def write(self, frame, values):
-        """``frame[rows] = values`` (frame: C-contiguous, shape (K_all, 2))."""
-        if self._slice is not None:
-            frame[self._slice] = values
-        else:
-            np.put(frame.reshape(-1), self._flat, values)
+    def apply(self, block, t, term):
+        """``block`` (2, n) plus ``(1 - t)`` times the offsets at the rows; ``term``: a work
+        buffer of at least J values."""
+        for column, offset in zip(block, self.offset):
+            column[self.rows] += np.multiply(offset, 1.0 - t, out=term[: len(offset)])
 
 
 def _joinable(morph):
     """Whether a segment's samples travel along paths whose class joins many (``join``)."""
     return type(morph) is PathMorph and hasattr(type(morph.paths), "join")
+
+
+def _clamped(t):
+    """A morph's time as :class:`~ballmorph_core.morphs.base.Morph` takes it: finite, in [0, 1]."""
+    t = float(t)
+    if not np.isfinite(t):
+        raise ValueError(f"t must be a finite number, got {t!r}")
+    return min(max(t, 0.0), 1.0)
 
 
 @dataclass
@@ -205,43 +218,47 @@ class _Joined:
     ----------
     morph : PathMorph
         Their kept samples' paths, segment after segment.
-    rows : _Rows
-        Place of each sample in the frames.
-    shifted : _Rows
-        The samples (of ``morph``) that have an offset (J of them).
-    offset : ndarray, shape (J, 2)
-        Added as ``(1 - t)`` times this to them.
+    block : slice
+        Their samples' place in the layout's work columns.
+    shift : _Shift or None
+        Those with an offset.
     """
 
     morph: PathMorph
-    rows: _Rows
-    shifted: _Rows
-    offset: np.ndarray
+    block: slice
+    shift: _Shift = None
 
     @classmethod
-    def join(cls, items):
-        """From ``(morph, kept samples, rows, offset or None)`` of each segment (one paths class)."""
+    def join(cls, items, start):
+        """From ``(morph, kept samples, rows, offset or None)`` of each segment (one paths class),
+        their samples from ``start`` in the work columns on."""
         paths = type(items[0][0].paths).join([(m.paths, keep) for m, keep, _, _ in items])
         starts = np.cumsum([0] + [len(keep) for _, keep, _, _ in items])
         shifted = [np.arange(a, a + len(keep)) for a, (_, keep, _, off) in zip(starts, items) if off is not None]
         offsets = [off for _, _, _, off in items if off is not None]
         return cls(
             PathMorph("joined", False, paths, np.zeros(starts[-1]), np.zeros(starts[-1])),
-            _Rows(np.concatenate([rows for _, _, rows, _ in items])),
-            _Rows(np.concatenate(shifted) if shifted else np.zeros(0, np.int64)),
-            np.concatenate(offsets) if offsets else np.zeros((0, 2)),
+            slice(start, start + int(starts[-1])),
+            _Shift.of(np.concatenate(shifted), np.concatenate(offsets)) if shifted else None,
         )
 
-    def write(self, frame, t):
-        """Their samples at time ``t`` into ``frame`` (shape (K_all, 2))."""
-        at = self.morph(t)
-        if len(self.shifted):
-            self.shifted.write(at, self.shifted.read(at) + (1.0 - t) * self.offset)
-        self.rows.write(frame, at)
+    def write(self, stage, t, term):
+        """Their samples at time ``t`` into the work columns ``stage`` (2, K_all)."""
+        block = stage[:, self.block]
+        if isinstance(self.morph.paths, LinearPaths):  # straight into the buffer
+            self.morph.paths.at(_clamped(t), out=block.T)
+        else:
+            block.T[...] = self.morph(t)
+        if self.shift is not None:
+            self.shift.apply(block, t, term)
 
 
 class Layout:
     """The samples of every pair, laid out pair after pair and chain after chain.
+
+    Each frame is evaluated road by road into work columns kept from frame to frame (every
+    full-size temporary is a fresh mapping, page-faulted anew, in a bpy process), gathered into
+    frame order and carried by the pairs' carriers there.
 
     Parameters
     ----------
@@ -279,13 +296,22 @@ class Layout:
         u_q = np.concatenate([ball.u_q, *[s.morph.u_q for s in segments]])[rows]
         self.u_a = self._fractions(u_p, range_p[c], lengths[owner, 0], owner)
         self.u_b = self._fractions(u_q, range_q[c], lengths[owner, 1], owner)
+        self._roads(ball, segments, keep, position, kind)
+        self._work = self._carrier = None
+
+    def _roads(self, ball, segments, keep, position, kind):
+        """Each road's evaluation and its samples' place in the work columns: the ball rows
+        first, then each joined class, then the other morphs; gathered into frame order by
+        ``_gather`` (None: they are in frame order already)."""
         n_ball = len(ball.u_p)
         kept = keep[:n_ball]
-        self._ball_rows = _Rows(position[:n_ball][kept])
+        staged = [position[:n_ball][kept]]
+        self._ball = slice(0, int(kept.sum()))
         self._paths = BallPaths(ball.p[kept], ball.m[kept], ball.q[kept], kind) if kept.any() else None
-        self._ball_offset = ball.offset[kept] if np.any(ball.offset[kept]) else None
+        shifted = np.any(ball.offset[kept])
+        self._ball_shift = _Shift.of(np.arange(self._ball.stop), ball.offset[kept]) if shifted else None
         starts = np.cumsum(np.r_[n_ball, [len(s.morph.u_p) for s in segments]])
-        self._morphs, joinable = [], {}
+        others, joinable = [], {}
         for seg, a in zip(segments, starts):
             kept_rows = keep[a : a + len(seg.morph.u_p)]
             local = np.flatnonzero(kept_rows)
@@ -294,29 +320,63 @@ class Layout:
             if _joinable(seg.morph):
                 joinable.setdefault(type(seg.morph.paths), []).append(item)
             else:
-                self._morphs.append(item)
-        self._joined = [_Joined.join(items) for items in joinable.values()]
+                others.append(item)
+        self._joined, self._morphs, start = [], [], self._ball.stop
+        for items in joinable.values():
+            self._joined.append(_Joined.join(items, start))
+            staged += [item[2] for item in items]
+            start = self._joined[-1].block.stop
+        for morph, local, frame_rows, offset in others:
+            block = slice(start, start + len(local))
+            shift = None if offset is None else _Shift.of(np.arange(len(local)), offset)
+            self._morphs.append((morph, local, block, shift))
+            staged.append(frame_rows)
+            start = block.stop
+        staged = np.concatenate(staged).astype(np.int64)
+        self._gather = np.empty(len(staged), dtype=np.int64)
+        self._gather[staged] = np.arange(len(staged))
+        if np.array_equal(self._gather, np.arange(len(staged))):
+            self._gather = None
 
     def _fractions(self, local, rng, length, owner):
         u = (rng[:, 0] + local * (rng[:, 1] - rng[:, 0])) / np.maximum(length, 1e-300)
         return np.where(self.closed[owner], np.mod(u, 1.0), np.clip(u, 0.0, 1.0))
 
-    def evaluate(self, times, motions=None):
-        """Every sample at every time, shape (T, K, 2); ``motions`` carries registered pairs along."""
-        frames = np.empty((len(times), len(self.u_a), 2))
-        carry = None if motions is None else _Carrier(motions, np.diff(self.offsets))
+    def _buffers(self, motions):
+        """The work columns (5, K), made once, and the carrier of ``motions`` (None without)."""
+        if self._work is None:
+            self._work = np.empty((5, len(self.u_a)))
+        if motions is None:
+            self._carrier = None
+        elif self._carrier is None or self._carrier.motions is not motions:
+            self._carrier = _Carrier(motions, np.diff(self.offsets))
+        return self._work, self._carrier
+
+    def evaluate(self, times, motions=None, out=None):
+        """Every sample at every time, shape (T, K, 2) (``out`` when given); ``motions`` carries
+        registered pairs along."""
+        frames = np.empty((len(times), len(self.u_a), 2)) if out is None else out
+        work, carry = self._buffers(motions)
+        # stage: the roads' samples; columns: in frame order (the same when staged so);
+        # scratch: free while the carrier runs; term: the offsets' work column.
+        stage, term = work[0:2], work[4]
+        columns, scratch = (stage, work[2:4]) if self._gather is None else (work[2:4], stage)
         for ti, t in enumerate(times):
             if self._paths is not None:
-                at = self._paths.at(t)
-                if self._ball_offset is not None:
-                    at = at + (1.0 - t) * self._ball_offset
-                self._ball_rows.write(frames[ti], at)
+                self._paths.at(t, out=stage[:, self._ball].T)
+                if self._ball_shift is not None:
+                    self._ball_shift.apply(stage[:, self._ball], t, term)
             for joined in self._joined:
-                joined.write(frames[ti], t)
-            for morph, keep, rows, offset in self._morphs:
-                frames[ti, rows] = morph(t)[keep] if offset is None else morph(t)[keep] + (1.0 - t) * offset
-            if carry is not None:
-                carry(t, frames[ti])
+                joined.write(stage, t, term)
+            for morph, keep, block, shift in self._morphs:
+                stage[:, block].T[...] = morph(t)[keep]
+                if shift is not None:
+                    shift.apply(stage[:, block], t, term)
+            if self._gather is not None:
+                for source, column in zip(stage, columns):
+                    source.take(self._gather, out=column, mode="wrap")  # in range: no bounds check
+            if carry is None or not carry(t, frames[ti], columns, scratch):
+                frames[ti, :, 0], frames[ti, :, 1] = columns
         return frames
 
 
@@ -334,37 +394,39 @@ def _carry(motions, t, frame, sizes):
     sizes : ndarray of int, shape (C,)
         Samples per pair.
     """
-    _Carrier(motions, sizes)(t, frame)
+    columns = np.array(frame.T)
+    _Carrier(motions, sizes)(t, frame, columns, np.empty_like(columns))
 
 
 class _Carrier:
     """:func:`_carry` frame after frame: each pair's coefficients are gathered over its run of
     samples (instead of a (K, 2, 2) gather and einsum: 5 times faster at 20,000 samples) into
-    work buffers allocated once, as every full-size temporary is a fresh allocation that glibc
+    work buffers the caller keeps, as every full-size temporary is a fresh allocation that glibc
     maps and unmaps anew (3 times the arithmetic's cost in a bpy process)."""
 
     def __init__(self, motions, sizes):
         self.motions = motions
         self.owner = np.repeat(np.arange(len(sizes)), sizes)
-        self.x, self.y, self.column, self.term = (np.empty(len(self.owner)) for _ in range(4))
 
-    def __call__(self, t, frame):
+    def __call__(self, t, frame, columns, scratch):
+        """``frame`` (K, 2) := the samples ``columns`` (2, K) carried; ``scratch``: two work
+        columns (2, K). False, and nothing written, when no pair moves."""
         motions = self.motions
         if not motions.moving.any():
-            return
+            return False
         M, c = motions.at(t)
         M, c = np.where(motions.moving[:, None, None], M, np.eye(2)), np.where(motions.moving[:, None], c, 0.0)
-        x, y, column, term = self.x, self.y, self.column, self.term
-        np.copyto(x, frame[:, 0])
-        np.copyto(y, frame[:, 1])
-        # Every owner is in range: mode='wrap' skips take's bounds check (2-3 times faster).
+        (x, y), (column, term) = columns, scratch
+        # Every owner is in range: mode='wrap' skips take's bounds check (2-3 times faster);
+        # the method, not np.take (its Python wrapper is a tenth of a small take).
         owner = self.owner
         for i in range(2):
             # M_i0 x + M_i1 y + c_i, summed in that order.
-            np.take(M[:, i, 0], owner, out=column, mode="wrap")
+            M[:, i, 0].take(owner, out=column, mode="wrap")
             column *= x
-            np.take(M[:, i, 1], owner, out=term, mode="wrap")
+            M[:, i, 1].take(owner, out=term, mode="wrap")
             term *= y
             column += term
-            column += np.take(c[:, i], owner, out=term, mode="wrap")
+            column += c[:, i].take(owner, out=term, mode="wrap")
             frame[:, i] = column
+        return True

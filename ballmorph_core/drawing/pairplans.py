@@ -63,10 +63,11 @@ class PairPlans:
         self.segments = self.ball = None
         return self
 
-    def frames(self, times):
-        """Every pair's in-betweens at ``times`` (PairFrames)."""
+    def frames(self, times, out=None):
+        """Every pair's in-betweens at ``times`` (PairFrames), their frames written into ``out``
+        (T, K, 2) when given."""
         times = np.asarray(times, dtype=np.float64).reshape(-1)
-        frames = self.layout.evaluate(times, self.motions)
+        frames = self.layout.evaluate(times, self.motions, out)
         return PairFrames(
             frames, self.layout.offsets, self.layout.u_a, self.layout.u_b, self.closed, self.used, self.notes
         )

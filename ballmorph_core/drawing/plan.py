@@ -14,7 +14,7 @@ from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
 from ..geometry.polyline import reversed_fractions
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
-from .attributes import Extras, FrameValues, Held, assemble_frames
+from .attributes import Extras, FrameValues, Held, Recycled, assemble_frames
 from .fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, point_motion
 from .hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
 from .keys import KeyStroke, ProjectedKey
@@ -138,6 +138,8 @@ class InbetweenPlan:
         self.pairs = plan_pairs(self.pieces.curves, method, carrier, spacing, drawing)
         self.planarity = _planarity_messages(key_a, key_b, plane)
         self._samples = None  # _Samples, from the first evaluation
+        self._staged = np.empty((0, 0, 2))  # the pairs' frames of a chunk of times (see _frames)
+        self._recycled = Recycled()  # the arrays of the last evaluation's in-betweens
 
     def _hinted_motion(self, forced, hints):
         """How the hints say the drawing moves (complex ``a, b``): the hinted registration of
@@ -257,8 +259,19 @@ class InbetweenPlan:
 
     def _frames(self, times, finite_only=True):
         """The pairs' frames at ``times`` (PairFrames) and the in-betweens (list of StrokeSet);
-        ``(None, None)`` if some pair is not finite there and ``finite_only``."""
-        raw, marks = self.pieces.merge(self.pairs.frames(times))
+        ``(None, None)`` if some pair is not finite there and ``finite_only``.
+
+        The pairs' 2D frames never leave an evaluation (the in-betweens are lifted out of them),
+        so every chunk of every evaluation stages them in one buffer the plan keeps (at most
+        EVALUATE_SAMPLES samples): fresh, they would be page-faulted anew chunk after chunk in a
+        bpy process."""
+        staged = None
+        if finite_only:  # (all times at once, for a pair not finite somewhere: fresh frames)
+            size = (len(times), self.pairs.layout.offsets[-1], 2)
+            if self._staged.shape[0] < size[0] or self._staged.shape[1] != size[1]:
+                self._staged = np.empty(size)
+            staged = self._staged[: size[0]]
+        raw, marks = self.pieces.merge(self.pairs.frames(times, out=staged))
         parts = _finite(raw, self.strokes, times)
         if finite_only and parts is not raw:
             return None, None
@@ -271,7 +284,7 @@ class InbetweenPlan:
             values = FrameValues(parts, self)
             if parts is raw:  # the plan's own samples, whatever the times: kept for the next frames
                 self._samples = _Samples(parts, along, values)
-        frames = assemble_frames(parts, self, times, values)
+        frames = assemble_frames(parts, self, times, values, self._recycled)
         if self.has_hints:
             for frame in frames:
                 _mark_hints(frame, marks)
@@ -331,6 +344,7 @@ class InbetweenPlan:
         """
         times = _check_times(times)
         result = InbetweenResult(frames=[], messages=list(self.messages))
+        self._recycled.begin()
         # A few times at once: one chunk's samples are staged, not every frame's (their 3D
         # frames are what the result keeps). Should a chunk turn out not finite, every time is
         # taken at once, so that the pairs' reports are the same whatever the chunking.
@@ -353,6 +367,7 @@ class InbetweenPlan:
         for h in self.held:
             _report_unmatched(result, h.index, h.from_a, self.unmatched)
         result.messages.extend(self.planarity)
+        self._recycled.end()
         return result
 
 

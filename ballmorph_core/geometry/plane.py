@@ -36,24 +36,34 @@ class Plane:
         rel = np.asarray(points, dtype=np.float64).reshape(-1, 3) - self.origin
         return np.stack([rel @ self.u, rel @ self.v], axis=1), rel @ self.normal
 
-    def to_3d(self, coords, offsets=None):
-        """Lift coordinates (N, 2) (and optional normal offsets (N,)) back to 3D, shape (N, 3)."""
+    def to_3d(self, coords, offsets=None, out=None):
+        """Lift coordinates (N, 2) (and optional normal offsets (N,)) back to 3D, shape (N, 3)
+        (into ``out`` when given)."""
         coords = np.asarray(coords, dtype=np.float64).reshape(-1, 2)
         if offsets is not None:
             offsets = np.asarray(offsets, dtype=np.float64).reshape(-1)
-        # Column by column, skipping zero terms: a canvas plane (XZ) is two copies and a fill,
-        # several times faster than a (N, 2) @ (2, 3) product on every in-between.
-        out = np.empty((len(coords), 3))
+        # Column by column, skipping zero terms: a canvas plane (XZ) is two sums and a fill,
+        # several times faster than a (N, 2) @ (2, 3) product on every in-between. Each column
+        # is origin + u x + v y + n offset, summed in that order; its first term is written
+        # with the origin (one pass less over a column of a fresh array).
+        out = np.empty((len(coords), 3)) if out is None else out
+        terms = [(coords[:, 0], self.u), (coords[:, 1], self.v)]
+        if offsets is not None:
+            terms.append((offsets, self.normal))
         for axis in range(3):
-            column = out[:, axis]
-            column.fill(self.origin[axis])
-            for values, weight in ((coords[:, 0], self.u[axis]), (coords[:, 1], self.v[axis])):
-                if weight == 1.0:
-                    column += values
-                elif weight != 0.0:
-                    column += weight * values
-            if offsets is not None and self.normal[axis] != 0.0:
-                column += self.normal[axis] * offsets
+            column, first = out[:, axis], True
+            for values, direction in terms:
+                weight = direction[axis]
+                if weight == 0.0:
+                    continue
+                term = values if weight == 1.0 else weight * values
+                if first:
+                    np.add(term, self.origin[axis], out=column)
+                else:
+                    column += term
+                first = False
+            if first:
+                column.fill(self.origin[axis])
         return out
 
 

@@ -155,6 +155,7 @@ class LinearPaths(_Endpoints):
     def __init__(self, p, q):
         self.p = np.asarray(p, dtype=np.float64)
         self.q = np.asarray(q, dtype=np.float64)
+        self._columns = None  # p and q - p as (2, K), made at the first at() into a buffer
 
     @classmethod
     def join(cls, parts):
@@ -165,9 +166,17 @@ class LinearPaths(_Endpoints):
         """Shape (K,)."""
         return np.linalg.norm(self.q - self.p, axis=1)
 
-    def at(self, t):
-        """Shape (K, 2)."""
-        return self.p + float(t) * (self.q - self.p)
+    def at(self, t, out=None):
+        """Shape (K, 2); written into ``out`` (any (K, 2) array) when given."""
+        if out is None:
+            return self.p + float(t) * (self.q - self.p)
+        # Column by column from columns kept contiguous (the same values: p + t (q - p)).
+        if self._columns is None:
+            self._columns = np.ascontiguousarray(self.p.T), np.ascontiguousarray((self.q - self.p).T)
+        for p, d, column in zip(*self._columns, out.T):
+            np.multiply(d, float(t), out=column)
+            column += p
+        return out
 
 
 class BallPaths(_Endpoints):
@@ -196,6 +205,7 @@ class BallPaths(_Endpoints):
         self.q = np.asarray(q, dtype=np.float64)
         d = self.q - self.p
         self._chord = np.linalg.norm(d, axis=1)
+        self._work = None  # the circular paths' work buffers (at the first at())
         if kind == "circular":
             # Angle phi between the start direction (p -> m) and the chord; the arc turns 2 phi.
             u = self.m - self.p
@@ -289,40 +299,50 @@ class BallPaths(_Endpoints):
             return self._chord / np.sinc(self._phi / np.pi)
         return self._par_len
 
-    def _circular_at(self, t):
-        """The circular paths at time ``t``: the chord from p to the point reached after turning
-        2 phi t, of length |d| sin(phi t) / sin(phi), along u turned by phi t.
+    def _circular_at(self, t, out):
+        """The circular paths at time ``t`` into ``out`` (K, 2): the chord from p to the point
+        reached after turning 2 phi t, of length |d| sin(phi t) / sin(phi), along u turned by
+        phi t.
 
-        Column by column, in place (the values of ``p + length * rotate(u, phi t)``): each
-        full-size temporary costs a redo its page faults, frame after frame.
+        Column by column, into work buffers kept from call to call (the values of
+        ``p + length * rotate(u, phi t)``): each full-size temporary costs a redo its page
+        faults, frame after frame.
         """
-        turn = self._phi * t
-        cos, sin = np.cos(turn), np.sin(turn)
-        length = self._per_sin * sin
-        length += self._straight * t
-        u0, u1 = self._u[:, 0], self._u[:, 1]
-        x, y = cos * u0, sin * u0  # u turned by phi t
-        x -= sin * u1
-        y += cos * u1
-        out = np.empty_like(self.p)
+        if self._work is None:
+            self._work = np.empty((5, len(self.p)))
+            self._columns = tuple(np.ascontiguousarray(a.T) for a in (self._u, self.p))
+        turn, cos, sin, length, term = self._work
+        (u0, u1), p = self._columns
+        np.multiply(self._phi, t, out=turn)
+        np.cos(turn, out=cos)
+        np.sin(turn, out=sin)
+        np.multiply(self._per_sin, sin, out=length)
+        length += np.multiply(self._straight, t, out=term)
+        x, y = np.multiply(cos, u0, out=turn), sin  # u turned by phi t
+        x -= np.multiply(sin, u1, out=term)
+        np.multiply(sin, u0, out=y)
+        y += np.multiply(cos, u1, out=term)
         for axis, column in enumerate((x, y)):
             column *= length
-            column += self.p[:, axis]
-            out[:, axis] = column
+            np.add(column, p[axis], out=out[:, axis])
         return out
 
-    def at(self, t):
-        """Positions at time ``t`` in [0, 1] (uniform arc-length speed), shape (K, 2)."""
+    def at(self, t, out=None):
+        """Positions at time ``t`` in [0, 1] (uniform arc-length speed), shape (K, 2); the
+        circular paths write them into ``out`` (any (K, 2) array) when given."""
         t = float(np.clip(t, 0.0, 1.0))
+        if self.kind == "circular":
+            return self._circular_at(t, np.empty_like(self.p) if out is None else out)
         p, m, q = self.p, self.m, self.q
+        if out is not None:
+            out[:] = self.at(t)
+            return out
         if self.kind == "linear":
             return p + t * (q - p)
         if self.kind == "hat":
             return p + 2 * t * (m - p) if t <= 0.5 else m + (2 * t - 1) * (q - m)
         if self.kind == "tangent":
             return m + _rotate(p - m, self._beta * t)
-        if self.kind == "circular":
-            return self._circular_at(t)
         # Parabolic: Bezier parameter reached at arc-length fraction t.
         s = self._parabola_parameter(t)[:, None]
         return (1 - s) ** 2 * p + 2 * s * (1 - s) * m + s**2 * q

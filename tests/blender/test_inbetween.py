@@ -154,6 +154,24 @@ def test_the_recorded_fingerprints_are_the_ones_blender_reads_back(shot, addon):
         assert io.write_strokes(drawing, written, matrix) == io.fingerprint(drawing)
 
 
+def test_drawings_written_through_one_staging_are_the_drawings_written_alone(shot, addon):
+    """The writer converts every frame's arrays in one set of kept buffers (Staging): a drawing
+    written after a bigger or a smaller one is what writing it on its own gives, fingerprint
+    included (the fingerprint is taken before the buffer is reused)."""
+    io = importlib.import_module(f"{addon.__name__}.operators.grease_pencil")
+    layer = ink(shot)
+    assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}
+    big = io.read_strokes(gp_data.frame_at(layer, 5).drawing)
+    small = big.subset([0])
+    staging, number = io.Staging(), 30
+    for strokes in (big, small, big, small):
+        alone, shared = layer.frames.new(number).drawing, layer.frames.new(number + 1).drawing
+        assert io.write_strokes(shared, strokes, staging=staging) == io.write_strokes(alone, strokes)
+        assert gp_data.read_raw(shared) == gp_data.read_raw(alone)
+        assert io.fingerprint(shared) == io.fingerprint(alone)
+        number += 2
+
+
 def test_an_in_between_the_animator_edited_becomes_theirs(shot, capfd):
     layer = ink(shot)
     assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}

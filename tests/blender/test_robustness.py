@@ -554,11 +554,11 @@ def test_a_failed_write_leaves_the_layer_as_it_was(shot, addon, monkeypatch):
     io = importlib.import_module(f"{addon.__name__}.operators.grease_pencil")
     real, calls = io.write_strokes, []
 
-    def failing(drawing, strokes, matrix=None):
+    def failing(drawing, strokes, matrix=None, staging=None):
         calls.append(1)
         if len(calls) == 4:
             raise MemoryError("simulated failure")
-        return real(drawing, strokes, matrix)
+        return real(drawing, strokes, matrix, staging)
 
     monkeypatch.setattr(io, "write_strokes", failing)
     assert cancelled(frame_count=0) == "Writing the in-betweens failed, nothing was changed: simulated failure"

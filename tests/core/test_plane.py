@@ -39,3 +39,29 @@ def test_the_front_canvas_maps_to_x_and_z():
     np.testing.assert_allclose(np.abs(plane.normal), [0.0, 1.0, 0.0])
     np.testing.assert_allclose(offsets, 0.0, atol=1e-12)
     np.testing.assert_allclose(plane.to_3d(coords, offsets), points, atol=1e-12)
+
+
+def test_lifting_sums_origin_u_v_and_normal_terms_in_that_order():
+    """to_3d skips zero terms and writes the first with the origin: the same numbers, bit for
+    bit, as origin + u x + v y + n d summed in that order (a tilted plane: every term)."""
+    from ballmorph_core.geometry.plane import Plane
+
+    rng = np.random.default_rng(5)
+    normal = np.array([0.3, -0.8, 0.52])
+    normal /= np.linalg.norm(normal)
+    u = np.cross(normal, [0.0, 0.0, 1.0])
+    u /= np.linalg.norm(u)
+    plane = Plane(np.array([0.4, -1.2, 2.5]), u, np.cross(normal, u), normal)
+    coords, depth = rng.normal(size=(40, 2)), rng.normal(size=40) * 1e-3
+    want = np.empty((40, 3))
+    for axis in range(3):
+        column = np.full(40, plane.origin[axis])
+        column += plane.u[axis] * coords[:, 0]
+        column += plane.v[axis] * coords[:, 1]
+        column += plane.normal[axis] * depth
+        want[:, axis] = column
+    np.testing.assert_array_equal(plane.to_3d(coords, depth), want)
+    front = fit_plane(np.c_[coords[:, 0], np.zeros(40), coords[:, 1]])  # XZ: one axis has no term
+    lifted = front.to_3d(coords)
+    np.testing.assert_array_equal(lifted[:, 1], np.full(40, front.origin[1]))
+    np.testing.assert_array_equal(lifted[:, 0], coords[:, 0] + front.origin[0])

@@ -381,8 +381,8 @@ def test_a_pair_not_finite_at_some_times_only_is_reported_as_when_evaluated_at_o
     plan = bm.plan_inbetween(key_a, key_b)
     real = type(plan.pairs).frames
 
-    def late_nan(self, times):
-        parts = real(self, times)
+    def late_nan(self, times, out=None):
+        parts = real(self, times, out)
         late = np.asarray(times) > 0.6
         parts.frames[late, parts.offsets[0] : parts.offsets[1]] = np.nan
         return parts
@@ -427,8 +427,8 @@ def test_a_pair_not_finite_at_some_times_leaves_the_kept_samples_alone(monkeypat
     frames_of = type(bm.plan_inbetween(key_a, key_b).pairs).frames
     times = np.linspace(0.0, 1.0, 6)
 
-    def late_nan(self, at):
-        parts = frames_of(self, at)
+    def late_nan(self, at, out=None):
+        parts = frames_of(self, at, out)
         parts.frames[np.asarray(at) > 0.6, parts.offsets[0] : parts.offsets[1]] = np.nan
         return parts
 

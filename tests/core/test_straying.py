@@ -90,3 +90,29 @@ def test_each_pair_is_measured_on_its_own_stroke_whatever_the_drawing_order():
     result = bm.inbetween(a, b, times, carrier="none")
     assert sorted((p.stroke_a, p.stroke_b) for p in result.pairs) == [(0, 1), (1, 0)]
     assert np.abs(bm.length_deviation(a, b, result, times)).max() < 1e-2
+
+
+def test_work_buffers_shared_by_drawings_of_any_size_give_each_its_own_lengths():
+    """length_deviation measures every frame with one set of work buffers: a drawing measured
+    after a bigger or a smaller one gets exactly the lengths it gets alone."""
+    from ballmorph_core.drawing.straying import _ink_lengths, _Work
+
+    rng = np.random.default_rng(6)
+    drawings = [
+        bm.StrokeSet.from_strokes([rng.normal(size=(n, 3)) for n in sizes], cyclic=[True, False, True][: len(sizes)])
+        for sizes in ((40, 3, 17), (5,), (90, 1, 60), (2, 2))
+    ]
+    work = _Work()
+    for drawing in drawings + drawings[::-1]:
+        np.testing.assert_array_equal(_ink_lengths(drawing, work), bm.ink_lengths(drawing))
+
+
+def test_edge_lengths_are_the_einsum_norms_bit_for_bit():
+    """_norms sums the squares as np.einsum('ij,ij->i') does (x + z, then y, in numpy 1.26): a
+    numpy that sums otherwise fails here (the deviations would move in their last bits)."""
+    from ballmorph_core.drawing.straying import _norms
+
+    rng = np.random.default_rng(8)
+    step = rng.normal(size=(200_000, 3)) * np.exp(rng.uniform(-30, 30, size=(200_000, 3)))
+    want = np.sqrt(np.einsum("ij,ij->i", step, step))
+    np.testing.assert_array_equal(_norms(step.copy(), np.empty(len(step))), want)

@@ -104,3 +104,33 @@ def test_sampled_and_level_paths():
     np.testing.assert_allclose(sampled.lengths(), [4.0])
     np.testing.assert_allclose(level.lengths(), [4.0])
     np.testing.assert_allclose(sampled.end, [[1.0, 3.0]])
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_paths_written_into_a_buffer_are_the_paths_bit_for_bit(kind):
+    """``at(t, out=)`` (the layout's work columns, a transposed view) gives exactly ``at(t)``,
+    call after call (the circular paths keep their work buffers from one call to the next)."""
+    rng = np.random.default_rng(3)
+    p, q = rng.normal(size=(50, 2)), rng.normal(size=(50, 2))
+    m = 0.5 * (p + q) + 0.3 * rng.normal(size=(50, 2))
+    m[:5] = 0.5 * (p[:5] + q[:5])  # collinear contacts: straight circular paths
+    p[5:8] = q[5:8] = m[5:8]  # a contact that does not move
+    paths = BallPaths(p, m, q, kind)
+    columns = np.zeros((2, 60))
+    for t in (0.7, 0.0, 0.25, 1.0, 0.7):
+        out = columns[:, 10:].T  # rows 10: of a column-major buffer
+        assert paths.at(t, out=out) is out
+        np.testing.assert_array_equal(out, paths.at(t))
+        np.testing.assert_array_equal(out, BallPaths(p, m, q, kind).at(t))  # no state kept between calls
+    assert not columns[:, :10].any()
+
+
+def test_linear_paths_written_into_a_buffer_are_the_paths_bit_for_bit():
+    from ballmorph_core.morphs.paths import LinearPaths
+
+    rng = np.random.default_rng(4)
+    paths = LinearPaths(rng.normal(size=(30, 2)), rng.normal(size=(30, 2)))
+    columns = np.empty((2, 30))
+    for t in (0.3, 1.0, 0.0, 0.55):
+        np.testing.assert_array_equal(paths.at(t, out=columns.T), paths.at(t))
+        np.testing.assert_array_equal(columns.T, paths.p + t * (paths.q - paths.p))
