@@ -24,9 +24,10 @@ __all__ = ["Held", "Extras", "FrameValues", "Recycled", "assemble_frames"]
 _BASE = 7
 
 #: The most memory of one evaluation's in-betweens a plan keeps for the next (:class:`Recycled`):
-#: all of a 100 x 200 x 9 drawing's (6 MB), and a 400 x 500 x 23 one stays within its peak
-#: memory goal (issue 14: twice Blender's own Interpolate Sequence).
-RECYCLED_BYTES = 16 * 2**20
+#: all of a 100 x 200 x 9 drawing's (6 MB). Kept arrays stay alive while the frames are written,
+#: so this adds to a big run's peak: at 16 MiB a cold 400 x 500 x 23 run of open strokes peaked
+#: at 1.96 times Blender's own Interpolate Sequence (issue 14's goal: at most 2).
+RECYCLED_BYTES = 8 * 2**20
 
 
 @dataclass
