@@ -424,11 +424,17 @@ def test_followed_queries_answer_as_the_tree_does(seed, kind, margin):
     search, k = NearestEdges(batch), 80
     owner = rng.integers(0, n_curves, k)
     followed = FollowedQueries(search, owner, margin)
-    points = rng.uniform(-0.5, 1.5, (k, 2))
-    for _ in range(8):
+    _answer_as_the_tree(rng, batch, followed, rng.uniform(-0.5, 1.5, (k, 2)), [0.01, 0.1, np.inf], 8)
+
+
+def _answer_as_the_tree(rng, batch, followed, points, reaches, steps):
+    """Queries drifting ``steps`` times (most of them each time), asked within reaches drawn
+    from ``reaches``: every answer of ``followed`` is the tree's."""
+    search, owner, k = followed.search, followed.owner, len(points)
+    for _ in range(steps):
         rows = np.flatnonzero(rng.random(k) < 0.8)
         points = _drifting(rng, batch, owner, points, rows)
-        reach = rng.choice([0.01, 0.1, np.inf], len(rows))
+        reach = rng.choice(reaches, len(rows))
         got = followed.within(rows, points[rows], reach)
         want = search.within(points[rows], owner[rows], reach)
         for g, w in zip(got, want):
@@ -469,15 +475,7 @@ def test_followed_queries_with_more_candidates_than_kept_answer_as_the_tree_does
     points = rng.uniform(-0.5, 1.0, (k, 2))
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(projection, "_KEPT", kept)
-        followed = FollowedQueries(search, owner, 0.1)
-        for _ in range(6):
-            rows = np.flatnonzero(rng.random(k) < 0.8)
-            points = _drifting(rng, batch, owner, points, rows)
-            reach = rng.choice([0.05, 0.3, np.inf], len(rows))
-            got = followed.within(rows, points[rows], reach)
-            want = search.within(points[rows], owner[rows], reach)
-            for g, w in zip(got, want):
-                np.testing.assert_array_equal(g, w)
+        _answer_as_the_tree(rng, batch, FollowedQueries(search, owner, 0.1), points, [0.05, 0.3, np.inf], 6)
 
 
 def test_followed_queries_settle_on_a_kept_edge_and_measure_only_those_within_reach():
