@@ -256,10 +256,14 @@ class PointTree:
         return np.repeat(q, 2), np.stack([2 * node, 2 * node + 1], axis=1).ravel()
 
     def _leaf_points(self, q, node):
-        """Every (query, point) of the surviving leaves."""
+        """Every (query, point) of the (query, leaf) pairs ``q``, ``node``, pair after pair, with
+        in-range gathers by take(mode="wrap") and the queries repeated, not gathered."""
         starts, ends, _ = self.levels[-1]
-        owner, local = ragged_arange(ends[node] - starts[node])
-        return q[owner], self.perm[starts[node][owner] + local]
+        first = np.take(starts, node, mode="wrap")
+        counts = np.take(ends, node, mode="wrap") - first
+        # Entry e (counted over all pairs) of pair p is perm[first[p] + e - entries before p].
+        at = np.arange(int(counts.sum())) + np.repeat(first - (np.cumsum(counts) - counts), counts)
+        return np.repeat(q, counts), np.take(self.perm, at, mode="wrap")
 
     def nearest_d2(self, x):
         """Squared distance from each query point to its nearest point of the tree, shape (K,).
@@ -322,23 +326,13 @@ class PointTree:
         for depth, (_, _, boxes) in enumerate(self.levels):
             q, node = self._nearer(x, q, node, np.take(boxes, node, axis=1, mode="wrap"), limit, slack)
             q, node = self._descend(depth, q, node)
-        q, item = self._leaf_items(q, node)
+        q, item = self._leaf_points(q, node)
         if self.item_boxes is None:
             boxes = np.tile(np.take(self.xy, item, axis=1, mode="wrap"), (2, 1))
         else:
             boxes = np.take(self.item_boxes, item, axis=1, mode="wrap")
         q, item = self._nearer(x, q, item, boxes, limit, slack)
         return q, item
-
-    def _leaf_items(self, q, node):
-        """:meth:`_leaf_points` (every (query, item) of the (query, leaf) pairs ``q``, ``node``),
-        with in-range gathers by take(mode="wrap") and the queries repeated, not gathered."""
-        starts, ends, _ = self.levels[-1]
-        first = np.take(starts, node, mode="wrap")
-        counts = np.take(ends, node, mode="wrap") - first
-        # Entry e (counted over all pairs) of pair p is perm[first[p] + e - entries before p].
-        at = np.arange(int(counts.sum())) + np.repeat(first - (np.cumsum(counts) - counts), counts)
-        return np.repeat(q, counts), np.take(self.perm, at, mode="wrap")
 
     @staticmethod
     def _nearer(x, q, node, boxes, limit, slack):

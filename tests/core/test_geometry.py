@@ -315,8 +315,9 @@ def test_box_reach_is_the_nearest_and_farthest_point_of_each_box(seed):
 
 @given(st.integers(0, 2**32 - 1), st.integers(1, 9))
 @settings(max_examples=30)
-def test_leaf_items_are_the_leaf_points(seed, leaf_size):
-    # nearest_candidates' own leaf expansion: the very (query, item) pairs of _leaf_points.
+def test_leaf_points_are_every_point_of_each_pairs_leaf_in_order(seed, leaf_size):
+    # The leaves' expansion (nearest_candidates, within, nearest_d2): pair after pair, the
+    # query with each point of its leaf, as one loop over the pairs lists them.
     rng = np.random.default_rng(seed)
     n = int(rng.integers(1, 300))
     groups = np.unique(np.r_[0, rng.integers(0, n, 3), n])
@@ -324,8 +325,12 @@ def test_leaf_items_are_the_leaf_points(seed, leaf_size):
     leaves = len(tree.levels[-1][0])
     q = np.sort(rng.integers(0, 50, 80))
     node = rng.integers(0, leaves, 80)
-    for got, want in zip(tree._leaf_items(q, node), tree._leaf_points(q, node)):
-        np.testing.assert_array_equal(got, want)
+    starts, ends, _ = tree.levels[-1]
+    want_q = np.concatenate([np.full(ends[v] - starts[v], a) for a, v in zip(q, node)])
+    want_p = np.concatenate([tree.perm[starts[v] : ends[v]] for v in node])
+    got_q, got_p = tree._leaf_points(q, node)
+    np.testing.assert_array_equal(got_q, want_q)
+    np.testing.assert_array_equal(got_p, want_p)
 
 
 def _nearest_edges_brute(points, owner, curves, reach):
