@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..geometry.ragged import ragged_arange
-from ..morphs.base import PathMorph
+from ..morphs.base import PathMorph, morph_time
 from ..morphs.paths import BallPaths, LinearPaths
 
 __all__ = ["BallRows", "Segment", "PairFrames", "Layout"]
@@ -200,14 +200,6 @@ def _joinable(morph):
     return type(morph) is PathMorph and hasattr(type(morph.paths), "join")
 
 
-def _clamped(t):
-    """A morph's time as :class:`~ballmorph_core.morphs.base.Morph` takes it: finite, in [0, 1]."""
-    t = float(t)
-    if not np.isfinite(t):
-        raise ValueError(f"t must be a finite number, got {t!r}")
-    return min(max(t, 0.0), 1.0)
-
-
 @dataclass
 class _Joined:
     """Segments whose paths are of one joinable class (straight paths of the fallbacks,
@@ -246,7 +238,7 @@ class _Joined:
         """Their samples at time ``t`` into the work columns ``stage`` (2, K_all)."""
         block = stage[:, self.block]
         if isinstance(self.morph.paths, LinearPaths):  # straight into the buffer
-            self.morph.paths.at(_clamped(t), out=block.T)
+            self.morph.paths.at(morph_time(t), out=block.T)
         else:
             block.T[...] = self.morph(t)
         if self.shift is not None:

@@ -5,9 +5,23 @@ import numpy as np
 from ..geometry.polyline import as_curve
 from ..options import SAMPLINGS, check_option
 
-__all__ = ["Morph", "PathMorph", "KeyedMorph", "register", "registered", "build"]
+__all__ = ["Morph", "PathMorph", "KeyedMorph", "register", "registered", "build", "morph_time"]
 
 _REGISTRY = {}
+
+
+def morph_time(t):
+    """A morph's time as every morph takes it: a finite number, clamped to [0, 1] (float).
+
+    Raises
+    ------
+    ValueError
+        For NaN or an infinite ``t``.
+    """
+    t = float(t)
+    if not np.isfinite(t):
+        raise ValueError(f"t must be a finite number, got {t!r}")
+    return min(max(t, 0.0), 1.0)
 
 
 def register(name):
@@ -62,10 +76,7 @@ class Morph:
 
     def __call__(self, t):
         """In-between curve at ``t``, shape (K, 2)."""
-        t = float(t)
-        if not np.isfinite(t):
-            raise ValueError(f"t must be a finite number, got {t!r}")
-        return self._frame(min(max(t, 0.0), 1.0))
+        return self._frame(morph_time(t))
 
     def _frame(self, t):
         raise NotImplementedError
