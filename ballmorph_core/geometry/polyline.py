@@ -340,13 +340,15 @@ def default_spacings(*batches):
     ndarray, shape (C,)
     """
     n = len(batches[0])
-    count = sum(np.bincount(b.owner[b.nxt >= 0], minlength=n) for b in batches)
+    owners = [b.owner[b.nxt >= 0] for b in batches]  # each edge's curve, batch by batch
+    counts = [np.bincount(owner, minlength=n) for owner in owners]
+    count = sum(counts)
     widest = int(count.max(initial=0))
     if n * widest <= 2 * int(count.sum()) + 1024:
-        median = _padded_medians(batches, count, widest)
+        median = _padded_medians(batches, owners, counts, widest)
     else:
         # Curves of very different sizes (a padded table would be mostly padding).
-        owner = np.concatenate([b.owner[b.nxt >= 0] for b in batches])
+        owner = np.concatenate(owners)
         length = np.concatenate([b.length_of_edge[b.nxt >= 0] for b in batches])
         order = np.lexsort((length, owner))
         owner, length = owner[order], length[order]
@@ -358,21 +360,20 @@ def default_spacings(*batches):
     return np.clip(median, longest / DEFAULT_SAMPLES_MAX, longest / DEFAULT_SAMPLES_MIN)
 
 
-def _padded_medians(batches, count, widest):
+def _padded_medians(batches, owners, counts, widest):
     """Median edge length of each group of curves (curve ``c`` of every batch), shape (C,)
     (0 without edges): each group's lengths are a row of a table padded with inf, and the rows
     are sorted each on its own (several times faster than one lexsort of every edge by curve).
 
-    ``count``: edges per group, shape (C,); ``widest``: its maximum.
+    ``owners``: each batch's edges' curves (edges come curve after curve); ``counts``: each
+    batch's edges per curve, shape (C,); ``widest``: the most edges of a group.
     """
+    count = sum(counts)
     table = np.full((len(count), max(widest, 1)), np.inf)
     filled = np.zeros(len(count), dtype=np.int64)
-    for b in batches:
-        e = np.flatnonzero(b.nxt >= 0)
-        owner = b.owner[e]  # edges come curve after curve
-        mine = np.bincount(owner, minlength=len(count))
-        slot = np.arange(len(e)) - np.repeat(np.cumsum(mine) - mine, mine) + filled[owner]
-        table[owner, slot] = b.length_of_edge[e]
+    for b, owner, mine in zip(batches, owners, counts):
+        slot = np.arange(len(owner)) - np.repeat(np.cumsum(mine) - mine, mine) + filled[owner]
+        table[owner, slot] = b.length_of_edge[b.nxt >= 0]
         filled += mine
     table.sort(axis=1)
     rows = np.arange(len(count))
