@@ -6,7 +6,7 @@ from functools import cached_property
 import numpy as np
 
 from ..geometry.ragged import Ragged
-from ..geometry.spline import SUBDIVIDE_EDGE_RATIO, densify
+from ..geometry.spline import densify, needs_subdivision
 
 __all__ = ["Sides", "Side", "EDGE_BLOCK"]
 
@@ -45,7 +45,7 @@ class Sides:
         # on the same edges, batched; the others it would return unchanged).
         if len(raw):
             longest = np.maximum.reduceat(np.linalg.norm(raw.edge, axis=1), raw.offsets[:-1])
-            coarse = ~(longest / (SUBDIVIDE_EDGE_RATIO * spacing) <= 1)
+            coarse = needs_subdivision(longest, spacing)
             if coarse.any():
                 curves = [densify(c, cl, h) if f else c for c, cl, h, f in zip(curves, closed, spacing, coarse)]
                 raw = Ragged.from_list(curves, closed)

@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import tolerances as tol
 
-__all__ = ["catmull_rom", "subdivide", "densify"]
+__all__ = ["catmull_rom", "subdivide", "densify", "needs_subdivision"]
 
 #: Interpolating subdivision steps are applied until no edge is longer than this many sample
 #: spacings (so coarse, hand-placed polylines become smooth before the PLC ball-map), at most
@@ -97,6 +97,12 @@ def subdivide(curve, closed, steps=1):
     return out
 
 
+def needs_subdivision(longest, spacing):
+    """Whether curves whose longest edge is ``longest`` are subdivided by :func:`densify` at
+    ``spacing`` (scalars or arrays of one shape; NaN counts as needing it), bool."""
+    return ~(np.asarray(longest) / (SUBDIVIDE_EDGE_RATIO * np.asarray(spacing)) <= 1)
+
+
 def densify(curve, closed, spacing):
     """Subdivide a coarse polyline until no edge is much longer than ``spacing``.
 
@@ -115,5 +121,5 @@ def densify(curve, closed, spacing):
     nxt = np.roll(curve, -1, axis=0) if closed else curve[1:]
     longest = float(np.linalg.norm(nxt - curve[: len(nxt)], axis=1).max())
     ratio = longest / (SUBDIVIDE_EDGE_RATIO * spacing)
-    steps = 0 if ratio <= 1 else min(int(np.ceil(np.log2(ratio))), SUBDIVIDE_MAX_STEPS)
+    steps = min(int(np.ceil(np.log2(ratio))), SUBDIVIDE_MAX_STEPS) if needs_subdivision(longest, spacing) else 0
     return subdivide(curve, closed, steps) if steps else curve
