@@ -58,8 +58,8 @@ class ProjectedKey:
         self.rg = Ragged(xy, strokes.offsets, strokes.cyclic)
         self.strokes = strokes
         extra = np.zeros((len(xy), 0)) if extra_values is None else np.asarray(extra_values, dtype=np.float64)
-        values = np.column_stack([depth, strokes.radius, strokes.opacity, strokes.vertex_color, extra])
-        self.width = values.shape[1]
+        columns = [depth, strokes.radius, strokes.opacity, *np.asarray(strokes.vertex_color).T, *extra.T]
+        self.width = len(columns)
         length = self.rg.length[self.rg.owner]
         local = np.arange(len(xy)) - strokes.offsets[:-1][self.rg.owner]
         n = self.rg.n[self.rg.owner]
@@ -76,7 +76,11 @@ class ProjectedKey:
         self._point = np.concatenate([np.arange(len(xy)), closing])[order]
         # The values are kept once, in this table: a contiguous row per value (np.interp reads
         # one at a time), and each point's row in it (its first: a loop's closing copy follows).
-        self._v = np.ascontiguousarray(np.take(values, self._point, axis=0).T)
+        # Gathered value by value straight into it (no (N, width) stack, gather and transpose);
+        # the points are in range: mode="wrap" skips take's bounds checks.
+        self._v = np.empty((self.width, len(order)))
+        for column, row in zip(columns, self._v):
+            np.take(np.asarray(column, dtype=np.float64), self._point, out=row, mode="wrap")
         self._row = np.empty(len(xy), dtype=np.int64)
         own = np.flatnonzero(order < len(xy))
         self._row[order[own]] = own
