@@ -159,6 +159,52 @@ def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monke
         np.testing.assert_array_equal(getattr(fits, name), getattr(want, name))
 
 
+
+def _lying_partly_along(rng, n_pairs):
+    """Pairs of pieces of one arc, spiral or wandering curve, overlapping by 55-85 % of them,
+    the second turned (up to 20 degrees), scaled (up to 10 %), moved and a little noisy."""
+    pairs = []
+    for _ in range(n_pairs):
+        u = np.linspace(0.0, 1.0, 400)
+        kind = rng.integers(3)
+        if kind == 0:
+            span = rng.uniform(1.0, 5.0)
+            base = np.c_[np.cos(span * u), np.sin(span * u)]
+        elif kind == 1:
+            angle = rng.uniform(4.0, 9.0) * u
+            base = (0.3 + u)[:, None] * np.c_[np.cos(angle), np.sin(angle)]
+        else:
+            steps = np.cumsum(rng.normal(size=(400, 2)), axis=0)
+            kernel = np.hanning(41) / np.hanning(41).sum()
+            base = np.c_[[np.convolve(c, kernel, mode="same") for c in steps.T]].T[20:-20]
+            u = np.linspace(0.0, 1.0, len(base))
+        cut = rng.uniform(0.15, 0.45)
+        p, q = base[u <= 1.0 - cut * rng.uniform(0.3, 1.0)], base[u >= cut]
+        size = np.ptp(base, axis=0).max()
+        turn = np.radians(rng.uniform(-20, 20))
+        a = rng.uniform(0.9, 1.1) * np.exp(1j * turn)
+        z = a * as_complex(q) + size * complex(*rng.uniform(-0.2, 0.2, 2))
+        q = np.c_[z.real, z.imag] + 0.002 * size * rng.normal(size=q.shape)
+        pairs.append((p, q) if rng.integers(2) else (q, p))
+    return pairs
+
+
+def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch):
+    """Strokes lying partly along each other (turned, scaled, noisy): the fits with the gate
+    are the fits of the full sliding fit run on every loose pair, and most of them slide."""
+    pairs = _lying_partly_along(np.random.default_rng(11), 60)
+    P, Q = batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs])
+    gated = fit_pairs(P, Q)
+    with monkeypatch.context() as ungated:
+        ungated.setattr(sliding, "SLIDE_MARGIN", np.inf)
+        want = fit_pairs(P, Q)
+        ungated.setattr(sliding, "SLIDE_FROM", np.inf)  # no sliding fit at all
+        end_to_end = fit_pairs(P, Q)
+    for name in ("A", "b", "residual"):
+        np.testing.assert_array_equal(getattr(gated, name), getattr(want, name))
+    slid = want.residual < end_to_end.residual
+    assert slid.sum() >= 40
+
 def _dense(curve, per_edge=8):
     """Points along a polyline's edges, ``per_edge`` per edge, shape (K, 2)."""
     f = np.arange(per_edge)[:, None, None] / per_edge
