@@ -58,6 +58,27 @@ def test_overhangs_slide_along_their_curves_alone_and_joined():
         np.testing.assert_allclose(both.at(t), np.concatenate([shrink(t), grow(t)]), atol=1e-12)
 
 
+@pytest.mark.parametrize(("f0", "f1"), [(0.0, 0.13), (0.64, 1.0), (0.32, 0.32 + 1e-10), (0.1, 0.1 + 1 / 89)])
+def test_an_overhang_keeps_only_the_stretch_of_its_curve_it_slides_along(f0, f1):
+    """The plan keeps an overhang's own stretch of its curve (from the vertex at or before its
+    start to the one at or after its end), not the whole curve: the same paths to round-off."""
+    from ballmorph_core.drawing.pipeline import _piece
+
+    curves = batch(arc(0, 90, n=30), arc(0, 180))  # the second curve: 90 vertices, 89 equal edges
+    s0, s1 = f0 * curves.length[1], f1 * curves.length[1]
+    piece, start = _piece(curves, 1, s0, s1)
+    s = curves.s[curves.offsets[1] : curves.offsets[2]]
+    first = int(np.flatnonzero(s <= s0)[-1])
+    np.testing.assert_array_equal(piece, curves.curve(1)[first : first + len(piece)])
+    assert start == s[first] and s[first + len(piece) - 2] < s1 <= s[first + len(piece) - 1] + 1e-12
+    assert not np.shares_memory(piece, curves.pts)
+    for grow in (False, True):
+        whole = overhang_morph(curves.curve(1), s0, s1, s1, np.array([0.1, -0.2]), grow, 0.01)
+        kept = overhang_morph(piece, s0 - start, s1 - start, s1 - start, np.array([0.1, -0.2]), grow, 0.01)
+        for t in (0.0, 0.4, 1.0):
+            np.testing.assert_allclose(kept(t), whole(t), atol=1e-13)
+
+
 def test_pairs_not_settled_stay_exactly_as_they_are():
     P, Q = batch(arc(0, 180), arc(0, 90)), batch(arc(0, 240), arc(10, 80))
     ends = settle_ends(P, Q, np.array([2.0, 2.0]), np.array([False, True]))
@@ -159,7 +180,6 @@ def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monke
         np.testing.assert_array_equal(getattr(fits, name), getattr(want, name))
 
 
-
 def _lying_partly_along(rng, n_pairs):
     """Pairs of pieces of one arc, spiral or wandering curve, overlapping by 55-85 % of them,
     the second turned (up to 20 degrees), scaled (up to 10 %), moved and a little noisy."""
@@ -204,6 +224,7 @@ def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch)
         np.testing.assert_array_equal(getattr(gated, name), getattr(want, name))
     slid = want.residual < end_to_end.residual
     assert slid.sum() >= 40
+
 
 def _dense(curve, per_edge=8):
     """Points along a polyline's edges, ``per_edge`` per edge, shape (K, 2)."""
