@@ -4,8 +4,9 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
-from ..geometry.ragged import Ragged
+from ..geometry.ragged import Ragged, ragged_arange
 from ..geometry.spline import densify, needs_subdivision
 
 __all__ = ["Sides", "Side", "EDGE_BLOCK"]
@@ -55,6 +56,41 @@ class Sides:
         self.vnormals = side * self.rg.vertex_normals()
         self.enormals = side * self.rg.edge_normals()
         self.columns = tuple(np.ascontiguousarray(v.T) for v in (self.rg.pts, self.rg.edge, self.enormals))
+        self._windows = {}
+
+    def windows(self, before, after):
+        """The vertices ``before`` before to ``after`` after every vertex, on its curve (wrapping
+        round a loop, stopping at a stroke's ends), made once per width.
+
+        Every curve's vertices are laid out padded by its window's overhang, so the window of
+        a vertex is a run of the padded layout and one row of the tables: the disk check reads
+        the window round every contact of both directions with one gather per contact.
+
+        Returns
+        -------
+        x, y : ndarray, shape (R, W)
+            Coordinates of the windows' vertices, ``W = before + after + 1``; the window of
+            global vertex ``v`` of curve ``c`` is row ``v + (W - 1) c``.
+        vertex : ndarray of int, shape (R + W - 1,)
+            The global vertex at each place of the padded layout: row ``r``'s entry ``j`` is
+            vertex ``vertex[r + j]``.
+        """
+        key = (before, after)
+        if key not in self._windows:
+            rg = self.rg
+            curve, local = ragged_arange(rg.n + before + after)
+            vertex = rg.offsets[curve] + local - before
+            # Loops wrap round, open curves stop at their ends (rows by index: open batches
+            # skip the mod).
+            loops = np.flatnonzero(rg.closed[curve])
+            first, n_v = rg.offsets[curve], rg.n[curve]
+            wrapped = first[loops] + np.mod(vertex[loops] - first[loops], n_v[loops])
+            np.clip(vertex, first, first + n_v - 1, out=vertex)
+            vertex[loops] = wrapped
+            # In range: take's 'wrap' mode skips the bounds check.
+            x, y = (sliding_window_view(np.take(v, vertex, mode="wrap"), before + after + 1) for v in self.columns[0])
+            self._windows[key] = np.ascontiguousarray(x), np.ascontiguousarray(y), vertex
+        return self._windows[key]
 
     @cached_property
     def blocks(self):
