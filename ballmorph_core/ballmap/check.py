@@ -11,7 +11,7 @@ searched again without a window before the verdict.
 import numpy as np
 
 from ..geometry.spatial import CurveTree
-from .lacing import contacts, disk_map, full_search, refine, same_lap
+from .lacing import contacts, disk_map, full_search, refine, refined, same_lap
 from .report import Violation
 
 __all__ = ["check_maps"]
@@ -216,10 +216,8 @@ def _repair(one_way, src, dst, eps):
     x, n = one_way.src[idx], one_way.n_src[idx]
     r, pos = full_search(x, n, dst, chain, eps)
     q, s_dst, n_edge = contacts(dst, chain, pos)
-    better, r_new, q_new, s_new = refine(x, n, dst, chain, pos, r, eps)
-    r = np.where(better, r_new, r)
-    q = np.where(better[:, None], q_new, q)
-    s_dst = np.where(better, s_new, s_dst)
+    better, *refinement = refine(x, n, dst, chain, pos, r, eps)
+    r, q, s_dst = refined(better, refinement, r, q, s_dst)
     # Put each repaired contact on the lap nearest its old (unwrapped) position.
     s_dst = same_lap(s_dst, one_way.s_dst[idx], dst.rg.length[chain], dst.rg.closed[chain])
     one_way.put(idx, disk_map((x, n, one_way.s_src[idx], chain), r, q, s_dst, n_edge, eps))
