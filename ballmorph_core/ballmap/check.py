@@ -11,7 +11,7 @@ searched again without a window before the verdict.
 import numpy as np
 
 from ..geometry.spatial import CurveTree
-from .lacing import contacts, disk_map, full_search, refine, refined, same_lap
+from .lacing import as_rows, contacts, disk_map, full_search, refine, refined, same_lap
 from .report import Violation
 
 __all__ = ["check_maps"]
@@ -99,13 +99,18 @@ def _entered(tree, centres, radii, curves, chain):
     since = k - np.repeat(chain_start, np.diff(np.r_[chain_start, len(k)]))
     starts = np.flatnonzero(since % COVER_RUN == 0)
     size = np.diff(np.r_[starts, len(k)])
-    run = np.repeat(np.arange(len(starts)), size)
-    mid = np.add.reduceat(centres, starts, axis=0) / size[:, None]
-    reach = np.maximum.reduceat(np.linalg.norm(centres - mid[run], axis=1) + radii, starts)
-    reach += COVER_SLACK * (reach + np.abs(mid).max(axis=1))
-    hit, _ = tree.within(mid, reach, curves[starts], first_only=True)
-    again = np.flatnonzero(np.isin(run, hit))
-    qi, pi = tree.within(centres[again], radii[again], curves[again], first_only=True)
+    # Column by column, rows by take (numpy runs (K, 2) rows' norms, products by a (K, 1)
+    # column and fancy indexing a row at a time); the same values as row-wise.
+    cx, cy = centres.T
+    mx, my = (np.add.reduceat(v, starts) / size for v in (cx, cy))
+    dx, dy = cx - np.repeat(mx, size), cy - np.repeat(my, size)
+    reach = np.maximum.reduceat(np.sqrt(dx * dx + dy * dy) + radii, starts)
+    reach += COVER_SLACK * (reach + np.maximum(np.abs(mx), np.abs(my)))
+    hit, _ = tree.within(as_rows(mx, my), reach, np.take(curves, starts, axis=0), first_only=True)
+    held = np.zeros(len(starts), dtype=bool)
+    held[hit] = True
+    again = np.flatnonzero(np.repeat(held, size))
+    qi, pi = tree.within(*(np.take(v, again, axis=0) for v in (centres, radii, curves)), first_only=True)
     return again[qi], pi
 
 
@@ -133,7 +138,8 @@ class _Trees:
         tree, n_chains = self._built[key], len(src.rg)
         # The chain's two curves, the source first (in the tree, the first side's come first).
         at_src, at_dst = (chain + n_chains, chain) if flipped else (chain, chain + n_chains)
-        own = np.stack([at_src, at_dst], axis=1)
+        own = np.empty((len(chain), 2), dtype=np.int64)
+        own[:, 0], own[:, 1] = at_src, at_dst
         qi, pi = _entered(tree, centres, radii, own, chain)
         if flipped:
             n_dst = len(dst.rg.pts)
@@ -156,7 +162,7 @@ def _depths(one_way, src, dst, spacing, eps, trees):
     # Other parts of the same chain's curves reaching into a disk.
     radius = r * (1.0 - NONLOCAL_RELATIVE) - NONLOCAL_PENETRATION * h
     query = np.flatnonzero((radius > 0) & ok)
-    qi, pi = trees.entered(src, dst, m[query], radius[query], chain[query])
+    qi, pi = trees.entered(src, dst, *(np.take(v, query, axis=0) for v in (m, radius, chain)))
     k = query[qi]
     far = r[k] - np.linalg.norm(verts[pi] - m[k], axis=1)
     deeper = far > np.where(bad[k], depth[k], -np.inf)

@@ -209,7 +209,7 @@ def _lace(src, dst, eps):
         p_lo, p_hi = np.concatenate([p_lo, pp]), np.concatenate([pp, p_hi])
 
 
-def _rows(x, y):
+def as_rows(x, y):
     """The (K, 2) array of columns ``x`` and ``y`` (np.stack on axis 1 copies value by value,
     several times slower)."""
     out = np.empty((len(x), 2))
@@ -247,7 +247,7 @@ def contacts(dst, chain, pos):
     ex *= u
     ey *= u
     s = rg.s[g] + u * rg.length_of_edge[g] + lap * rg.length[chain]
-    return _rows(ax + ex, ay + ey), s, np.take(dst.enormals, g, axis=0, mode="wrap")
+    return as_rows(ax + ex, ay + ey), s, np.take(dst.enormals, g, axis=0, mode="wrap")
 
 
 def refine(x, n, dst, chain, pos, r, eps):
@@ -299,7 +299,7 @@ def refine(x, n, dst, chain, pos, r, eps):
         ok &= np.isfinite(r_new) & (r_new >= 0) & (np.abs(t) <= 0.5)
         ok &= np.abs(r_new - r_safe) <= 0.25 * r_safe + chord_length
     s_new = rg.s[g0] + t * (rg.length_of_edge[gm] + rg.length_of_edge[g0])
-    return ok, r_new, _rows(qx, qy), s_new
+    return ok, r_new, as_rows(qx, qy), s_new
 
 
 def refined(better, refinement, r, q, s_dst):
@@ -345,9 +345,9 @@ def disk_map(samples, r, q, s_dst, n_edge, eps):
     mx, my = xx + rr * nx, xy + rr * ny
     has_disk = rr > eps
     with np.errstate(invalid="ignore", divide="ignore"):
-        n_dst = _rows(np.where(has_disk, (mx - qx) / rr, ex), np.where(has_disk, (my - qy) / rr, ey))
+        n_dst = as_rows(np.where(has_disk, (mx - qx) / rr, ex), np.where(has_disk, (my - qy) / rr, ey))
     return OneWayMap(
-        src=x, dst=q, m=_rows(mx, my), r=rr, ok=ok, s_src=s_src, s_dst=s_dst, n_src=n, n_dst=n_dst, chain=chain
+        src=x, dst=q, m=as_rows(mx, my), r=rr, ok=ok, s_src=s_src, s_dst=s_dst, n_src=n, n_dst=n_dst, chain=chain
     )
 
 
