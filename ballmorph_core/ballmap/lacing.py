@@ -186,7 +186,7 @@ def _lace(src, dst, eps):
     chain = chains
     while True:
         keep = hi - lo > 1
-        chain, lo, hi, p_lo, p_hi = chain[keep], lo[keep], hi[keep], p_lo[keep], p_hi[keep]
+        chain, lo, hi, p_lo, p_hi = (np.compress(keep, v) for v in (chain, lo, hi, p_lo, p_hi))
         if not len(chain):
             return r, pos
         mid = (lo + hi) // 2
