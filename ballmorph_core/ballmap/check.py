@@ -138,9 +138,7 @@ class _Trees:
         tree, n_chains = self._built[key], len(src.rg)
         # The chain's two curves, the source first (in the tree, the first side's come first).
         at_src, at_dst = (chain + n_chains, chain) if flipped else (chain, chain + n_chains)
-        own = np.empty((len(chain), 2), dtype=np.int64)
-        own[:, 0], own[:, 1] = at_src, at_dst
-        qi, pi = _entered(tree, centres, radii, own, chain)
+        qi, pi = _entered(tree, centres, radii, as_rows(at_src, at_dst), chain)
         if flipped:
             n_dst = len(dst.rg.pts)
             pi = np.where(pi < n_dst, pi + len(src.rg.pts), pi - n_dst)

@@ -212,7 +212,7 @@ def _lace(src, dst, eps):
 def as_rows(x, y):
     """The (K, 2) array of columns ``x`` and ``y`` (np.stack on axis 1 copies value by value,
     several times slower)."""
-    out = np.empty((len(x), 2))
+    out = np.empty((len(x), 2), dtype=np.result_type(x, y))
     out[:, 0], out[:, 1] = x, y
     return out
 
