@@ -46,6 +46,7 @@ def tangent_disks(x, n, a, b, N, eps):
     """
     # In place where it can be (every full-size temporary is a fresh allocation), each value
     # by the same operations in the same order as the plain expressions: bitwise the same.
+    # Masked values are set by np.putmask (a third of the work of a boolean-mask assignment).
     (xx, xy), (nx, ny), (ax, ay), (Nx, Ny) = x, n, a, N
     dx, dy = b[0] - ax, b[1] - ay
     len2 = dx * dx
@@ -59,10 +60,10 @@ def tangent_disks(x, n, a, b, N, eps):
     np.subtract(1.0, den, out=den)
     with np.errstate(divide="ignore", invalid="ignore"):
         r_e /= den
-    r_e[~(den > PARALLEL)] = np.inf
+    np.putmask(r_e, ~(den > PARALLEL), np.inf)
     reached = r_e >= -eps
     np.maximum(r_e, 0.0, out=r_e)
-    r_e[~reached] = np.inf
+    np.putmask(r_e, ~reached, np.inf)
     step = np.where(np.isfinite(r_e), r_e, 0.0)
     u = nx - Nx
     u *= step
@@ -77,9 +78,9 @@ def tangent_disks(x, n, a, b, N, eps):
     u += uy
     with np.errstate(divide="ignore", invalid="ignore"):
         u /= len2
-    r_e[~((u >= -ON_EDGE) & (u <= 1 + ON_EDGE))] = np.inf
+    np.putmask(r_e, ~((u >= -ON_EDGE) & (u <= 1 + ON_EDGE)), np.inf)
     np.clip(u, 0.0, 1.0, out=u)
-    u[np.isnan(u)] = 0.0
+    np.putmask(u, np.isnan(u), 0.0)
     # Vertices (eq. 3): r = |v - x|^2 / (2 (v - x) . n); for a, v - x is -(x - a), exactly.
     best_r, best_u = r_e, u
     for (ex, ey), twice, uu in (((wx, wy), -2.0, 0.0), ((b[0] - xx, b[1] - xy), 2.0, 1.0)):
@@ -90,11 +91,11 @@ def tangent_disks(x, n, a, b, N, eps):
         den_v *= twice
         with np.errstate(divide="ignore", invalid="ignore"):
             r_v = dist2 / den_v
-        r_v[~(den_v > 0)] = np.inf
-        r_v[dist2 <= eps * eps] = 0.0
+        np.putmask(r_v, ~(den_v > 0), np.inf)
+        np.putmask(r_v, dist2 <= eps * eps, 0.0)
         better = r_v < best_r
-        np.copyto(best_r, r_v, where=better)
-        best_u[better] = uu
+        np.putmask(best_r, better, r_v)
+        np.putmask(best_u, better, uu)
     return best_r, best_u
 
 

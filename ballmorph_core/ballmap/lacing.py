@@ -19,7 +19,7 @@ from .candidates import ON_EDGE, tangent_disks
 from .onemap import OneWayMap
 from .sides import EDGE_BLOCK
 
-__all__ = ["one_way", "full_search", "contacts", "refine", "same_lap", "disk_map"]
+__all__ = ["one_way", "full_search", "contacts", "refine", "refined", "same_lap", "disk_map"]
 
 #: Most (sample, edge) candidate pairs evaluated at once by the searches: bounds their
 #: temporary arrays (about 0.2 KB per pair) without slowing them down noticeably.
@@ -49,9 +49,12 @@ def _first_minima(values, counts):
         return best
     first = starts[filled]
     mins = np.minimum.reduceat(values, first)
-    at = np.where(values == np.repeat(mins, counts[filled]), np.arange(len(values)), len(values))
-    best[filled] = np.minimum.reduceat(at, first)
-    best[best == len(values)] = 0
+    hits = np.flatnonzero(values == np.repeat(mins, counts[filled]))
+    if not len(hits):
+        return best
+    # A group's first hit is the first at or after its start, if there is one before its end.
+    at = np.take(hits, np.searchsorted(hits, first), mode="clip")
+    best[filled] = np.where((at >= first) & (at < ends[filled]), at, 0)
     return best
 
 
@@ -172,6 +175,7 @@ def _lace(src, dst, eps):
     lo, hi = s_rg.offsets[:-1].copy(), s_rg.offsets[1:] - 1
     p_lo, p_hi = np.zeros(len(chains)), n_e.astype(np.float64)
     opened, loops = ~closed, chains[closed]
+    laps_of = np.where(closed, 2 * n_e, n_e)
     r[lo[opened]] = r[hi[opened]] = 0.0
     pos[hi[opened]] = n_e[opened]
     if len(loops):
@@ -182,16 +186,17 @@ def _lace(src, dst, eps):
     chain = chains
     while True:
         keep = hi - lo > 1
-        chain, lo, hi, p_lo, p_hi = chain[keep], lo[keep], hi[keep], p_lo[keep], p_hi[keep]
+        chain, lo, hi, p_lo, p_hi = (np.compress(keep, v) for v in (chain, lo, hi, p_lo, p_hi))
         if not len(chain):
             return r, pos
         mid = (lo + hi) // 2
-        laps = np.where(closed[chain], 2 * n_e[chain], n_e[chain])
+        laps = laps_of[chain]
         e_lo = np.clip(np.floor(p_lo).astype(np.int64), 0, laps - 1)
         e_hi = np.clip(np.ceil(p_hi).astype(np.int64) - 1, e_lo, laps - 1)
         # The contact is expected in proportion between its bracket's (only a hint: see _search).
         guess = p_lo + (p_hi - p_lo) * ((mid - lo) / (hi - lo))
-        rr, pp = _search(X[mid], NX[mid], dst, chain, e_lo, e_hi, eps, guess)
+        # Rows by take (several times faster than fancy indexing on (K, 2) arrays; in range).
+        rr, pp = _search(*(np.take(v, mid, axis=0, mode="wrap") for v in (X, NX)), dst, chain, e_lo, e_hi, eps, guess)
         # The window is whole edges, so the best contact may lie just outside the bracket: then
         # the true image does not advance monotonically (or sits on the bracket's end). Clipping
         # it would move the contact off its disk, so beyond round-off it counts as no disk found
@@ -202,6 +207,23 @@ def _lace(src, dst, eps):
         r[mid], pos[mid] = rr, pp
         chain, lo, hi = np.concatenate([chain, chain]), np.concatenate([lo, mid]), np.concatenate([mid, hi])
         p_lo, p_hi = np.concatenate([p_lo, pp]), np.concatenate([pp, p_hi])
+
+
+def as_rows(x, y):
+    """The (K, 2) array of columns ``x`` and ``y`` (np.stack on axis 1 copies value by value,
+    several times slower)."""
+    out = np.empty((len(x), 2), dtype=np.result_type(x, y))
+    out[:, 0], out[:, 1] = x, y
+    return out
+
+
+# The arithmetic below runs on the x and y columns of (K, 2) arrays: numpy takes a (K, 2)
+# array's row-wise sums (einsum, linalg.norm) and its products by a (K, 1) column a row at a
+# time, several times slower. Each value comes from the same operations in the same order, so
+# the results are bit for bit those of the row-wise forms: ``norm`` is ``sqrt(x * x + y * y)``,
+# and an einsum's dot product differs from ``x0 * x1 + y0 * y1`` only by the sign of a zero
+# (einsum sums from +0), which only ever meets ``> 0`` or the division of a refinement that
+# is dropped.
 
 
 def contacts(dst, chain, pos):
@@ -220,9 +242,12 @@ def contacts(dst, chain, pos):
     u = np.clip(pos - e, 0.0, 1.0)
     lap = np.where(closed, e // n_e, 0)
     g = rg.offsets[chain] + np.where(closed, e % n_e, e)
-    q = rg.pts[g] + u[:, None] * rg.edge[g]
+    # In range: take's 'wrap' mode skips the bounds check.
+    (ax, ay), (ex, ey) = (np.take(v, g, axis=1, mode="wrap") for v in dst.columns[:2])
+    ex *= u
+    ey *= u
     s = rg.s[g] + u * rg.length_of_edge[g] + lap * rg.length[chain]
-    return q, s, dst.enormals[g]
+    return as_rows(ax + ex, ay + ey), s, np.take(dst.enormals, g, axis=0, mode="wrap")
 
 
 def refine(x, n, dst, chain, pos, r, eps):
@@ -251,24 +276,39 @@ def refine(x, n, dst, chain, pos, r, eps):
     gm, gp = rg.prv[g0], rg.nxt[g0]
     ok &= (gm >= 0) & (gp >= 0)
     gm, gp = np.maximum(gm, 0), np.maximum(gp, 0)
-    a, b, c = rg.pts[gm], rg.pts[g0], rg.pts[gp]
+    # Rows by take (several times faster than fancy indexing on (K, 2) arrays; in range).
+    a, b, c = (np.take(rg.pts, v, axis=0, mode="wrap") for v in (gm, g0, gp))
     centre, rad, round_enough = circumcircles(a, b, c)
-    chord = c - a
+    (xx, xy), (nx, ny), (ax, ay), (bx, by), (cx, cy), (ox, oy) = (v.T for v in (x, n, a, b, c, centre))
+    chord_x, chord_y = cx - ax, cy - ay
+    chord2 = chord_x * chord_x + chord_y * chord_y
+    chord_length = np.sqrt(chord2)
     # Nearly straight: the polyline contact is already right, and the circle would cancel badly.
-    ok &= round_enough & (rad < 1e4 * np.linalg.norm(chord, axis=1))
+    ok &= round_enough & (rad < 1e4 * chord_length)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        w = x - centre
-        inside = np.einsum("ij,ij->i", dst.vnormals[g0], centre - b) > 0
-        den = 2.0 * np.einsum("ij,ij->i", w, n) + np.where(inside, 2.0, -2.0) * rad
-        r_new = (rad * rad - np.einsum("ij,ij->i", w, w)) / den
-        dm = x + r_new[:, None] * n - centre
-        q_new = centre + rad[:, None] * dm / np.linalg.norm(dm, axis=1, keepdims=True)
-        t = np.einsum("ij,ij->i", q_new - b, chord) / np.einsum("ij,ij->i", chord, chord)
+        wx, wy = xx - ox, xy - oy
+        vx, vy = np.take(dst.vnormals, g0, axis=0, mode="wrap").T
+        inside = vx * (ox - bx) + vy * (oy - by) > 0
+        den = 2.0 * (wx * nx + wy * ny) + np.where(inside, 2.0, -2.0) * rad
+        r_new = (rad * rad - (wx * wx + wy * wy)) / den
+        dx, dy = xx + r_new * nx - ox, xy + r_new * ny - oy
+        d = np.sqrt(dx * dx + dy * dy)
+        qx, qy = ox + rad * dx / d, oy + rad * dy / d
+        t = ((qx - bx) * chord_x + (qy - by) * chord_y) / chord2
         r_safe = np.where(np.isfinite(r), r, 0.0)
         ok &= np.isfinite(r_new) & (r_new >= 0) & (np.abs(t) <= 0.5)
-        ok &= np.abs(r_new - r_safe) <= 0.25 * r_safe + np.linalg.norm(chord, axis=1)
+        ok &= np.abs(r_new - r_safe) <= 0.25 * r_safe + chord_length
     s_new = rg.s[g0] + t * (rg.length_of_edge[gm] + rg.length_of_edge[g0])
-    return ok, r_new, q_new, s_new
+    return ok, r_new, as_rows(qx, qy), s_new
+
+
+def refined(better, refinement, r, q, s_dst):
+    """Radii, contacts and their arc lengths with the ``better`` rows of a refinement
+    ``(r_new, q_new, s_new)`` (see :func:`refine`) taken instead: r, q (in place), s_dst."""
+    r_new, q_new, s_new = refinement
+    for i in (0, 1):
+        np.copyto(q[:, i], q_new[:, i], where=better)
+    return np.where(better, r_new, r), q, np.where(better, s_new, s_dst)
 
 
 def same_lap(s_new, s_ref, length, closed):
@@ -301,10 +341,14 @@ def disk_map(samples, r, q, s_dst, n_edge, eps):
     x, n, s_src, chain = samples
     ok = np.isfinite(r)
     rr = np.where(ok, r, 0.0)
-    m = x + rr[:, None] * n
+    (xx, xy), (nx, ny), (qx, qy), (ex, ey) = (v.T for v in (x, n, q, n_edge))
+    mx, my = xx + rr * nx, xy + rr * ny
+    has_disk = rr > eps
     with np.errstate(invalid="ignore", divide="ignore"):
-        n_dst = np.where((rr > eps)[:, None], (m - q) / rr[:, None], n_edge)
-    return OneWayMap(src=x, dst=q, m=m, r=rr, ok=ok, s_src=s_src, s_dst=s_dst, n_src=n, n_dst=n_dst, chain=chain)
+        n_dst = as_rows(np.where(has_disk, (mx - qx) / rr, ex), np.where(has_disk, (my - qy) / rr, ey))
+    return OneWayMap(
+        src=x, dst=q, m=as_rows(mx, my), r=rr, ok=ok, s_src=s_src, s_dst=s_dst, n_src=n, n_dst=n_dst, chain=chain
+    )
 
 
 def one_way(src, dst, eps):
@@ -324,7 +368,5 @@ def one_way(src, dst, eps):
     length = dst.rg.length[chain]
     s_new = same_lap(s_new, s_dst, length, dst.rg.closed[chain])
     better = _keep_order(better, s_new, s_dst, src, length, chain)
-    r = np.where(better, r_new, r)
-    q = np.where(better[:, None], q_new, q)
-    s_dst = np.where(better, s_new, s_dst)
+    r, q, s_dst = refined(better, (r_new, q_new, s_new), r, q, s_dst)
     return disk_map((src.rg.pts, src.vnormals, src.rg.s, chain), r, q, s_dst, n_edge, eps)

@@ -4,8 +4,9 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
-from ..geometry.ragged import Ragged
+from ..geometry.ragged import Ragged, ragged_arange
 from ..geometry.spline import densify, needs_subdivision
 
 __all__ = ["Sides", "Side", "EDGE_BLOCK"]
@@ -44,17 +45,56 @@ class Sides:
         # those whose longest edge densify would find too long are handed to it (the same test
         # on the same edges, batched; the others it would return unchanged).
         if len(raw):
-            longest = np.maximum.reduceat(np.linalg.norm(raw.edge, axis=1), raw.offsets[:-1])
+            longest = np.maximum.reduceat(raw.length_of_edge, raw.offsets[:-1])
             coarse = needs_subdivision(longest, spacing)
             if coarse.any():
                 curves = [densify(c, cl, h) if f else c for c, cl, h, f in zip(curves, closed, spacing, coarse)]
                 raw = Ragged.from_list(curves, closed)
         counts = np.round(raw.length / spacing).astype(np.int64) + np.where(raw.closed, 0, 1)
         self.rg = raw.resample(counts)
-        side = np.asarray(sides, dtype=np.float64)[self.rg.owner][:, None]
-        self.vnormals = side * self.rg.vertex_normals()
-        self.enormals = side * self.rg.edge_normals()
+        # Turned column by column, in place (numpy multiplies (N, 2) rows by an (N, 1) column
+        # a row at a time, several times slower).
+        side = np.repeat(np.asarray(sides, dtype=np.float64), self.rg.n)
+        self.vnormals, self.enormals = self.rg.vertex_normals(), self.rg.edge_normals()
+        for normals in (self.vnormals, self.enormals):
+            normals[:, 0] *= side
+            normals[:, 1] *= side
         self.columns = tuple(np.ascontiguousarray(v.T) for v in (self.rg.pts, self.rg.edge, self.enormals))
+        self._windows = {}
+
+    def windows(self, before, after):
+        """The vertices ``before`` before to ``after`` after every vertex, on its curve (wrapping
+        round a loop, stopping at a stroke's ends), made once per width.
+
+        Every curve's vertices are laid out padded by its window's overhang, so the window of
+        a vertex is a run of the padded layout and one row of the tables: the disk check reads
+        the window round every contact of both directions with one gather per contact.
+
+        Returns
+        -------
+        x, y : ndarray, shape (R, W)
+            Coordinates of the windows' vertices, ``W = before + after + 1``; the window of
+            global vertex ``v`` of curve ``c`` is row ``v + (W - 1) c``.
+        vertex : ndarray of int, shape (R + W - 1,)
+            The global vertex at each place of the padded layout: row ``r``'s entry ``j`` is
+            vertex ``vertex[r + j]``.
+        """
+        key = (before, after)
+        if key not in self._windows:
+            rg = self.rg
+            curve, local = ragged_arange(rg.n + before + after)
+            vertex = rg.offsets[curve] + local - before
+            # Loops wrap round, open curves stop at their ends (rows by index: open batches
+            # skip the mod).
+            loops = np.flatnonzero(rg.closed[curve])
+            first, n_v = rg.offsets[curve], rg.n[curve]
+            wrapped = first[loops] + np.mod(vertex[loops] - first[loops], n_v[loops])
+            np.clip(vertex, first, first + n_v - 1, out=vertex)
+            vertex[loops] = wrapped
+            # In range: take's 'wrap' mode skips the bounds check.
+            x, y = (sliding_window_view(np.take(v, vertex, mode="wrap"), before + after + 1) for v in self.columns[0])
+            self._windows[key] = np.ascontiguousarray(x), np.ascontiguousarray(y), vertex
+        return self._windows[key]
 
     @cached_property
     def blocks(self):

@@ -113,23 +113,28 @@ def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
     return np.unique(np.where(want - g[lo] <= g[hi] - want, lo, hi))
 
 
-def _report_disagreements(allp, back_p, back_q, sp, sq, dense_spacing, reports):
-    """A Violation for every pair stepping back by more than MAP_DISAGREEMENT dense spacings."""
+def _report_disagreements(allp, order, back_p, back_q, sp, sq, dense_spacing, reports):
+    """A Violation for every pair stepping back by more than MAP_DISAGREEMENT dense spacings.
+
+    ``back_p``, ``back_q`` (shape (K,)) are the steps back of the rows of ``allp`` taken in
+    ``order``; a violation's sample is its place in that order.
+    """
     len_p, len_q, closed = sp.rg.length, sq.rg.length, sp.rg.closed
-    h = dense_spacing[allp.chain]
+    h = dense_spacing[allp.chain[order]]
     for k in np.flatnonzero(np.maximum(back_p, back_q) > MAP_DISAGREEMENT * h):
-        c = allp.chain[k]
+        row = order[k]
+        c = allp.chain[row]
         curve = "P" if back_p[k] >= back_q[k] else "Q"
         reports[c].violations.append(
             Violation(
                 driver="P+Q",
                 sample=int(k),
-                p=allp.src[k],
-                q=allp.dst[k],
-                s_p=float(np.mod(allp.s_src[k], len_p[c]) if closed[c] else allp.s_src[k]),
-                s_q=float(np.mod(allp.s_dst[k], len_q[c]) if closed[c] else allp.s_dst[k]),
+                p=allp.src[row],
+                q=allp.dst[row],
+                s_p=float(np.mod(allp.s_src[row], len_p[c]) if closed[c] else allp.s_src[row]),
+                s_q=float(np.mod(allp.s_dst[row], len_q[c]) if closed[c] else allp.s_dst[row]),
                 witness_curve=curve,
-                witness=allp.src[k] if curve == "P" else allp.dst[k],
+                witness=allp.src[row] if curve == "P" else allp.dst[row],
                 depth=float(max(back_p[k], back_q[k])),
             )
         )
@@ -157,11 +162,14 @@ def symmetric_samples(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
     if sp.rg.closed.any():
         bwd = _onto_forward_laps(fwd, bwd, sp, sq)
     allp = OneWayMap.concatenate([fwd, bwd])
-    allp = allp.take(np.lexsort((allp.s_src + allp.s_dst, allp.chain)))
+    # Only the positions and chains are read in order before the thinning: the other fields
+    # are taken once, for the kept rows.
+    order = np.lexsort((allp.s_src + allp.s_dst, allp.chain))
+    s_p, s_q, chain = (np.take(v, order) for v in (allp.s_src, allp.s_dst, allp.chain))
     span = 4.0 * (max(len_p.max(), len_q.max()) + 1.0)
-    back_p = running_backsteps(allp.s_src, allp.chain, span)
-    back_q = running_backsteps(allp.s_dst, allp.chain, span)
-    _report_disagreements(allp, back_p, back_q, sp, sq, dense_spacing, reports)
-    allp = allp.take((back_p <= tol.ROUNDOFF * len_p[allp.chain]) & (back_q <= tol.ROUNDOFF * len_q[allp.chain]))
-    keep = uniform_picks(allp.s_src, allp.s_dst, allp.chain, len(sp.rg), len_p, len_q, sp.rg.closed, spacing)
-    return allp.take(keep)
+    back_p = running_backsteps(s_p, chain, span)
+    back_q = running_backsteps(s_q, chain, span)
+    _report_disagreements(allp, order, back_p, back_q, sp, sq, dense_spacing, reports)
+    steady = np.flatnonzero((back_p <= tol.ROUNDOFF * len_p[chain]) & (back_q <= tol.ROUNDOFF * len_q[chain]))
+    keep = uniform_picks(s_p[steady], s_q[steady], chain[steady], len(sp.rg), len_p, len_q, sp.rg.closed, spacing)
+    return allp.take(order[steady[keep]])

@@ -481,16 +481,18 @@ def test_tangent_disks_are_bitwise_the_plain_expressions(seed):
 
 @pytest.mark.parametrize("seed", range(6))
 def test_first_minima_of_groups_match_group_argmin(seed):
-    # Groups of every size (empty ones too), values with many ties and a few NaNs.
+    # Groups of every size (empty ones too), values with many ties and a few NaNs (the last
+    # group's one value too: no minimum after the last one found).
     from ballmorph_core.ballmap.lacing import _first_minima
     from ballmorph_core.geometry.ragged import group_argmin, ragged_arange
 
     rng = np.random.default_rng(seed)
     counts = rng.integers(0, 6, 200)
-    counts[:2] = [0, 3]
+    counts[:2], counts[-1] = [0, 3], 1
     owner, _ = ragged_arange(counts)
     values = rng.integers(0, 4, len(owner)).astype(float)
     values[rng.random(len(owner)) < 0.03] = np.nan
+    values[-1] = np.nan
     np.testing.assert_array_equal(_first_minima(values, counts), group_argmin(values, owner, len(counts)))
 
 
