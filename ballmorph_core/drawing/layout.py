@@ -407,7 +407,8 @@ class _Carrier:
         if not motions.moving.any():
             return False
         M, c = motions.at(t)
-        M, c = np.where(motions.moving[:, None, None], M, np.eye(2)), np.where(motions.moving[:, None], c, 0.0)
+        still = ~motions.moving  # exactly the identity (in place: at's arrays are fresh)
+        M[still], c[still] = np.eye(2), 0.0
         (x, y), (column, term) = columns, scratch
         # Every owner is in range: mode='wrap' skips take's bounds check (2-3 times faster);
         # the method, not np.take (its Python wrapper is a tenth of a small take).
