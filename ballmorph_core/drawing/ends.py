@@ -228,6 +228,7 @@ class _SlidingPaths:
 
     @cached_property
     def _span(self):
+        """How far each point slides, ``attach - s`` (K,): the same at every time."""
         return self._attach - self._s
 
     @classmethod

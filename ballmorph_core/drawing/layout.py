@@ -414,12 +414,11 @@ class _Carrier:
         # the method, not np.take (its Python wrapper is a tenth of a small take).
         owner = self.owner
         for i in range(2):
-            # M_i0 x + M_i1 y + c_i, summed in that order.
+            # M_i0 x + M_i1 y + c_i, summed in that order (the last sum straight into the frame).
             M[:, i, 0].take(owner, out=column, mode="wrap")
             column *= x
             M[:, i, 1].take(owner, out=term, mode="wrap")
             term *= y
             column += term
-            column += c[:, i].take(owner, out=term, mode="wrap")
-            frame[:, i] = column
+            np.add(column, c[:, i].take(owner, out=term, mode="wrap"), out=frame[:, i])
         return True
