@@ -185,7 +185,7 @@ def morph_interval(layer, interval, values, method):
     plan = PLANS.plan(keys.key_a, keys.key_b, **plan_options(values, method))
     result = plan.evaluate(times)
     messages.extend((message.level, message.text) for message in result.messages)
-    deviation = length_deviation(keys.key_a, keys.key_b, result, times)
+    deviation = length_deviation(keys.key_a, keys.key_b, result, times, PLANS.key_lengths(plan))
     strays = reports.strays(result.pairs, method, deviation, times, interval.targets)
     frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
     frames = [_to_layer_space(frame, keys.to_layer) for frame in frames]

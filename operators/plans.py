@@ -13,11 +13,11 @@ and the same options; its evaluation is then exactly what a fresh computation gi
 the memory to one run's correspondences (the plans hold the keys anyway).
 """
 
-from dataclasses import fields
+from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ..ballmorph_core import StrokeSet, plan_inbetween
+from ..ballmorph_core import StrokeSet, ink_lengths, plan_inbetween
 
 __all__ = ["PlanCache", "PLANS", "same_key"]
 
@@ -41,6 +41,17 @@ def same_key(a, b):
     return True
 
 
+@dataclass
+class _Entry:
+    """A kept plan, the keys and options it was made from, and the keys' ink lengths once asked."""
+
+    options: dict
+    key_a: StrokeSet
+    key_b: StrokeSet
+    plan: object
+    lengths: tuple = None
+
+
 class PlanCache:
     """The in-between plans of the last run, with the keys and options they were made from.
 
@@ -49,7 +60,7 @@ class PlanCache:
     """
 
     def __init__(self):
-        self._kept = []  # (options, key_a, key_b, plan)
+        self._kept = []  # _Entry
         self._used = []
         self.hits = self.misses = 0
 
@@ -64,7 +75,7 @@ class PlanCache:
 
     def _find(self, key_a, key_b, options):
         for entry in self._used + self._kept:
-            if entry[0] == options and same_key(entry[1], key_a) and same_key(entry[2], key_b):
+            if entry.options == options and same_key(entry.key_a, key_a) and same_key(entry.key_b, key_b):
                 return entry
         return None
 
@@ -72,7 +83,7 @@ class PlanCache:
         """The plan kept for these keys and options, or None (nothing is recorded: the path
         preview looks here without changing what the next run keeps)."""
         entry = self._find(key_a, key_b, options)
-        return None if entry is None else entry[3]
+        return None if entry is None else entry.plan
 
     def plan(self, key_a, key_b, **options):
         """The plan of ``plan_inbetween(key_a, key_b, **options)``, reused when already made.
@@ -91,12 +102,22 @@ class PlanCache:
         entry = self._find(key_a, key_b, options)
         if entry is None:
             self.misses += 1
-            entry = (dict(options), key_a, key_b, plan_inbetween(key_a, key_b, **options))
+            entry = _Entry(dict(options), key_a, key_b, plan_inbetween(key_a, key_b, **options))
         else:
             self.hits += 1
         if not any(used is entry for used in self._used):
             self._used.append(entry)
-        return entry[3]
+        return entry.plan
+
+    def key_lengths(self, plan):
+        """The ink lengths of the keys ``plan`` (one this run used) was made from, shapes (S_a,)
+        and (S_b,) (:func:`ballmorph_core.ink_lengths`): measured once per plan, as every redo
+        measures its in-betweens against them.
+        """
+        entry = next(entry for entry in self._used if entry.plan is plan)
+        if entry.lengths is None:
+            entry.lengths = ink_lengths(entry.key_a), ink_lengths(entry.key_b)
+        return entry.lengths
 
 
 #: The add-on's one cache (module state: it outlives the undo steps a redo replays).

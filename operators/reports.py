@@ -10,6 +10,7 @@ in-betweens stray from what the keys suggest, each with the frame where a breakd
 help most.
 """
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -323,10 +324,12 @@ class Stray:
     frame: int
 
 
+@functools.lru_cache(maxsize=64)
 def _fallbacks_used(used, method):
-    """The fallback morphs in a pair's ``used`` ('circular-ball+linear-interpolation on a rigid carrier')."""
+    """The fallback morphs in a pair's ``used`` ('circular-ball+linear-interpolation on a rigid
+    carrier'), a tuple: read once per text (a drawing's hundreds of pairs share a few)."""
     morphs = used.split(" on a ")[0].split("+")
-    return [m for m in morphs if m in FALLBACK_MORPHS and m != method]
+    return tuple(m for m in morphs if m in FALLBACK_MORPHS and m != method)
 
 
 def _middle(times):

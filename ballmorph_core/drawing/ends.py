@@ -222,8 +222,14 @@ class _SlidingPaths:
         self._towards, self._grow = towards, grow
 
     @cached_property
-    def _rg(self):
-        return Ragged.from_list(self._curves, False)
+    def _locator(self):
+        """Where the points' arc lengths lie on their curves, found frame after frame."""
+        return Ragged.from_list(self._curves, False).locator(self._curve)
+
+    @cached_property
+    def _span(self):
+        """How far each point slides, ``attach - s`` (K,): the same at every time."""
+        return self._attach - self._s
 
     @classmethod
     def join(cls, parts):
@@ -244,8 +250,8 @@ class _SlidingPaths:
     def at(self, t):
         t = float(t)
         time = np.where(self._grow, 1.0 - t, t)
-        along = self._s + time * (self._attach - self._s)
-        points = self._rg.point_at(self._curve, along)
+        along = self._s + time * self._span
+        points = self._locator.point_at(along)
         return points + np.where(self._grow, t - 1.0, t)[:, None] * self._towards
 
     @property

@@ -407,18 +407,18 @@ class _Carrier:
         if not motions.moving.any():
             return False
         M, c = motions.at(t)
-        M, c = np.where(motions.moving[:, None, None], M, np.eye(2)), np.where(motions.moving[:, None], c, 0.0)
+        still = ~motions.moving  # exactly the identity (in place: at's arrays are fresh)
+        M[still], c[still] = np.eye(2), 0.0
         (x, y), (column, term) = columns, scratch
         # Every owner is in range: mode='wrap' skips take's bounds check (2-3 times faster);
         # the method, not np.take (its Python wrapper is a tenth of a small take).
         owner = self.owner
         for i in range(2):
-            # M_i0 x + M_i1 y + c_i, summed in that order.
+            # M_i0 x + M_i1 y + c_i, summed in that order (the last sum straight into the frame).
             M[:, i, 0].take(owner, out=column, mode="wrap")
             column *= x
             M[:, i, 1].take(owner, out=term, mode="wrap")
             term *= y
             column += term
-            column += c[:, i].take(owner, out=term, mode="wrap")
-            frame[:, i] = column
+            np.add(column, c[:, i].take(owner, out=term, mode="wrap"), out=frame[:, i])
         return True

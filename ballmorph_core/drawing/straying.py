@@ -45,25 +45,29 @@ class _Work:
     fresh full-size temporary is page-faulted anew on each frame in a bpy process)."""
 
     def __init__(self):
-        self.step, self.edges = np.empty((0, 3)), np.empty(0)
+        self.edges, self.term = np.empty(0), np.empty(0)
 
     def get(self, n):
-        """``step`` (n, 3) and ``edges`` (n,)."""
+        """``edges`` and ``term``, (n,) each."""
         if len(self.edges) < n:
-            self.step, self.edges = np.empty((n, 3)), np.empty(n)
-        return self.step[:n], self.edges[:n]
+            self.edges, self.term = np.empty(n), np.empty(n)
+        return self.edges[:n], self.term[:n]
 
 
-def _norms(step, out):
-    """The length of each row of ``step`` (n, 3) into ``out`` (n,); ``step`` is squared in place.
+def _edge_lengths(positions, out, term):
+    """The length of each edge between consecutive rows of ``positions`` (n + 1, 3) into ``out``
+    (n,); ``term`` (n,) is a work column.
 
-    Three passes over columns instead of a reduction along rows of three (slow in numpy). The
-    squares are added x and z, then y: the order np.einsum("ij,ij->i") took in numpy 1.26, which
-    this replaced, so the warnings' figures did not move in their last bits.
+    Coordinate by coordinate, in two columns: no (n, 3) array of the steps, and no reduction
+    along rows of three (slow in numpy). The squares are added x and z, then y: the order
+    np.einsum("ij,ij->i") took in numpy 1.26, which this replaced, so the warnings' figures did
+    not move in their last bits.
     """
-    np.multiply(step, step, out=step)
-    np.add(step[:, 0], step[:, 2], out=out)
-    out += step[:, 1]
+    np.subtract(positions[1:, 0], positions[:-1, 0], out=out)
+    np.multiply(out, out, out=out)
+    for axis in (2, 1):
+        np.subtract(positions[1:, axis], positions[:-1, axis], out=term)
+        out += np.multiply(term, term, out=term)
     return np.sqrt(out, out=out)
 
 
@@ -75,8 +79,7 @@ def _ink_lengths(strokes, work):
         return np.zeros(count)
     # Edge i joins points i and i + 1; summed stroke by stroke with reduceat (a redo measures
     # every frame: a per-point owner array and a weighted bincount cost 5 times more).
-    step, edges = work.get(len(positions) - 1)
-    edges = _norms(np.subtract(positions[1:], positions[:-1], out=step), edges)
+    edges = _edge_lengths(positions, *work.get(len(positions) - 1))
     junction = offsets[1:-1] - 1  # from a stroke's last point to the next one's first
     edges[junction[(junction >= 0) & (junction < len(edges))]] = 0.0
     # Strokes with an edge start before the last point; what lies between one's end and the
@@ -91,7 +94,7 @@ def _ink_lengths(strokes, work):
     return lengths
 
 
-def length_deviation(key_a, key_b, result, times):
+def length_deviation(key_a, key_b, result, times, key_lengths=None):
     """How far each stroke pair's in-betweens are from the keys' blend of ink lengths.
 
     Parameters
@@ -103,6 +106,8 @@ def length_deviation(key_a, key_b, result, times):
         strokes) and ``pairs`` (P of them).
     times : array_like, shape (T,)
         The morph time of each frame (clamped to [0, 1], as the morph clamps it).
+    key_lengths : tuple of ndarray, optional
+        The keys' :func:`ink_lengths`, when known (a redo of the same keys measures them once).
 
     Returns
     -------
@@ -124,7 +129,9 @@ def length_deviation(key_a, key_b, result, times):
     times = np.clip(np.asarray(times, dtype=np.float64).reshape(-1), 0.0, 1.0)
     out = np.full((len(result.pairs), len(times)), np.nan)
     work = _Work()
-    length_a, length_b = _ink_lengths(key_a, work), _ink_lengths(key_b, work)
+    if key_lengths is None:
+        key_lengths = _ink_lengths(key_a, work), _ink_lengths(key_b, work)
+    length_a, length_b = key_lengths
     rows = [p for p, pair in enumerate(result.pairs) if pair.stroke_a is not None and pair.stroke_b is not None]
     if not rows:
         return out

@@ -230,21 +230,12 @@ class Ragged:
         frac : ndarray, shape (K,)
         """
         curve, s = np.broadcast_arrays(np.asarray(curve), np.asarray(s, dtype=np.float64))
-        length = self.length[curve]
-        # Loops wrap round, open curves stop at their ends (rows by index: open batches skip the mod).
-        loops = np.flatnonzero(self.closed[curve])
-        wrapped = np.mod(s[loops], np.maximum(length[loops], 1e-300))
-        s = np.clip(s, 0.0, length)
-        s[loops] = wrapped
-        g, base = self.global_s()
-        i = np.searchsorted(g, s + base[curve], side="right") - 1
-        i = np.clip(i, self.offsets[curve], self.offsets[curve + 1] - 1)
-        # An open curve's last vertex starts no edge: use the last edge at fraction 1.
-        no_edge = self.nxt[i] < 0
-        i = np.where(no_edge & (self.n[curve] > 1), i - 1, i)
-        seg = self.length_of_edge[i]
-        frac = np.divide(s - self.s[i], seg, out=np.zeros_like(s), where=seg > 0)
-        return i, np.clip(frac, 0.0, 1.0)
+        return self.locator(curve).locate(s)
+
+    def locator(self, curve):
+        """:meth:`locate` and :meth:`point_at` on fixed curves (ndarray of int, shape (K,)), at
+        arc lengths given later, again and again (_Locator)."""
+        return _Locator(self, np.asarray(curve))
 
     def point_at(self, curve, s, smooth=False):
         """Points at arc lengths ``s`` of given curves, shape (K, 2).
@@ -252,7 +243,10 @@ class Ragged:
         With ``smooth`` the point lies on the centripetal Catmull-Rom spline through the
         vertices instead of on the straight edge.
         """
-        i, frac = self.locate(curve, s)
+        return self._point_at(*self.locate(curve, s), smooth)
+
+    def _point_at(self, i, frac, smooth=False):
+        """:meth:`point_at` at edges ``i`` and fractions ``frac`` along them (K,)."""
         if not smooth:
             return _rows(self.pts, i) + frac[:, None] * _rows(self.edge, i)
         j = np.maximum(self.nxt[i], 0)
@@ -404,3 +398,45 @@ class Ragged:
                 x = a[:, 0] + (pt[:, 1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
             hits[sl] = np.bincount(owner[straddle & (pt[:, 0] < x)], minlength=sl.stop - sl.start)
         return hits % 2 == 1
+
+
+class _Locator:
+    """:meth:`Ragged.locate` on fixed curves: what depends on the curves alone is gathered once,
+    so paths sliding along curves (the overhangs) locate their samples frame after frame at the
+    cost of the search and the edges only.
+
+    Parameters
+    ----------
+    rg : Ragged
+    curve : ndarray of int, shape (K,)
+    """
+
+    def __init__(self, rg, curve):
+        self._rg = rg
+        self._length = rg.length[curve]
+        self._loops = np.flatnonzero(rg.closed[curve])
+        self._base = rg.global_s()[1][curve]
+        self._first, self._last = rg.offsets[curve], rg.offsets[curve + 1] - 1
+        self._edged = rg.n[curve] > 1
+
+    def locate(self, s):
+        """:meth:`Ragged.locate` at arc lengths ``s`` (K,) of the curves."""
+        rg, length, loops = self._rg, self._length, self._loops
+        s = np.asarray(s, dtype=np.float64)
+        # Loops wrap round, open curves stop at their ends (rows by index: open curves skip the mod).
+        wrapped = np.mod(s[loops], np.maximum(length[loops], 1e-300)) if len(loops) else None
+        s = np.clip(s, 0.0, length)
+        if wrapped is not None:
+            s[loops] = wrapped
+        i = np.searchsorted(rg.global_s()[0], s + self._base, side="right") - 1
+        i = np.clip(i, self._first, self._last)
+        # An open curve's last vertex starts no edge: use the last edge at fraction 1.
+        no_edge = rg.nxt[i] < 0
+        i = np.where(no_edge & self._edged, i - 1, i)
+        seg = rg.length_of_edge[i]
+        frac = np.divide(s - rg.s[i], seg, out=np.zeros_like(s), where=seg > 0)
+        return i, np.clip(frac, 0.0, 1.0)
+
+    def point_at(self, s):
+        """:meth:`Ragged.point_at` (on the edges) at arc lengths ``s`` (K,) of the curves."""
+        return self._rg._point_at(*self.locate(s))

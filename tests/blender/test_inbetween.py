@@ -172,6 +172,16 @@ def test_drawings_written_through_one_staging_are_the_drawings_written_alone(sho
         number += 2
 
 
+def test_colours_are_written_when_np_any_would_have_them(addon):
+    """The writer asks whether a frame has colours from their extremes: what np.any says, for
+    -0.0, NaN, infinities and nothing at all."""
+    io = importlib.import_module(f"{addon.__name__}.operators.grease_pencil")
+    cases = [np.zeros((5, 4)), np.full((5, 4), -0.0), np.zeros((0, 4)), np.eye(5, 4), -np.eye(5, 4)]
+    cases += [np.where(np.eye(5, 4) > 0, value, 0.0) for value in (np.nan, np.inf, -np.inf, 1e-300)]
+    for colours in cases:
+        assert io._any_nonzero(colours) == np.any(colours)
+
+
 def test_an_in_between_the_animator_edited_becomes_theirs(shot, capfd):
     layer = ink(shot)
     assert bpy.ops.ballmorph.inbetween() == {"FINISHED"}

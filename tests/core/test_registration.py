@@ -45,3 +45,32 @@ def test_carriers_apply_each_pairs_motion_to_its_points():
         _carry(motions, t, got, np.bincount(pair, minlength=3))
         np.testing.assert_allclose(got, want, atol=1e-12)
         np.testing.assert_array_equal(got[pair == 2], points[pair == 2])
+
+
+def test_a_carrier_put_into_after_an_evaluation_evaluates_its_new_rows():
+    """Motions keeps what every time shares from its first evaluation on; put (planning) writes
+    other pairs' motions in, and the next evaluation is that of the motions as they are now."""
+    rng = np.random.default_rng(3)
+
+    def some(n):
+        A = np.eye(2) + 0.2 * rng.normal(size=(n, 2, 2))
+        theta, stretch = registration._polar(A)
+        return registration.Motions(
+            A, rng.normal(size=(n, 2)), theta, stretch, rng.normal(size=(n, 2)), np.ones(n, bool)
+        )
+
+    motions, other = some(4), some(2)
+    motions.at(0.3)
+    motions.put(np.array([1, 3]), other)
+    fresh = registration.Motions(motions.A, motions.b, motions.theta, motions.stretch, motions.pivot, motions.moving)
+    for got, want in zip(motions.at(0.3), fresh.at(0.3)):
+        np.testing.assert_array_equal(got, want)
+    np.testing.assert_allclose(motions.at(1.0)[0][[1, 3]], np.eye(2)[None].repeat(2, 0), atol=1e-12)
+
+
+def test_similarity_matrices_multiply_as_complex_numbers():
+    rng = np.random.default_rng(4)
+    a, z = rng.normal(size=50) + 1j * rng.normal(size=50), rng.normal(size=(50, 2))
+    got = np.einsum("kij,kj->ki", registration.similarity_matrices(a), z)
+    np.testing.assert_allclose(got[:, 0] + 1j * got[:, 1], a * (z[:, 0] + 1j * z[:, 1]), atol=1e-12)
+    assert registration.similarity_matrices(1j).shape == (2, 2)

@@ -107,11 +107,12 @@ def test_work_buffers_shared_by_drawings_of_any_size_give_each_its_own_lengths()
         np.testing.assert_array_equal(_ink_lengths(drawing, work), bm.ink_lengths(drawing))
 
 
-def test_edge_lengths_are_the_rows_norms_over_any_magnitudes():
-    """_norms is each row's Euclidean length to round-off, over 60 orders of magnitude (its
-    order of summation is not pinned: no numpy internals are)."""
-    from ballmorph_core.drawing.straying import _norms
+def test_edge_lengths_are_the_steps_norms_over_any_magnitudes():
+    """_edge_lengths is each step's Euclidean length to round-off, over 60 orders of magnitude
+    (its order of summation is not pinned: no numpy internals are)."""
+    from ballmorph_core.drawing.straying import _edge_lengths
 
     rng = np.random.default_rng(8)
-    step = rng.normal(size=(20_000, 3)) * np.exp(rng.uniform(-30, 30, size=(20_000, 3)))
-    np.testing.assert_allclose(_norms(step.copy(), np.empty(len(step))), np.linalg.norm(step, axis=1), rtol=4e-16)
+    points = rng.normal(size=(20_001, 3)) * np.exp(rng.uniform(-30, 30, size=(20_001, 3)))
+    got = _edge_lengths(points, np.empty(20_000), np.empty(20_000))
+    np.testing.assert_allclose(got, np.linalg.norm(np.diff(points, axis=0), axis=1), rtol=4e-16)
