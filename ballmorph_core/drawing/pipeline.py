@@ -229,14 +229,22 @@ def map_chains(chains, spacing, eps):
     parts, lengths, reports = [], np.zeros((len(chains), 2)), [None] * len(chains)
     for number in np.unique(batch_of):
         members = mapped[batch_of == number]
-        owners = chains.pair[members]
-        batch = map_batch([chains.setups[i] for i in members], spacing[owners], "symmetric", eps[owners])
-        batch.samples.chain = members[batch.samples.chain]
-        parts.append(batch.samples)
-        lengths[members] = np.c_[batch.sides_p.rg.length, batch.sides_q.rg.length]
-        for i, report in zip(members, batch.reports):
+        samples, lengths[members], batch_reports = _mapped_batch(chains, members, spacing, eps)
+        samples.chain = members[samples.chain]
+        parts.append(samples)
+        for i, report in zip(members, batch_reports):
             reports[i] = report
     return _ChainMaps(OneWayMap.concatenate(parts) if parts else OneWayMap.empty(), lengths, reports)
+
+
+def _mapped_batch(chains, members, spacing, eps):
+    """What :func:`map_chains` keeps of the ball-maps of chains ``members``: their samples
+    (OneWayMap), the lengths of their dense curves (shape (K, 2)) and their reports. The rest of
+    the batch (its dense curves and their tables, tens of MiB for a big drawing) goes before the
+    next batch is made."""
+    owners = chains.pair[members]
+    batch = map_batch([chains.setups[i] for i in members], spacing[owners], "symmetric", eps[owners])
+    return batch.samples, np.c_[batch.sides_p.rg.length, batch.sides_q.rg.length], batch.reports
 
 
 def _ball_rows(chains, maps, index, good, ends):
