@@ -290,11 +290,9 @@ class Pieces:
         Consecutive pieces share their breakpoint (kept once); a loop's last piece ends where
         its first starts.
         """
-        if self.plain:  # the same frames (not copied), the same notes once each
+        if self.plain:  # the same frames and fractions (not copied), the same notes once each
             notes = [list(dict.fromkeys(n)) for n in parts.notes]
-            # The fractions are the plan's own arrays, and the caller rewrites them in place.
-            fractions = {"u_a": parts.u_a.copy(), "u_b": parts.u_b.copy()}
-            return replace(parts, used=list(parts.used), notes=notes, **fractions), []
+            return replace(parts, used=list(parts.used), notes=notes), []
         frames, u_a, u_b, used, notes, closed, marks = [], [], [], [], [], [], []
         start = 0
         for g in self.groups:

@@ -279,7 +279,9 @@ class InbetweenPlan:
             along, values = self._samples.restore(parts)
         else:
             # The second key's fractions are along its stroke as morphed: read them back as drawn.
-            parts.u_b = _as_drawn(parts, self.strokes)
+            # Both are rewritten here, and may be the layout's own arrays: copied first (only
+            # here: a later evaluation restores the kept ones instead).
+            parts.u_a, parts.u_b = parts.u_a.copy(), _as_drawn(parts, self.strokes)
             along = self._sources(parts)
             values = FrameValues(parts, self)
             if parts is raw:  # the plan's own samples, whatever the times: kept for the next frames

@@ -64,3 +64,21 @@ def test_strokes_that_are_not_pieces_of_the_line_stay_without_a_partner():
     result = bm.inbetween(key([arc(0, 4, 60)]), key([arc(0, 4, 60), far]), [0.5])
     assert any("no partner" in m.text for m in result.messages)
     assert not any("drawn in pieces" in m.text for m in result.messages)
+
+
+@pytest.mark.parametrize("direction", ["split", "merge"])
+def test_evaluating_leaves_the_plans_samples_as_they_were(direction):
+    """The first evaluation reads the pieces' fractions back onto their strokes, on copies: the
+    layout's own fractions stay, and a plan evaluated again gives the same in-betweens."""
+    whole, pieces = [arc(0, 4, 60)], [arc(0, 1.9, 30), arc(2.1, 4, 30)]
+    a, b = (key(whole), key(pieces)) if direction == "split" else (key(pieces), key(whole))
+    plan = bm.plan_inbetween(a, b)
+    layout = plan.pairs.layout
+    u_a, u_b = layout.u_a.copy(), layout.u_b.copy()
+    first = plan.evaluate(TIMES)
+    np.testing.assert_array_equal(layout.u_a, u_a)
+    np.testing.assert_array_equal(layout.u_b, u_b)
+    again = plan.evaluate(TIMES)
+    for f, g in zip(first.frames, again.frames):
+        np.testing.assert_array_equal(f.positions, g.positions)
+        np.testing.assert_array_equal(f.offsets, g.offsets)
