@@ -15,6 +15,8 @@ Every path is traversed at uniform arc-length speed. :class:`SampledPaths` carri
 as polylines (heat-propagation gradients, composite ball-morph arcs) with the same interface.
 """
 
+import functools
+import itertools
 import math
 
 import numpy as np
@@ -40,38 +42,63 @@ def _cross(a, b):
     return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
 
 
-#: Taylor coefficients of sin(y) / y and cos(y) in y^2, highest first, for |y| <= pi / 4
-#: (the first terms left out are below 5e-17 there).
-_SIN_TERMS = tuple((-1) ** k / math.factorial(2 * k + 1) for k in range(7, -1, -1))
-_COS_TERMS = tuple((-1) ** k / math.factorial(2 * k) for k in range(8, -1, -1))
+#: :func:`_sincos` keeps the Taylor terms whose size at its largest angle can reach this (a
+#: quarter of an ulp of 1): the first term it leaves out is below it.
+SINCOS_TERM = 2.0**-55
 
 
-def _sincos(x, sin, cos, work):
-    """``sin(x)`` and ``cos(x)`` for ``|x| <= pi``, to a few units in the last place (under 1e-15).
+@functools.lru_cache(maxsize=64)
+def _sincos_terms(bound):
+    """How :func:`_sincos` computes angles up to ``bound`` (<= pi): the double-angle steps that
+    bring them within pi / 4, and the Taylor coefficients of sin(y) / y and cos(y) in y^2 at the
+    angle they leave, highest first."""
+    doublings = 0
+    while bound / 2.0**doublings > math.pi / 4 and doublings < 2:
+        doublings += 1
+    y = bound / 2.0**doublings
+    # sin's terms y^(2k+1) / (2k+1)! and cos's y^(2k) / (2k)! for k < n, n the first one small enough.
+    n_sin = next(n for n in itertools.count(1) if y ** (2 * n + 1) / math.factorial(2 * n + 1) <= SINCOS_TERM)
+    n_cos = next(n for n in itertools.count(1) if y ** (2 * n) / math.factorial(2 * n) <= SINCOS_TERM)
+    sin = tuple((-1) ** k / math.factorial(2 * k + 1) for k in range(n_sin - 1, -1, -1))
+    cos = tuple((-1) ** k / math.factorial(2 * k) for k in range(n_cos - 1, -1, -1))
+    return doublings, sin, cos
 
-    Taylor polynomials at x / 4, then the double-angle formulas twice: about 40 passes of plain
-    arithmetic, which numpy runs 2 to 2.5 times faster than its float64 sin and cos (numpy 1.26,
-    Blender's, has no SIMD loop for those without AVX-512), and they are most of a redo's
-    circular paths.
+
+def _sincos(x, sin, cos, work, bound=math.pi):
+    """``sin(x)`` and ``cos(x)`` for ``|x| <= bound <= pi``, to a few units in the last place.
+
+    Taylor polynomials, of the angles halved as many times (at most twice) as brings them within
+    pi / 4, then as many double-angle steps: plain arithmetic, which numpy runs 2 to 4 times
+    faster than its float64 sin and cos (numpy 1.26, Blender's, has no SIMD loop for those
+    without AVX-512), and they are most of a redo's circular paths. Nearly parallel curves turn
+    their paths by small angles (a tenth of a radian at most on the benchmark's strokes): those
+    need no doubling and half the terms.
 
     Parameters
     ----------
     x : ndarray, shape (K,)
-        Angles, overwritten (with x / 4 and then work values).
+        Angles, overwritten (with the halved angles and then work values).
     sin, cos, work : ndarray, shape (K,)
         The results, and a work buffer.
+    bound : float
+        A bound on ``|x|`` (the fewer terms, the smaller).
     """
+    doublings, sin_terms, cos_terms = _sincos_terms(float(bound))
     y, z = x, work
-    y *= 0.25
+    if doublings:
+        y *= 0.5**doublings
     np.multiply(y, y, out=z)
-    for out, terms in ((sin, _SIN_TERMS), (cos, _COS_TERMS)):
+    for out, terms in ((sin, sin_terms), (cos, cos_terms)):
+        if len(terms) == 1:
+            out.fill(terms[0])
+            continue
         np.multiply(z, terms[0], out=out)
         out += terms[1]
         for a in terms[2:]:
             out *= z
             out += a
     sin *= y
-    for _ in range(2):  # sin 2y = 2 sin y cos y, cos 2y = (cos y - sin y)(cos y + sin y)
+    for _ in range(doublings):  # sin 2y = 2 sin y cos y, cos 2y = (cos y - sin y)(cos y + sin y)
         np.multiply(sin, cos, out=y)
         np.subtract(cos, sin, out=z)
         cos += sin
@@ -353,10 +380,13 @@ class BallPaths(_Endpoints):
         if self._work is None:
             self._work = np.empty((5, len(self.p)))
             self._columns = tuple(np.ascontiguousarray(a.T) for a in (self._u, self.p))
+            # Every angle phi t lies within the largest |phi| (at most pi: phi is an arctan2).
+            largest = float(np.max(np.abs(self._phi), initial=0.0))
+            self._bound = largest if largest <= np.pi else np.pi
         turn, cos, sin, length, term = self._work
         (u0, u1), p = self._columns
-        np.multiply(self._phi, t, out=turn)  # |phi t| <= pi (phi is an arctan2)
-        _sincos(turn, sin, cos, length)
+        np.multiply(self._phi, t, out=turn)
+        _sincos(turn, sin, cos, length, self._bound)
         np.multiply(self._per_sin, sin, out=length)
         length += np.multiply(self._straight, t, out=term)
         x, y = np.multiply(cos, u0, out=turn), sin  # u turned by phi t

@@ -136,17 +136,21 @@ def test_linear_paths_written_into_a_buffer_are_the_paths_bit_for_bit():
         np.testing.assert_array_equal(columns.T, paths.p + t * (paths.q - paths.p))
 
 
-def test_circular_paths_sines_and_cosines_are_numpys_to_round_off():
-    """The circular paths' own sin and cos (a polynomial and two angle doublings, faster than
-    numpy's float64 loops) agree with np.sin and np.cos over all of [-pi, pi], are exact at 0,
-    and stay on the unit circle."""
-    from ballmorph_core.morphs.paths import _sincos
+@pytest.mark.parametrize("bound", [0.0, 1e-6, 0.01, 0.144, 0.5, np.pi / 4, 1.0, 2.0, np.pi])
+def test_circular_paths_sines_and_cosines_are_numpys_to_round_off(bound):
+    """The circular paths' own sin and cos (polynomials, with angle doublings for large angles;
+    faster than numpy's float64 loops) agree with np.sin and np.cos over [-bound, bound], the
+    fewer terms the smaller the bound, are exact at 0 and stay on the unit circle."""
+    from ballmorph_core.morphs.paths import _sincos, _sincos_terms
 
-    x = np.r_[np.linspace(-np.pi, np.pi, 200_001), 0.0, 1e-300, -1e-12, np.pi / 2, np.nextafter(np.pi, 0)]
+    x = np.r_[np.linspace(-bound, bound, 200_001), 0.0, 1e-300, -1e-12 * bound, np.nextafter(bound, 0)]
     sin, cos, work = np.empty_like(x), np.empty_like(x), np.empty_like(x)
-    _sincos(x.copy(), sin, cos, work)
+    _sincos(x.copy(), sin, cos, work, bound)
     assert np.abs(sin - np.sin(x)).max() <= 1e-15
     assert np.abs(cos - np.cos(x)).max() <= 1e-15
     assert np.abs(sin**2 + cos**2 - 1).max() <= 4e-15
-    assert (sin[-5], cos[-5]) == (0.0, 1.0)
-    assert sin[-4] == 1e-300 and cos[-4] == 1.0  # tiny angles keep their sine
+    assert (sin[-4], cos[-4]) == (0.0, 1.0)
+    assert sin[-3] == 1e-300 and cos[-3] == 1.0  # tiny angles keep their sine
+    doublings, sin_terms, cos_terms = _sincos_terms(bound)
+    assert doublings == (0 if bound <= np.pi / 4 else 1 if bound <= np.pi / 2 else 2)
+    assert len(sin_terms) + len(cos_terms) <= (3 if bound <= 1e-6 else 11 if bound <= 0.144 else 18)
