@@ -108,12 +108,13 @@ class Ends:
         return self._offsets(pair, self._fraction(pair, np.asarray(s, dtype=np.float64)))
 
 
-def _ends_onto(A, B, which, reach, rows):
-    """Where the first (``which=0``) or last ends of curves ``rows`` of A lie along B: arc
-    length on B, distance (shapes (K,); ``reach`` per curve of A)."""
-    ends = np.take(A.pts, A.offsets[rows] if which == 0 else A.offsets[rows + 1] - 1, axis=0)
-    dist, edge, frac = nearest_within(ends, rows, B, reach[rows])
-    return B.s[edge] + frac * B.length_of_edge[edge], dist
+def _ends_onto(A, B, reach, rows):
+    """Where the first and the last ends of curves ``rows`` of A lie along B: arc length on B,
+    distance (shapes (2, K): first ends, then last; ``reach`` per curve of A), both ends in one
+    search of B's edges."""
+    ends = np.take(A.pts, np.r_[A.offsets[rows], A.offsets[rows + 1] - 1], axis=0)
+    dist, edge, frac = nearest_within(ends, np.r_[rows, rows], B, np.r_[reach[rows], reach[rows]])
+    return (B.s[edge] + frac * B.length_of_edge[edge]).reshape(2, -1), dist.reshape(2, -1)
 
 
 def _along(s_on_other, dist, length_other, end_tol, which):
@@ -128,11 +129,13 @@ def _trims(R, Q, scale, trim):
     keep_p, keep_q = np.c_[np.zeros(n), R.length], np.c_[np.zeros(n), Q.length]
     end_tol, reach = tol.SHARED_ENDPOINT * scale, ALONG * scale
     rows = np.flatnonzero(trim)  # only their ends are searched (none for loops)
+    if len(rows):
+        on_q, on_r = _ends_onto(R, Q, reach, rows), _ends_onto(Q, R, reach, rows)
     for which in (0, 1):
         if not len(rows):
             break
-        s_q, d_q = _ends_onto(R, Q, which, reach, rows)  # R's end along Q: Q overhangs
-        s_r, d_r = _ends_onto(Q, R, which, reach, rows)  # Q's end along R: R overhangs
+        (s_q, d_q), (s_r, d_r) = (tuple(v[which] for v in found) for found in (on_q, on_r))
+        # R's end along Q: Q overhangs; Q's end along R: R overhangs.
         q_over, q_depth = _along(s_q, d_q, Q.length[rows], end_tol[rows], which)
         r_over, r_depth = _along(s_r, d_r, R.length[rows], end_tol[rows], which)
         # Both ends along the other (the strokes overlap there): the shallower trim.
@@ -266,6 +269,17 @@ class _SlidingPaths:
         return np.abs(self._attach - self._s)
 
 
+def _even(start, stop, count):
+    """``np.linspace(start, stop, count)`` of finite floats, ``count >= 2``, by its own
+    arithmetic (``i * step + start``, the last one ``stop``) without its checks, which cost ten
+    times that: a drawing makes two for every overhang."""
+    values = np.arange(count, dtype=np.float64)
+    values *= (stop - start) / (count - 1)
+    values += start
+    values[-1] = stop
+    return values
+
+
 def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
     """The part of an open curve between arc lengths ``s0`` and ``s1`` sliding along itself
     into (``grow=False``) or out of (``grow=True``) the point at arc length ``attach``.
@@ -291,8 +305,7 @@ def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
         the overhang.
     """
     count = max(int(np.ceil((s1 - s0) / max(spacing, 1e-300))) + 1, 2)
-    s = np.linspace(s0, s1, count)
-    u = np.linspace(0.0, 1.0, count)
+    s, u = _even(s0, s1, count), _even(0.0, 1.0, count)
     paths = _SlidingPaths(
         [curve],
         np.zeros(count, np.int64),

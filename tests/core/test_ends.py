@@ -271,3 +271,11 @@ def test_the_full_sliding_fit_searches_its_pairs_curves_only_and_fits_each_as_al
         one = batch(Q.curve(c))
         alone = sliding._sliding_fits(xp[[i]], one, np.array([0]), real(one), start(1), size[[i]])
         np.testing.assert_allclose([x[i] for x in both], [x[0] for x in alone], rtol=1e-12, atol=1e-12)
+
+
+@given(st.floats(-1e3, 1e3), st.floats(-1e3, 1e3), st.integers(2, 500))
+def test_overhang_samples_are_numpys_linspace_bit_for_bit(start, stop, count):
+    from ballmorph_core.drawing.ends import _even
+
+    np.testing.assert_array_equal(_even(start, stop, count), np.linspace(start, stop, count))
+    np.testing.assert_array_equal(_even(start, start, count), np.linspace(start, start, count))
