@@ -266,7 +266,7 @@ class _SlidingPaths:
         return self.at(1.0)
 
     def lengths(self):
-        return np.abs(self._attach - self._s)
+        return np.abs(self._span)
 
 
 def _even(start, stop, count):

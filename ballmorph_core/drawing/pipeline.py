@@ -481,6 +481,9 @@ def _piece(curves, c, s0, s1):
 
     An overhang slides along this stretch only: kept whole, every overhang's curve (and, as a
     view, the batch it lies in) would stay in the plan (38 MiB of a 400x500 open drawing's).
+    The curve's own vertices, not the stretch of :meth:`Ragged.pieces`, which cuts new end
+    points and drops vertices within round-off of them: the overhang slides along the very
+    polyline it slid along before.
     """
     s = curves.s[curves.offsets[c] : curves.offsets[c + 1]]
     first = max(int(np.searchsorted(s, s0, side="right")) - 1, 0)
