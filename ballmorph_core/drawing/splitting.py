@@ -18,7 +18,7 @@ import numpy as np
 from .. import tolerances as tol
 from ..ballmap.topology import PairSetup
 from ..errors import IncompatibleCurvesError
-from ..geometry.intersections import batch_crossings
+from ..geometry.intersections import batch_crossings, matched_hits
 from ..geometry.polyline import scale_of
 from ..geometry.projection import nearest_within
 from ..geometry.ragged import Ragged
@@ -163,9 +163,17 @@ def cross(R, Q, scale, wanted):
     the overlap analysis of :func:`find_events` (a pair that crosses has events there too).
     """
     end_eps = tol.SHARED_ENDPOINT * scale
-    cx = batch_crossings(R, Q, scale, wanted, max_hits=MAX_HITS_PER_POINT * (R.n + Q.n))
+    # Near pairs mostly cross where they lie along each other: one such hit answers for a pair
+    # (whatever its count), so only the others are searched on the grid.
+    pair, edge, sa = matched_hits(R, Q, scale, wanted)
+    s_a = R.s[edge] + sa * R.length_of_edge[edge]
+    found = np.bincount(pair[_interior(R, pair, s_a, end_eps)], minlength=len(R)) > 0
+    rest = wanted & ~found
+    if not rest.any():
+        return found
+    cx = batch_crossings(R, Q, scale, rest, max_hits=MAX_HITS_PER_POINT * (R.n + Q.n))
     inside = _interior(R, cx.pair, cx.s_a, end_eps)
-    return (np.bincount(cx.pair[inside], minlength=len(R)) > 0) | cx.crowded
+    return found | (np.bincount(cx.pair[inside], minlength=len(R)) > 0) | cx.crowded
 
 
 def find_events(R, Q, scale, spacing, wanted):

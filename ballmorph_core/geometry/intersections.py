@@ -4,7 +4,8 @@ Candidate segment pairs come from a uniform grid (:func:`~.spatial.box_pair_chun
 memory stays bounded), so the cost grows with the number of segments and crossings, not with their
 product; a search that only needs to know whether there is one, or whether there are too many,
 stops early. :func:`batch_crossings` finds the crossings of many curve pairs at once (the drawing
-pipeline's batches); :func:`crossings` is a batch of one.
+pipeline's batches); :func:`crossings` is a batch of one. :func:`matched_hits` is a cheap first
+look for pairs lying along each other: some of their hits, without the grid.
 """
 
 from dataclasses import dataclass
@@ -13,13 +14,17 @@ import numpy as np
 
 from .. import tolerances as tol
 from .polyline import edges, scale_of
-from .ragged import Ragged
+from .ragged import Ragged, group_argmin
 from .spatial import box_pair_chunks
 
-__all__ = ["Crossings", "batch_crossings", "crossings", "self_crossings", "is_simple", "segment_hits"]
+__all__ = ["Crossings", "batch_crossings", "matched_hits", "crossings", "self_crossings", "is_simple", "segment_hits"]
 
 #: Two segments whose directions differ by less than this sine may lie along each other.
 _PARALLEL_SINE = 1e-3
+
+#: :func:`matched_hits` tests a segment of A changing sides against this many segments of B on
+#: either side of the matched one (the match is off by a few edges where the curves stray).
+_MATCH_REACH = 2
 
 
 @dataclass
@@ -174,6 +179,79 @@ def _lying_along(A, B, ga, gb, reach):
     )
     along = (sine <= _PARALLEL_SINE) & (gap <= reach[A.owner[ga]])
     return np.bincount(A.owner[ga][along], minlength=len(A)) > 0
+
+
+def _matched_edges(A, B, searched, va):
+    """The edge of B at the same fraction of its length as each vertex ``va`` of A (loops: from
+    B's vertex nearest A's first, their starts need not match), global indices, shape (K,).
+    ``va`` are the vertices of the ``searched`` pairs (bool, shape (C,)), whose B have edges."""
+    pair = A.owner[va]
+    t = A.s[va] * (B.length[pair] / np.maximum(A.length[pair], 1e-300))
+    loops = np.flatnonzero((B.closed & searched)[B.owner])
+    if len(loops):
+        owner = B.owner[loops]
+        d = np.take(B.pts, loops, axis=0) - np.take(A.pts, A.offsets[owner], axis=0)
+        nearest = loops[group_argmin(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1], owner, len(A))]
+        start = np.where(B.closed[pair], B.s[nearest[pair]], 0.0)
+        t += start
+        t -= np.where(t >= B.length[pair], B.length[pair], 0.0)
+    g, base = B.global_s()
+    first = B.offsets[pair]
+    last = first + np.maximum(B.n_edges[pair] - 1, 0)
+    return np.clip(np.searchsorted(g, t + base[pair], side="right") - 1, first, last)
+
+
+def matched_hits(A, B, scale, wanted):
+    """Some hits of curve ``c`` of A with curve ``c`` of B, found cheaply where the curves lie
+    along each other (a near pair: matching fractions of their lengths lie close).
+
+    Every vertex of A is put on one side of B's edge at its fraction of the length; where
+    consecutive vertices change sides, A's edge is tested against B's few edges around
+    there. Each hit is one :func:`batch_crossings` finds too (their boxes overlap, the same
+    :func:`segment_hits`), so a hit proves that a pair meets; a pair without one may still meet
+    (curves far from matching each other).
+
+    Parameters
+    ----------
+    A, B : Ragged
+        As many curves each.
+    scale : ndarray, shape (C,)
+    wanted : ndarray of bool, shape (C,)
+
+    Returns
+    -------
+    pair, edge_a : ndarray of int, shape (K,)
+        The pair of each hit and the global first-vertex index of its segment of A.
+    sa : ndarray, shape (K,)
+        Where along that segment, in [0, 1].
+    """
+    searched = wanted & (B.n_edges > 0)
+    va = np.flatnonzero(searched[A.owner])
+    pair = A.owner[va]
+    e = _matched_edges(A, B, searched, va)
+    w = np.take(A.pts, va, axis=0) - np.take(B.pts, e, axis=0)
+    d = np.take(B.edge, e, axis=0)
+    left = d[:, 0] * w[:, 1] > d[:, 1] * w[:, 0]
+    # va holds whole curves, so a vertex's successor is the next row, a loop's last its first.
+    after = np.arange(1, len(va) + 1)
+    ends = np.flatnonzero(np.r_[pair[1:] != pair[:-1], True]) if len(va) else after
+    after[ends] = np.searchsorted(pair, pair[ends])
+    turn = np.flatnonzero((left != left[after]) & (np.take(A.nxt, va) >= 0))
+    reach = np.arange(-_MATCH_REACH, _MATCH_REACH + 1)
+    ga = np.repeat(va[turn], len(reach))
+    pair = np.repeat(pair[turn], len(reach))
+    first, n_edges = B.offsets[pair], B.n_edges[pair]
+    local = np.repeat(e[turn], len(reach)) - first + np.tile(reach, len(turn))
+    local = np.where(B.closed[pair], local % np.maximum(n_edges, 1), np.clip(local, 0, n_edges - 1))
+    gb = first + local
+    a0, da, b0, db = A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb]
+    box_a, box_b = _boxes(a0, a0 + da), _boxes(b0, b0 + db)
+    # The grid's own overlap test (touching counts), on the same boxes: only its candidates.
+    overlap = (box_a[:, 0] <= box_b[:, 2]) & (box_b[:, 0] <= box_a[:, 2])
+    overlap &= (box_a[:, 1] <= box_b[:, 3]) & (box_b[:, 1] <= box_a[:, 3])
+    ok, sa, _ = segment_hits(a0, da, b0, db, scale[pair])
+    ok &= overlap
+    return pair[ok], ga[ok], sa[ok]
 
 
 def batch_crossings(A, B, scale, wanted=None, overlap_reach=None, max_hits=None):

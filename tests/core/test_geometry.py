@@ -9,7 +9,7 @@ from shapes import circle, distance_to_polyline
 from ballmorph_core.ballmap.onemap import OneWayMap
 from ballmorph_core.geometry import polyline, projection
 from ballmorph_core.geometry.circles import circumcircles
-from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, self_crossings
+from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, matched_hits, self_crossings
 from ballmorph_core.geometry.polyline import (
     COARSEN_RATIO,
     already_clean,
@@ -552,6 +552,40 @@ def test_batched_crossings_are_the_crossings_of_each_pair():
         np.testing.assert_allclose(found.points[found.pair == c], alone.points, atol=1e-12)
     assert np.sum(found.pair == 2) == 0  # nested circles never meet
     assert np.sum(found.pair == 0) == 2
+
+
+def _near_pairs(seed):
+    """Loops (one started half a turn on, one with one point) and open arcs, each with a
+    wobbled copy crossing it, and a wobbled loop against its reversed copy."""
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0, 2 * np.pi, 90, endpoint=False)
+    loop = circle(1.0, 90)
+    wobbled = loop * (1 + 0.05 * np.sin(3 * t + rng.uniform(0, 6)))[:, None]
+    x = np.linspace(0, 1, 70)
+    arc = np.c_[x, 0.2 * np.sin(np.pi * x)]
+    wavy = arc + np.c_[np.zeros(70), 0.02 * np.sin(4 * np.pi * x + rng.uniform(0, 6))]
+    ps = [loop, loop, arc, wobbled, loop[:1]]
+    qs = [wobbled, np.roll(wobbled, 45, axis=0), wavy, wobbled[::-1], wobbled]
+    return ps, qs, [True, True, False, True, True]
+
+
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=20)
+def test_matched_hits_are_hits_the_grid_search_finds(seed):
+    ps, qs, closed = _near_pairs(seed)
+    A, B = Ragged.from_list(ps, closed), Ragged.from_list(qs, closed)
+    scale = pair_scales(A, B)
+    wanted = np.array([True, True, True, True, True])
+    pair, edge, sa = matched_hits(A, B, scale, wanted)
+    found = batch_crossings(A, B, scale)
+    points = A.pts[edge] + sa[:, None] * A.edge[edge]
+    for c, x in zip(pair, points):
+        assert np.min(np.linalg.norm(found.points[found.pair == c] - x, axis=1)) <= 1e-12
+    # Lying along each other: the loops (whatever their starts) and the arcs cross where they
+    # match; the loop against its reversed copy may be missed (it is then searched on the
+    # grid), a single point never crosses.
+    assert set(pair.tolist()) >= {0, 1, 2} and 4 not in pair
+    assert not len(matched_hits(A, B, scale, np.zeros(5, bool))[0])
 
 
 def test_circumcircles_of_points_on_a_circle_and_a_line():

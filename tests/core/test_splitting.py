@@ -22,3 +22,21 @@ def test_cross_says_which_pairs_meet_as_find_events_counts_them():
     np.testing.assert_array_equal(got, [False, True, True, False])
     np.testing.assert_array_equal(got, find_events(R, Q, scale, np.full(4, 0.01), everything).count > 0)
     assert not cross(R, Q, scale, np.array([False, False, True, False]))[1]
+
+
+def test_cross_is_the_grid_search_whether_the_matched_look_finds_the_crossing_or_not():
+    # A loop against a wobbled copy started half a turn on (matched fractions still find the
+    # crossings), a loop crossing one far off (matched fractions do not: only the grid does), a
+    # loop inside the wobbled one, and an arch meeting a line at their shared ends only (hits
+    # there are no crossing).
+    t = np.linspace(0, 2 * np.pi, 120, endpoint=False)
+    loop = circle(1.0, 120)
+    wobbled = loop * (1 + 0.05 * np.sin(5 * t))[:, None]
+    x = np.linspace(0.0, 1.0, 60)
+    arch, flat = np.c_[x, 0.01 * np.sin(np.pi * x)], np.c_[x, np.zeros(60)]
+    R = Ragged.from_list([loop, loop, 0.5 * loop, arch], [True, True, True, False])
+    Q = Ragged.from_list([np.roll(wobbled, 60, axis=0), loop + [1.5, 0.0], wobbled, flat], R.closed)
+    scale, everything = np.ones(4), np.ones(4, dtype=bool)
+    searched = find_events(R, Q, scale, np.full(4, 0.01), everything).count > 0
+    np.testing.assert_array_equal(cross(R, Q, scale, everything), searched)
+    np.testing.assert_array_equal(searched, [True, True, False, False])
