@@ -61,6 +61,25 @@ def _boxes(a0, a1):
     return np.concatenate([np.minimum(a0, a1), np.maximum(a0, a1)], axis=1)
 
 
+def _edge_boxes(rg, e):
+    """Boxes of the edges of ``rg`` starting at vertices ``e`` (K,), as the four columns
+    ``xmin, ymin, xmax, ymax`` :func:`~.spatial.box_pair_chunks` takes (no (K, 4) rows)."""
+    x0, y0 = np.take(rg.pts[:, 0], e), np.take(rg.pts[:, 1], e)
+    x1, y1 = x0 + np.take(rg.edge[:, 0], e), y0 + np.take(rg.edge[:, 1], e)
+    return np.minimum(x0, x1), np.minimum(y0, y1), np.maximum(x0, x1), np.maximum(y0, y1)
+
+
+def _hits_of(A, B, ga, gb, scale):
+    """:func:`segment_hits` of the edges of A and B starting at vertices ``ga`` and ``gb`` (K,)."""
+    return segment_hits(
+        np.take(A.pts, ga, axis=0),
+        np.take(A.edge, ga, axis=0),
+        np.take(B.pts, gb, axis=0),
+        np.take(B.edge, gb, axis=0),
+        scale,
+    )
+
+
 def segment_hits(a0, da, b0, db, scale):
     """Proper and touching intersections of segment pairs (vectorised).
 
@@ -113,23 +132,23 @@ def _candidates(A, B, wanted, scale, max_hits):
     wanted = np.ones(len(A), dtype=bool) if wanted is None else wanted
     ea = np.flatnonzero((A.nxt >= 0) & wanted[A.owner])
     eb = np.flatnonzero((B.nxt >= 0) & wanted[B.owner])
-    a0, b0 = A.pts[ea], B.pts[eb]
+    owner_a, owner_b = A.owner[ea], B.owner[eb]
     active = np.ones(len(ea), dtype=bool)
     crowded, hits = np.zeros(len(A), dtype=bool), np.zeros(len(A), dtype=np.int64)
     found_a, found_b = [], []
-    for i, j in box_pair_chunks(_boxes(a0, a0 + A.edge[ea]), _boxes(b0, b0 + B.edge[eb]), active=active):
-        keep = A.owner[ea[i]] == B.owner[eb[j]]
-        ga, gb = ea[i[keep]], eb[j[keep]]
+    for i, j in box_pair_chunks(_edge_boxes(A, ea), _edge_boxes(B, eb), active=active):
+        keep = np.take(owner_a, i) == np.take(owner_b, j)
+        ga, gb = np.take(ea, i[keep]), np.take(eb, j[keep])
         found_a.append(ga)
         found_b.append(gb)
         if max_hits is None:
             continue
         pair = A.owner[ga]
-        ok, _, _ = segment_hits(A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb], scale[pair])
+        ok, _, _ = _hits_of(A, B, ga, gb, scale[pair])
         hits += np.bincount(pair[ok], minlength=len(A))
         # Enough is known of these pairs: their remaining segments are not searched.
         crowded |= hits > max_hits
-        active &= ~crowded[A.owner[ea]]
+        active &= ~crowded[owner_a]
     if not found_a:
         return np.zeros(0, np.int64), np.zeros(0, np.int64), crowded
     ga, gb = np.concatenate(found_a), np.concatenate(found_b)
@@ -140,7 +159,7 @@ def _candidates(A, B, wanted, scale, max_hits):
 def _crossings_of(A, B, ga, gb, scale):
     """The crossings among candidate segment pairs (see :func:`batch_crossings`)."""
     pair = A.owner[ga]
-    ok, sa, sb = segment_hits(A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb], scale[pair])
+    ok, sa, sb = _hits_of(A, B, ga, gb, scale[pair])
     ga, gb, sa, sb, pair = ga[ok], gb[ok], sa[ok], sb[ok], pair[ok]
     s_a = A.s[ga] + sa * A.length_of_edge[ga]
     s_b = B.s[gb] + sb * B.length_of_edge[gb]
@@ -244,13 +263,10 @@ def matched_hits(A, B, scale, wanted):
     local = np.repeat(e[turn], len(reach)) - first + np.tile(reach, len(turn))
     local = np.where(B.closed[pair], local % np.maximum(n_edges, 1), np.clip(local, 0, n_edges - 1))
     gb = first + local
-    a0, da, b0, db = A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb]
-    box_a, box_b = _boxes(a0, a0 + da), _boxes(b0, b0 + db)
-    # The grid's own overlap test (touching counts), on the same boxes: only its candidates.
-    overlap = (box_a[:, 0] <= box_b[:, 2]) & (box_b[:, 0] <= box_a[:, 2])
-    overlap &= (box_a[:, 1] <= box_b[:, 3]) & (box_b[:, 1] <= box_a[:, 3])
-    ok, sa, _ = segment_hits(a0, da, b0, db, scale[pair])
-    ok &= overlap
+    # The grid's own boxes and overlap test (touching counts): only its candidates.
+    box_a, box_b = _edge_boxes(A, ga), _edge_boxes(B, gb)
+    ok, sa, _ = _hits_of(A, B, ga, gb, scale[pair])
+    ok &= (box_a[0] <= box_b[2]) & (box_b[0] <= box_a[2]) & (box_a[1] <= box_b[3]) & (box_b[1] <= box_a[3])
     return pair[ok], ga[ok], sa[ok]
 
 

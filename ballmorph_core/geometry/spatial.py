@@ -12,25 +12,39 @@ from .ragged import budget_slices, ragged_arange
 __all__ = ["box_pairs", "box_pair_chunks", "PointTree", "CurveTree"]
 
 
+def _columns(boxes):
+    """``xmin, ymin, xmax, ymax`` of boxes given as rows (an (N, 4) array) or as four columns,
+    each a contiguous float64 array of shape (N,) (the grid gathers single values from them)."""
+    if isinstance(boxes, (tuple, list)):
+        return [np.ascontiguousarray(c, dtype=np.float64).reshape(-1) for c in boxes]
+    rows = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
+    return [np.ascontiguousarray(rows[:, k]) for k in range(4)]
+
+
 def _cell_ranges(boxes, origin, cell):
     """First and last grid cell of every box along x and y: ``ix0, iy0, ix1, iy1``, each int64
-    of shape (N,) (coordinate by coordinate: a (N, 2) slice of the (N, 4) boxes costs a copy)."""
-    return [np.floor((boxes[:, k] - origin[k % 2]) / cell).astype(np.int64) for k in range(4)]
+    of shape (N,), from the boxes' four columns (:func:`_columns`)."""
+    return [np.floor((boxes[k] - origin[k % 2]) / cell).astype(np.int64) for k in range(4)]
 
 
 def _cells(ranges, ny):
     """Every (cell, box) entry of boxes spanning ``ranges`` (:func:`_cell_ranges`): the cells'
-    keys ``cx * ny + cy`` and their boxes, box after box, shape (M,) each."""
+    keys ``cx * ny + cy`` and their boxes, box after box, shape (M,) each; and where each box's
+    entries start, shape (N + 1,)."""
     ix0, iy0, ix1, iy1 = ranges
     nx, nyy = ix1 - ix0 + 1, iy1 - iy0 + 1
-    owner, local = ragged_arange(nx * nyy)
+    per_box = nx * nyy
+    owner, local = ragged_arange(per_box)
     cx = ix0[owner] + local % nx[owner]
     cy = iy0[owner] + local // nx[owner]
-    return cx * ny + cy, owner
+    first = np.zeros(len(nx) + 1, dtype=np.int64)
+    np.cumsum(per_box, out=first[1:])
+    return cx * ny + cy, owner, first
 
 
 def _typical_size(boxes):
-    return float(np.median(np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1])))
+    x0, y0, x1, y1 = boxes
+    return float(np.median(np.maximum(x1 - x0, y1 - y0)))
 
 
 def _cell_entries(ranges):
@@ -47,6 +61,7 @@ PAIR_BUDGET = 1 << 18
 def _grid_cell(a, b, origin, extent, cell):
     """The grid's cell size: the given one, else the larger typical box size, grown while long
     boxes would fill too many cells; and both sets' :func:`_cell_ranges` at that size."""
+    n_a, n_b = len(a[0]), len(b[0])
     if cell is None:
         # The larger of the two sets' typical box sizes: tiny boxes (points) against long ones
         # (a coarse polygon's edges) must not make every long box span millions of cells.
@@ -55,7 +70,7 @@ def _grid_cell(a, b, origin, extent, cell):
     # Bound the number of (box, cell) entries: grow the cells while long boxes would fill too many.
     for _ in range(16):
         ranges_a, ranges_b = _cell_ranges(a, origin, cell), _cell_ranges(b, origin, cell)
-        if _cell_entries(ranges_a) + _cell_entries(ranges_b) <= 16 * (len(a) + len(b)) + 1024:
+        if _cell_entries(ranges_a) + _cell_entries(ranges_b) <= 16 * (n_a + n_b) + 1024:
             break
         cell *= 2.0
     else:
@@ -63,14 +78,23 @@ def _grid_cell(a, b, origin, extent, cell):
     return cell, ranges_a, ranges_b
 
 
+def _overlap(a, b, i, j):
+    """Whether boxes ``a[i]`` and ``b[j]`` (four columns each) overlap, touching counts, shape (K,)."""
+    keep = np.take(a[0], i) <= np.take(b[2], j)
+    keep &= np.take(b[0], j) <= np.take(a[2], i)
+    keep &= np.take(a[1], i) <= np.take(b[3], j)
+    keep &= np.take(b[1], j) <= np.take(a[3], i)
+    return keep
+
+
 def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active=None):
     """All pairs of overlapping axis-aligned boxes, in runs of consecutive boxes of ``boxes_a``.
 
     Parameters
     ----------
-    boxes_a : ndarray, shape (A, 4)
-        Rows ``(xmin, ymin, xmax, ymax)``.
-    boxes_b : ndarray, shape (B, 4), optional
+    boxes_a : ndarray, shape (A, 4), or sequence of four ndarray, shape (A,)
+        Rows ``(xmin, ymin, xmax, ymax)``, or those four columns (no (A, 4) array made).
+    boxes_b : ndarray, shape (B, 4), or sequence of four ndarray, shape (B,), optional
         If omitted, pairs within ``boxes_a`` are returned with ``i < j``.
     cell : float, optional
         Grid cell size; default the median box size.
@@ -88,45 +112,46 @@ def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active
         :func:`box_pairs`.
     """
     same = boxes_b is None
-    a = np.asarray(boxes_a, dtype=np.float64).reshape(-1, 4)
-    b = a if same else np.asarray(boxes_b, dtype=np.float64).reshape(-1, 4)
-    if len(a) == 0 or len(b) == 0:
+    a = _columns(boxes_a)
+    b = a if same else _columns(boxes_b)
+    n_a, n_b = len(a[0]), len(b[0])
+    if n_a == 0 or n_b == 0:
         return
-    # Column by column (no (A + B, 4) copy of both sets).
-    origin = np.array([min(a[:, k].min(), b[:, k].min()) for k in range(2)])
-    extent = max(max(float(a[:, k].max()), float(b[:, k].max())) - origin[k - 2] for k in range(2, 4))
+    origin = np.array([min(a[k].min(), b[k].min()) for k in range(2)])
+    extent = max(max(float(a[k].max()), float(b[k].max())) - origin[k - 2] for k in range(2, 4))
     extent = float(max(extent, 1e-300))
     cell, ranges_a, ranges_b = _grid_cell(a, b, origin, extent, cell)
     ny = int(extent / cell) + 2
     # The grid holds b; every run of a looks its cells up in it.
-    key_a, own_a = _cells(ranges_a, ny)
-    key_b, own_b = (key_a, own_a) if same else _cells(ranges_b, ny)
+    key_a, own_a, first_entry = _cells(ranges_a, ny)
+    key_b, own_b, _ = (key_a, own_a, None) if same else _cells(ranges_b, ny)
     order = np.argsort(key_b, kind="stable")
     key_b, own_b = key_b[order], own_b[order]
     # Each occupied cell of b once: a's entries look it up in that shorter list, once.
     run = np.flatnonzero(np.r_[True, key_b[1:] != key_b[:-1]])
-    at = np.minimum(np.searchsorted(key_b[run], key_a), len(run) - 1)
-    found = key_b[run][at] == key_a
+    occupied = key_b[run]
+    at = np.searchsorted(occupied, key_a)
+    np.minimum(at, len(run) - 1, out=at)
     lo = run[at]
-    count = np.where(found, np.diff(np.r_[run, len(key_b)])[at], 0)
-    # own_a is sorted (entries come box after box), so a run of boxes is a run of entries.
-    first_entry = np.searchsorted(own_a, np.arange(len(a) + 1))
-    cost = np.bincount(own_a, weights=count, minlength=len(a))
+    count = np.where(occupied[at] == key_a, np.diff(np.r_[run, len(key_b)])[at], 0)
+    # Entries come box after box, so a run of boxes is a run of entries.
+    cost = np.add.reduceat(count, first_entry[:-1]) if len(count) else np.zeros(n_a, np.int64)
     for sl in budget_slices(cost, budget):
-        rows = np.arange(sl.start, sl.stop)
-        if active is not None:
-            rows = rows[active[rows]]
-        n_entries = first_entry[rows + 1] - first_entry[rows]
-        owner, local = ragged_arange(n_entries)
-        entry = first_entry[rows][owner] + local
+        if active is None or active[sl].all():
+            entry = np.arange(first_entry[sl.start], first_entry[sl.stop])
+        else:
+            rows = np.flatnonzero(active[sl]) + sl.start
+            owner, local = ragged_arange(first_entry[rows + 1] - first_entry[rows])
+            entry = first_entry[rows][owner] + local
         owner, local = ragged_arange(count[entry])
-        i = own_a[entry[owner]]
-        j = own_b[lo[entry[owner]] + local]
-        keep = (a[i, 0] <= b[j, 2]) & (b[j, 0] <= a[i, 2]) & (a[i, 1] <= b[j, 3]) & (b[j, 1] <= a[i, 3])
+        at_entry = entry[owner]
+        i = own_a[at_entry]
+        j = own_b[lo[at_entry] + local]
+        keep = _overlap(a, b, i, j)
         if same:
             keep &= i < j
-        code = np.unique(i[keep] * len(b) + j[keep])
-        yield code // len(b), code % len(b)
+        code = np.unique(i[keep] * n_b + j[keep])
+        yield code // n_b, code % n_b
 
 
 def box_pairs(boxes_a, boxes_b=None, cell=None):

@@ -193,6 +193,10 @@ def test_box_pairs_of_points_tiny_and_long_boxes_are_exact(seed):
         sets.append(np.c_[low, low + size])
     i, j = box_pairs(*sets)
     assert sorted(zip(i.tolist(), j.tolist())) == _overlapping(*sets)
+    # The same boxes as four columns each (no rows made).
+    runs = list(box_pair_chunks(*(tuple(s.T) for s in sets)))
+    np.testing.assert_array_equal(np.concatenate([r[0] for r in runs]) if runs else [], i)
+    np.testing.assert_array_equal(np.concatenate([r[1] for r in runs]) if runs else [], j)
     i, j = box_pairs(sets[0])
     assert sorted(zip(i.tolist(), j.tolist())) == [(p, q) for p, q in _overlapping(sets[0], sets[0]) if p < q]
 
