@@ -15,12 +15,16 @@ import numpy as np
 from .. import tolerances as tol
 from .polyline import edges, scale_of
 from .ragged import Ragged, group_argmin
-from .spatial import box_pair_chunks
+from .spatial import PAIR_BUDGET, box_overlap, box_pair_chunks
 
 __all__ = ["Crossings", "batch_crossings", "matched_hits", "crossings", "self_crossings", "is_simple", "segment_hits"]
 
 #: Two segments whose directions differ by less than this sine may lie along each other.
 _PARALLEL_SINE = 1e-3
+
+#: Consecutive edges of a curve the grid boxes together: its work goes by boxes, and the edges
+#: of two overlapping runs are few to test against each other.
+_EDGES_PER_BOX = 4
 
 #: :func:`matched_hits` tests a segment of A changing sides against this many segments of B on
 #: either side of the matched one (the match is off by a few edges where the curves stray).
@@ -119,26 +123,70 @@ def _first_of_each(pair, s_a, s_b, scale):
     return np.sort(first)
 
 
+def _runs_of_edges(owner):
+    """Where runs of up to :data:`_EDGES_PER_BOX` consecutive edges of one curve start, for
+    edges listed curve by curve (``owner`` sorted, shape (K,)), shape (G,)."""
+    first = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
+    local = np.arange(len(owner)) - np.repeat(first, np.diff(np.r_[first, len(owner)]))
+    return np.flatnonzero(local % _EDGES_PER_BOX == 0)
+
+
+def _run_boxes(boxes, starts):
+    """The boxes (four columns) of runs of boxes starting at ``starts`` (G,), as four columns."""
+    x0, y0, x1, y1 = boxes
+    lows = (np.minimum.reduceat(c, starts) for c in (x0, y0))
+    highs = (np.maximum.reduceat(c, starts) for c in (x1, y1))
+    return (*lows, *highs)
+
+
+def _edges_of_runs(run_a, run_b, starts_a, starts_b, n_a, n_b):
+    """Every pair of an edge of run ``run_a[k]`` and one of run ``run_b[k]`` (K,): indices
+    ``i, j`` into the edges whose runs start at ``starts_a`` and ``starts_b`` (of ``n_a`` and
+    ``n_b`` edges), shape (M,) each."""
+    steps = np.arange(_EDGES_PER_BOX)
+    i = (starts_a[run_a][:, None, None] + steps[:, None]).repeat(_EDGES_PER_BOX, axis=2).reshape(-1)
+    j = (starts_b[run_b][:, None, None] + steps).repeat(_EDGES_PER_BOX, axis=1).reshape(-1)
+    # A curve's last run may be shorter: only the steps within it.
+    end_a, end_b = np.r_[starts_a[1:], n_a][run_a], np.r_[starts_b[1:], n_b][run_b]
+    inside = i < end_a.repeat(_EDGES_PER_BOX * _EDGES_PER_BOX)
+    inside &= j < end_b.repeat(_EDGES_PER_BOX * _EDGES_PER_BOX)
+    return i[inside], j[inside]
+
+
 def _candidates(A, B, wanted, scale, max_hits):
     """Segment pairs of curve c of A and curve c of B whose boxes overlap, run by run.
+
+    The grid pairs up the boxes of runs of consecutive edges (a fraction as many boxes as
+    edges); the edges of overlapping runs are then tested box against box.
 
     Returns
     -------
     ga, gb : ndarray of int, shape (K,)
-        Global first-vertex indices of each segment.
+        Global first-vertex indices of each segment, sorted by ``ga`` then ``gb``.
     crowded : ndarray of bool, shape (C,)
         Pairs left out once their segments met more than ``max_hits`` times (none without it).
     """
     wanted = np.ones(len(A), dtype=bool) if wanted is None else wanted
     ea = np.flatnonzero((A.nxt >= 0) & wanted[A.owner])
     eb = np.flatnonzero((B.nxt >= 0) & wanted[B.owner])
-    owner_a, owner_b = A.owner[ea], B.owner[eb]
-    active = np.ones(len(ea), dtype=bool)
     crowded, hits = np.zeros(len(A), dtype=bool), np.zeros(len(A), dtype=np.int64)
+    if not len(ea) or not len(eb):
+        return np.zeros(0, np.int64), np.zeros(0, np.int64), crowded
+    boxes_a, boxes_b = _edge_boxes(A, ea), _edge_boxes(B, eb)
+    starts_a, starts_b = _runs_of_edges(A.owner[ea]), _runs_of_edges(B.owner[eb])
+    owner_a, owner_b = A.owner[ea[starts_a]], B.owner[eb[starts_b]]
+    active = np.ones(len(starts_a), dtype=bool)
     found_a, found_b = [], []
-    for i, j in box_pair_chunks(_edge_boxes(A, ea), _edge_boxes(B, eb), active=active):
-        keep = np.take(owner_a, i) == np.take(owner_b, j)
-        ga, gb = np.take(ea, i[keep]), np.take(eb, j[keep])
+    # Each pair of runs is tested as up to _EDGES_PER_BOX ** 2 pairs of edges: the same memory.
+    budget = PAIR_BUDGET // _EDGES_PER_BOX**2
+    runs = box_pair_chunks(_run_boxes(boxes_a, starts_a), _run_boxes(boxes_b, starts_b), budget=budget, active=active)
+    for run_a, run_b in runs:
+        same = np.take(owner_a, run_a) == np.take(owner_b, run_b)
+        i, j = _edges_of_runs(run_a[same], run_b[same], starts_a, starts_b, len(ea), len(eb))
+        keep = box_overlap(boxes_a, boxes_b, i, j)
+        # Each pair once (an edge is in one run), sorted by i then j: runs of runs follow A.
+        code = np.sort(i[keep] * len(eb) + j[keep])
+        ga, gb = np.take(ea, code // len(eb)), np.take(eb, code % len(eb))
         found_a.append(ga)
         found_b.append(gb)
         if max_hits is None:

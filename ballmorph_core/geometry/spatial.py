@@ -9,7 +9,7 @@ import numpy as np
 
 from .ragged import budget_slices, ragged_arange
 
-__all__ = ["box_pairs", "box_pair_chunks", "PointTree", "CurveTree"]
+__all__ = ["box_pairs", "box_pair_chunks", "box_overlap", "PointTree", "CurveTree"]
 
 
 def _columns(boxes):
@@ -78,8 +78,15 @@ def _grid_cell(a, b, origin, extent, cell):
     return cell, ranges_a, ranges_b
 
 
-def _overlap(a, b, i, j):
-    """Whether boxes ``a[i]`` and ``b[j]`` (four columns each) overlap, touching counts, shape (K,)."""
+def box_overlap(a, b, i, j):
+    """Whether boxes ``a[i]`` and ``b[j]`` overlap, touching counts, shape (K,).
+
+    Parameters
+    ----------
+    a, b : sequence of four ndarray, shape (A,) and (B,)
+        Columns ``xmin, ymin, xmax, ymax``.
+    i, j : ndarray of int, shape (K,)
+    """
     keep = np.take(a[0], i) <= np.take(b[2], j)
     keep &= np.take(b[0], j) <= np.take(a[2], i)
     keep &= np.take(a[1], i) <= np.take(b[3], j)
@@ -147,7 +154,7 @@ def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active
         at_entry = entry[owner]
         i = own_a[at_entry]
         j = own_b[lo[at_entry] + local]
-        keep = _overlap(a, b, i, j)
+        keep = box_overlap(a, b, i, j)
         if same:
             keep &= i < j
         code = np.unique(i[keep] * n_b + j[keep])

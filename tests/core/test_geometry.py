@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 from shapes import circle, distance_to_polyline
 
 from ballmorph_core.ballmap.onemap import OneWayMap
-from ballmorph_core.geometry import polyline, projection
+from ballmorph_core.geometry import intersections, polyline, projection
 from ballmorph_core.geometry.circles import circumcircles
 from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, matched_hits, self_crossings
 from ballmorph_core.geometry.polyline import (
@@ -539,6 +539,27 @@ def test_crossing_budget_stops_a_crowded_pair_only():
     assert budget.crowded.tolist() == [True, False]
     assert np.sum(budget.pair == 0) == 0
     np.testing.assert_array_equal(budget.s_a, everything.s_a[everything.pair == 1])
+
+
+@given(st.integers(0, 2**32 - 1), st.sampled_from([16, 1 << 18]))
+@settings(max_examples=30)
+def test_candidates_are_the_edge_pairs_of_each_pair_whose_boxes_overlap(seed, budget):
+    # Curves of 1 to 30 points (shorter and longer than a run of boxed edges), open and closed;
+    # a small budget makes many runs of the grid.
+    rng = np.random.default_rng(seed)
+    sizes = rng.integers(1, 30, (2, 4))
+    closed = rng.random(4) < 0.5
+    A, B = (Ragged.from_list([np.cumsum(rng.normal(0, 0.3, (n, 2)), axis=0) for n in row], closed) for row in sizes)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(intersections, "PAIR_BUDGET", budget)
+        ga, gb, crowded = intersections._candidates(A, B, None, np.ones(4), None)
+    ea, eb = np.flatnonzero(A.nxt >= 0), np.flatnonzero(B.nxt >= 0)
+    box = [
+        np.c_[np.minimum(r.pts[e], r.pts[e] + r.edge[e]), np.maximum(r.pts[e], r.pts[e] + r.edge[e])]
+        for r, e in ((A, ea), (B, eb))
+    ]
+    want = [(ea[i], eb[j]) for i, j in _overlapping(*box) if A.owner[ea[i]] == B.owner[eb[j]]]
+    assert list(zip(ga.tolist(), gb.tolist())) == want and not crowded.any()
 
 
 def test_batched_crossings_are_the_crossings_of_each_pair():
