@@ -307,9 +307,8 @@ def _open_area(pieces):
     """
     a, nxt = pieces.pts, pieces.nxt
     cross = np.where(nxt >= 0, a[:, 0] * a[np.maximum(nxt, 0), 1] - a[:, 1] * a[np.maximum(nxt, 0), 0], 0.0)
-    area = np.zeros(len(pieces))
-    np.add.at(area, pieces.owner, cross)
-    return 0.5 * area
+    # Per-piece sums in vertex order (bincount adds as np.add.at does, at a fraction of its cost).
+    return 0.5 * np.bincount(pieces.owner, weights=cross, minlength=len(pieces))
 
 
 def _piece_setups(R, Q, pair, sp0, sp1, sq0, sq1, scale):
@@ -330,8 +329,13 @@ def _piece_setups(R, Q, pair, sp0, sp1, sq0, sq1, scale):
 def _whole_setups(R, Q, whole, coincident):
     """Setups of pairs morphed whole: coincident curves, or nested loops (inner gap side outward)."""
     setups = []
-    areas = R.signed_areas()
-    p_inner = Q.contains(R.pts[R.offsets[:-1]], np.arange(len(R)))
+    if not len(whole):
+        return setups
+    # Only the whole pairs' areas and starts (each curve's own sums and tests: the same values).
+    areas = np.zeros(len(R))
+    areas[whole] = R.take(whole).signed_areas()
+    p_inner = np.zeros(len(R), dtype=bool)
+    p_inner[whole] = Q.contains(R.pts[R.offsets[whole]], whole)
     for c in whole:
         if coincident[c]:
             setups.append(PairSetup(R.curve(c), Q.curve(c), bool(R.closed[c]), 1.0, 1.0, coincident=True))
@@ -373,10 +377,11 @@ def cut_chains(R, Q, events, lensed, whole, coincident, scale):
         [np.c_[gq0, gq1], np.c_[b.s_q0[o], b.s_q1[o]], np.c_[np.zeros(len(whole)), Q.length[whole]]]
     )
     setups = _piece_setups(R, Q, g_pair, gp0, gp1, gq0, gq1, scale)
-    overlap_p = R.pieces(o_pair, b.s_p0[o], b.s_p1[o])
-    setups += [
-        PairSetup(overlap_p.curve(k), overlap_p.curve(k), False, 1.0, 1.0, coincident=True) for k in range(len(o))
-    ]
+    if len(o):
+        overlap_p = R.pieces(o_pair, b.s_p0[o], b.s_p1[o])
+        setups += [
+            PairSetup(overlap_p.curve(k), overlap_p.curve(k), False, 1.0, 1.0, coincident=True) for k in range(len(o))
+        ]
     setups += _whole_setups(R, Q, whole, coincident)
     static = np.r_[np.zeros(len(g_pair), bool), np.ones(len(o), bool), np.zeros(len(whole), bool)]
     order = np.lexsort((key, pair))
