@@ -68,8 +68,9 @@ def _boxes(a0, a1):
 def _edge_boxes(rg, e):
     """Boxes of the edges of ``rg`` starting at vertices ``e`` (K,), as the four columns
     ``xmin, ymin, xmax, ymax`` :func:`~.spatial.box_pair_chunks` takes (no (K, 4) rows)."""
-    x0, y0 = np.take(rg.pts[:, 0], e), np.take(rg.pts[:, 1], e)
-    x1, y1 = x0 + np.take(rg.edge[:, 0], e), y0 + np.take(rg.edge[:, 1], e)
+    # Rows gathered, then split (np.take of a column view would copy the whole column first).
+    (x0, y0), (dx, dy) = np.take(rg.pts, e, axis=0).T, np.take(rg.edge, e, axis=0).T
+    x1, y1 = x0 + dx, y0 + dy
     return np.minimum(x0, x1), np.minimum(y0, y1), np.maximum(x0, x1), np.maximum(y0, y1)
 
 
@@ -165,18 +166,21 @@ def _candidates(A, B, wanted, scale, max_hits):
         Global first-vertex indices of each segment, sorted by ``ga`` then ``gb``.
     crowded : ndarray of bool, shape (C,)
         Pairs left out once their segments met more than ``max_hits`` times (none without it).
+    hits : tuple of ndarray, shape (K,) each
+        :func:`segment_hits` of each pair ``(ok, s, u)``: tested run by run (the hit budget
+        counts them), so not again.
     """
     wanted = np.ones(len(A), dtype=bool) if wanted is None else wanted
     ea = np.flatnonzero((A.nxt >= 0) & wanted[A.owner])
     eb = np.flatnonzero((B.nxt >= 0) & wanted[B.owner])
     crowded, hits = np.zeros(len(A), dtype=bool), np.zeros(len(A), dtype=np.int64)
     if not len(ea) or not len(eb):
-        return np.zeros(0, np.int64), np.zeros(0, np.int64), crowded
+        return _no_candidates(crowded)
     boxes_a, boxes_b = _edge_boxes(A, ea), _edge_boxes(B, eb)
     starts_a, starts_b = _runs_of_edges(A.owner[ea]), _runs_of_edges(B.owner[eb])
     owner_a, owner_b = A.owner[ea[starts_a]], B.owner[eb[starts_b]]
     active = np.ones(len(starts_a), dtype=bool)
-    found_a, found_b = [], []
+    found = []
     # Each pair of runs is tested as up to _EDGES_PER_BOX ** 2 pairs of edges: the same memory.
     budget = PAIR_BUDGET // _EDGES_PER_BOX**2
     runs = box_pair_chunks(_run_boxes(boxes_a, starts_a), _run_boxes(boxes_b, starts_b), budget=budget, active=active)
@@ -187,28 +191,33 @@ def _candidates(A, B, wanted, scale, max_hits):
         # Each pair once (an edge is in one run), sorted by i then j: runs of runs follow A.
         code = np.sort(i[keep] * len(eb) + j[keep])
         ga, gb = np.take(ea, code // len(eb)), np.take(eb, code % len(eb))
-        found_a.append(ga)
-        found_b.append(gb)
+        pair = A.owner[ga]
+        found.append((ga, gb, *_hits_of(A, B, ga, gb, scale[pair])))
         if max_hits is None:
             continue
-        pair = A.owner[ga]
-        ok, _, _ = _hits_of(A, B, ga, gb, scale[pair])
-        hits += np.bincount(pair[ok], minlength=len(A))
+        hits += np.bincount(pair[found[-1][2]], minlength=len(A))
         # Enough is known of these pairs: their remaining segments are not searched.
         crowded |= hits > max_hits
         active &= ~crowded[owner_a]
-    if not found_a:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64), crowded
-    ga, gb = np.concatenate(found_a), np.concatenate(found_b)
+    if not found:
+        return _no_candidates(crowded)
+    ga, gb, ok, sa, sb = (np.concatenate(column) for column in zip(*found))
     keep = ~crowded[A.owner[ga]]
-    return ga[keep], gb[keep], crowded
+    return ga[keep], gb[keep], crowded, (ok[keep], sa[keep], sb[keep])
 
 
-def _crossings_of(A, B, ga, gb, scale):
-    """The crossings among candidate segment pairs (see :func:`batch_crossings`)."""
+def _no_candidates(crowded):
+    """:func:`_candidates`' answer without a candidate."""
+    empty = np.zeros(0, np.int64)
+    return empty, empty, crowded, (np.zeros(0, bool), np.zeros(0), np.zeros(0))
+
+
+def _crossings_of(A, B, ga, gb, hits, scale):
+    """The crossings among candidate segment pairs whose :func:`segment_hits` are ``hits``
+    (see :func:`batch_crossings`)."""
+    ok, sa, sb = hits
+    ga, gb, sa, sb = ga[ok], gb[ok], sa[ok], sb[ok]
     pair = A.owner[ga]
-    ok, sa, sb = _hits_of(A, B, ga, gb, scale[pair])
-    ga, gb, sa, sb, pair = ga[ok], gb[ok], sa[ok], sb[ok], pair[ok]
     s_a = A.s[ga] + sa * A.length_of_edge[ga]
     s_b = B.s[gb] + sb * B.length_of_edge[gb]
     slack = tol.COINCIDENT * scale[pair]
@@ -346,8 +355,8 @@ def batch_crossings(A, B, scale, wanted=None, overlap_reach=None, max_hits=None)
         Only with ``overlap_reach``: the pairs whose curves may overlap somewhere (never a
         crowded pair).
     """
-    ga, gb, crowded = _candidates(A, B, wanted, scale, max_hits)
-    found = _crossings_of(A, B, ga, gb, scale)
+    ga, gb, crowded, hits = _candidates(A, B, wanted, scale, max_hits)
+    found = _crossings_of(A, B, ga, gb, hits, scale)
     found.crowded = crowded
     if overlap_reach is None:
         return found

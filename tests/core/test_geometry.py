@@ -9,7 +9,14 @@ from shapes import circle, distance_to_polyline
 from ballmorph_core.ballmap.onemap import OneWayMap
 from ballmorph_core.geometry import intersections, polyline, projection
 from ballmorph_core.geometry.circles import circumcircles
-from ballmorph_core.geometry.intersections import batch_crossings, crossings, is_simple, matched_hits, self_crossings
+from ballmorph_core.geometry.intersections import (
+    batch_crossings,
+    crossings,
+    is_simple,
+    matched_hits,
+    segment_hits,
+    self_crossings,
+)
 from ballmorph_core.geometry.polyline import (
     COARSEN_RATIO,
     already_clean,
@@ -552,7 +559,7 @@ def test_candidates_are_the_edge_pairs_of_each_pair_whose_boxes_overlap(seed, bu
     A, B = (Ragged.from_list([np.cumsum(rng.normal(0, 0.3, (n, 2)), axis=0) for n in row], closed) for row in sizes)
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(intersections, "PAIR_BUDGET", budget)
-        ga, gb, crowded = intersections._candidates(A, B, None, np.ones(4), None)
+        ga, gb, crowded, hits = intersections._candidates(A, B, None, np.ones(4), None)
     ea, eb = np.flatnonzero(A.nxt >= 0), np.flatnonzero(B.nxt >= 0)
     box = [
         np.c_[np.minimum(r.pts[e], r.pts[e] + r.edge[e]), np.maximum(r.pts[e], r.pts[e] + r.edge[e])]
@@ -560,6 +567,8 @@ def test_candidates_are_the_edge_pairs_of_each_pair_whose_boxes_overlap(seed, bu
     ]
     want = [(ea[i], eb[j]) for i, j in _overlapping(*box) if A.owner[ea[i]] == B.owner[eb[j]]]
     assert list(zip(ga.tolist(), gb.tolist())) == want and not crowded.any()
+    for got, alone in zip(hits, segment_hits(A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb], 1.0)):
+        np.testing.assert_array_equal(got, alone)
 
 
 def test_batched_crossings_are_the_crossings_of_each_pair():
