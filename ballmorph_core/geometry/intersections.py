@@ -124,12 +124,11 @@ def _first_of_each(pair, s_a, s_b, scale):
     return np.sort(first)
 
 
-def _runs_of_edges(owner):
-    """Where runs of up to :data:`_EDGES_PER_BOX` consecutive edges of one curve start, for
-    edges listed curve by curve (``owner`` sorted, shape (K,)), shape (G,)."""
-    first = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
-    local = np.arange(len(owner)) - np.repeat(first, np.diff(np.r_[first, len(owner)]))
-    return np.flatnonzero(local % _EDGES_PER_BOX == 0)
+def _runs_of_edges(rg, e):
+    """Where, in the edges ``e`` of ``rg`` (every edge of some curves, curve by curve, shape (K,)),
+    runs of up to :data:`_EDGES_PER_BOX` consecutive edges of one curve start, shape (G,)."""
+    # A curve's edges start at its consecutive vertices, from its first.
+    return np.flatnonzero((e - rg.offsets[rg.owner[e]]) % _EDGES_PER_BOX == 0)
 
 
 def _run_boxes(boxes, starts):
@@ -177,7 +176,7 @@ def _candidates(A, B, wanted, scale, max_hits):
     if not len(ea) or not len(eb):
         return _no_candidates(crowded)
     boxes_a, boxes_b = _edge_boxes(A, ea), _edge_boxes(B, eb)
-    starts_a, starts_b = _runs_of_edges(A.owner[ea]), _runs_of_edges(B.owner[eb])
+    starts_a, starts_b = _runs_of_edges(A, ea), _runs_of_edges(B, eb)
     owner_a, owner_b = A.owner[ea[starts_a]], B.owner[eb[starts_b]]
     active = np.ones(len(starts_a), dtype=bool)
     found = []
@@ -241,10 +240,14 @@ def _to_segments(points, a0, d):
 def _lying_along(A, B, ga, gb, reach):
     """Pairs with two candidate segments nearly parallel and within ``reach`` of each other: the
     only pairs whose curves may overlap, shape (C,) of bool."""
-    a0, da, b0, db = A.pts[ga], A.edge[ga], B.pts[gb], B.edge[gb]
+    da, db = np.take(A.edge, ga, axis=0), np.take(B.edge, gb, axis=0)
     sine = np.abs(da[:, 0] * db[:, 1] - da[:, 1] * db[:, 0]) / np.maximum(
         A.length_of_edge[ga] * B.length_of_edge[gb], 1e-300
     )
+    # Only the nearly parallel ones (few) are measured.
+    parallel = np.flatnonzero(sine <= _PARALLEL_SINE)
+    ga, gb, da, db = ga[parallel], gb[parallel], da[parallel], db[parallel]
+    a0, b0 = A.pts[ga], B.pts[gb]
     gap = np.minimum.reduce(
         [
             _to_segments(b0, a0, da),
@@ -253,7 +256,7 @@ def _lying_along(A, B, ga, gb, reach):
             _to_segments(a0 + da, b0, db),
         ]
     )
-    along = (sine <= _PARALLEL_SINE) & (gap <= reach[A.owner[ga]])
+    along = gap <= reach[A.owner[ga]]
     return np.bincount(A.owner[ga][along], minlength=len(A)) > 0
 
 
