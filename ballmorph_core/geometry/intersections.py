@@ -24,7 +24,7 @@ _PARALLEL_SINE = 1e-3
 
 #: Consecutive edges of a curve the grid boxes together: its work goes by boxes, and the edges
 #: of two overlapping runs are few to test against each other.
-_EDGES_PER_BOX = 4
+_EDGES_PER_BOX = 6
 
 #: :func:`matched_hits` tests a segment of A changing sides against this many segments of B on
 #: either side of the matched one (the match is off by a few edges where the curves stray).
