@@ -305,8 +305,11 @@ def _open_area(pieces):
     For two pieces sharing both endpoints, ``_open_area(P) - _open_area(Q)`` is the signed area
     of the loop P followed by Q backwards.
     """
-    a, nxt = pieces.pts, pieces.nxt
-    cross = np.where(nxt >= 0, a[:, 0] * a[np.maximum(nxt, 0), 1] - a[:, 1] * a[np.maximum(nxt, 0), 0], 0.0)
+    # A piece's vertices are consecutive rows: each with the next, but a piece's last.
+    x, y = pieces.pts[:, 0], pieces.pts[:, 1]
+    cross = np.zeros(len(x))
+    np.subtract(x[:-1] * y[1:], y[:-1] * x[1:], out=cross[:-1])
+    cross[pieces.offsets[1:] - 1] = 0.0
     # Per-piece sums in vertex order (bincount adds as np.add.at does, at a fraction of its cost).
     return 0.5 * np.bincount(pieces.owner, weights=cross, minlength=len(pieces))
 

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from ballmorph_core.drawing.splitting import cross, find_events
+from ballmorph_core.drawing.splitting import _open_area, cross, find_events
 from ballmorph_core.geometry.ragged import Ragged
 
 from .shapes import circle
@@ -40,3 +40,14 @@ def test_cross_is_the_grid_search_whether_the_matched_look_finds_the_crossing_or
     searched = find_events(R, Q, scale, np.full(4, 0.01), everything).count > 0
     np.testing.assert_array_equal(cross(R, Q, scale, everything), searched)
     np.testing.assert_array_equal(searched, [True, True, False, False])
+
+
+def test_open_area_of_a_piece_and_its_chord_is_the_shoelace_area():
+    # The upper half of a unit circle against its diameter, then a square's three sides against
+    # its fourth (backwards: the other orientation), batched one after the other.
+    half = circle(1.0, 40)[:21]
+    square = np.array([[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]])
+    pieces = Ragged.from_list([half, square], [False, False])
+    chords = Ragged.from_list([half[[0, -1]], square[[0, -1]]], [False, False])
+    area = _open_area(pieces) - _open_area(chords)
+    np.testing.assert_allclose(area, [0.5 * 20 * np.sin(np.pi / 20), -1.0], rtol=1e-12)
