@@ -165,8 +165,7 @@ def cross(R, Q, scale, wanted):
     end_eps = tol.SHARED_ENDPOINT * scale
     # Near pairs mostly cross where they lie along each other: one such hit answers for a pair
     # (whatever its count), so only the others are searched on the grid.
-    pair, edge, sa = matched_hits(R, Q, scale, wanted)
-    s_a = R.s[edge] + sa * R.length_of_edge[edge]
+    pair, s_a = matched_hits(R, Q, scale, wanted)
     found = np.bincount(pair[_interior(R, pair, s_a, end_eps)], minlength=len(R)) > 0
     rest = wanted & ~found
     if not rest.any():

@@ -74,6 +74,12 @@ def _edge_boxes(rg, e):
     return np.minimum(x0, x1), np.minimum(y0, y1), np.maximum(x0, x1), np.maximum(y0, y1)
 
 
+def _arc_length(rg, e, frac):
+    """Arc length along its curve of the point at fraction ``frac`` of edge ``e`` of ``rg``
+    (global first-vertex indices), shape (K,)."""
+    return rg.s[e] + frac * rg.length_of_edge[e]
+
+
 def _hits_of(A, B, ga, gb, scale):
     """:func:`segment_hits` of the edges of A and B starting at vertices ``ga`` and ``gb`` (K,)."""
     return segment_hits(
@@ -217,8 +223,7 @@ def _crossings_of(A, B, ga, gb, hits, scale):
     ok, sa, sb = hits
     ga, gb, sa, sb = ga[ok], gb[ok], sa[ok], sb[ok]
     pair = A.owner[ga]
-    s_a = A.s[ga] + sa * A.length_of_edge[ga]
-    s_b = B.s[gb] + sb * B.length_of_edge[gb]
+    s_a, s_b = _arc_length(A, ga, sa), _arc_length(B, gb, sb)
     slack = tol.COINCIDENT * scale[pair]
     s_a = np.where(A.closed[pair] & (s_a >= A.length[pair] - slack), 0.0, s_a)
     s_b = np.where(B.closed[pair] & (s_b >= B.length[pair] - slack), 0.0, s_b)
@@ -299,10 +304,11 @@ def matched_hits(A, B, scale, wanted):
 
     Returns
     -------
-    pair, edge_a : ndarray of int, shape (K,)
-        The pair of each hit and the global first-vertex index of its segment of A.
-    sa : ndarray, shape (K,)
-        Where along that segment, in [0, 1].
+    pair : ndarray of int, shape (K,)
+        The pair of each hit.
+    s_a : ndarray, shape (K,)
+        Its arc length along A, as :func:`batch_crossings` finds it (before a loop's end is put
+        at its start).
     """
     searched = wanted & (B.n_edges > 0)
     va = np.flatnonzero(searched[A.owner])
@@ -323,11 +329,10 @@ def matched_hits(A, B, scale, wanted):
     local = np.repeat(e[turn], len(reach)) - first + np.tile(reach, len(turn))
     local = np.where(B.closed[pair], local % np.maximum(n_edges, 1), np.clip(local, 0, n_edges - 1))
     gb = first + local
-    # The grid's own boxes and overlap test (touching counts): only its candidates.
-    box_a, box_b = _edge_boxes(A, ga), _edge_boxes(B, gb)
     ok, sa, _ = _hits_of(A, B, ga, gb, scale[pair])
-    ok &= (box_a[0] <= box_b[2]) & (box_b[0] <= box_a[2]) & (box_a[1] <= box_b[3]) & (box_b[1] <= box_a[3])
-    return pair[ok], ga[ok], sa[ok]
+    # The grid's own boxes and overlap test (touching counts): only its candidates.
+    ok &= box_overlap(_edge_boxes(A, ga), _edge_boxes(B, gb))
+    return pair[ok], _arc_length(A, ga[ok], sa[ok])
 
 
 def batch_crossings(A, B, scale, wanted=None, overlap_reach=None, max_hits=None):

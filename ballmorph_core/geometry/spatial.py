@@ -13,9 +13,9 @@ __all__ = ["box_pairs", "box_pair_chunks", "box_overlap", "PointTree", "CurveTre
 
 
 def _columns(boxes):
-    """``xmin, ymin, xmax, ymax`` of boxes given as rows (an (N, 4) array) or as four columns,
-    each a contiguous float64 array of shape (N,) (the grid gathers single values from them)."""
-    if isinstance(boxes, (tuple, list)):
+    """``xmin, ymin, xmax, ymax`` of boxes given as rows (an (N, 4) array) or as a tuple of four
+    columns, each a contiguous float64 array of shape (N,) (the grid gathers single values)."""
+    if isinstance(boxes, tuple):
         return [np.ascontiguousarray(c, dtype=np.float64).reshape(-1) for c in boxes]
     rows = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
     return [np.ascontiguousarray(rows[:, k]) for k in range(4)]
@@ -78,19 +78,25 @@ def _grid_cell(a, b, origin, extent, cell):
     return cell, ranges_a, ranges_b
 
 
-def box_overlap(a, b, i, j):
-    """Whether boxes ``a[i]`` and ``b[j]`` overlap, touching counts, shape (K,).
+def box_overlap(a, b, i=None, j=None):
+    """Whether boxes ``a[i]`` and ``b[j]`` overlap, touching counts (the grid's test), shape (K,).
 
     Parameters
     ----------
     a, b : sequence of four ndarray, shape (A,) and (B,)
         Columns ``xmin, ymin, xmax, ymax``.
-    i, j : ndarray of int, shape (K,)
+    i, j : ndarray of int, shape (K,), optional
+        The boxes compared; default box ``k`` of ``a`` with box ``k`` of ``b``.
     """
-    keep = np.take(a[0], i) <= np.take(b[2], j)
-    keep &= np.take(b[0], j) <= np.take(a[2], i)
-    keep &= np.take(a[1], i) <= np.take(b[3], j)
-    keep &= np.take(b[1], j) <= np.take(a[3], i)
+
+    def side(boxes, rows, k):
+        return boxes[k] if rows is None else np.take(boxes[k], rows)
+
+    # One comparison at a time: each gathered column is dropped (and its memory reused) at once.
+    keep = side(a, i, 0) <= side(b, j, 2)
+    keep &= side(b, j, 0) <= side(a, i, 2)
+    keep &= side(a, i, 1) <= side(b, j, 3)
+    keep &= side(b, j, 1) <= side(a, i, 3)
     return keep
 
 
@@ -99,9 +105,9 @@ def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active
 
     Parameters
     ----------
-    boxes_a : ndarray, shape (A, 4), or sequence of four ndarray, shape (A,)
+    boxes_a : ndarray, shape (A, 4), or tuple of four ndarray, shape (A,)
         Rows ``(xmin, ymin, xmax, ymax)``, or those four columns (no (A, 4) array made).
-    boxes_b : ndarray, shape (B, 4), or sequence of four ndarray, shape (B,), optional
+    boxes_b : ndarray, shape (B, 4), or tuple of four ndarray, shape (B,), optional
         If omitted, pairs within ``boxes_a`` are returned with ``i < j``.
     cell : float, optional
         Grid cell size; default the median box size.

@@ -610,10 +610,9 @@ def test_matched_hits_are_hits_the_grid_search_finds(seed):
     A, B = Ragged.from_list(ps, closed), Ragged.from_list(qs, closed)
     scale = pair_scales(A, B)
     wanted = np.array([True, True, True, True, True])
-    pair, edge, sa = matched_hits(A, B, scale, wanted)
+    pair, s_a = matched_hits(A, B, scale, wanted)
     found = batch_crossings(A, B, scale)
-    points = A.pts[edge] + sa[:, None] * A.edge[edge]
-    for c, x in zip(pair, points):
+    for c, x in zip(pair, A.point_at(pair, s_a)):
         assert np.min(np.linalg.norm(found.points[found.pair == c] - x, axis=1)) <= 1e-12
     # Lying along each other: the loops (whatever their starts) and the arcs cross where they
     # match; the loop against its reversed copy may be missed (it is then searched on the
