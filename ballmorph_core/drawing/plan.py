@@ -237,8 +237,8 @@ class InbetweenPlan:
         live_a = np.array([i for i in live_a if i not in {a for a, _ in forced}], dtype=np.int64)
         live_b = np.array([j for j in live_b if j not in {b for _, b in forced}], dtype=np.int64)
         pairing = match_strokes(
-            [ka.rg.curve(i) for i in live_a],
-            [kb.rg.curve(j) for j in live_b],
+            _live_strokes(ka.rg, live_a),
+            _live_strokes(kb.rg, live_b),
             ka.rg.closed[live_a],
             kb.rg.closed[live_b],
             mode=matching,
@@ -388,6 +388,14 @@ class _Samples:
         """Give ``parts`` (the plan's samples at other times) the kept sources; ``(along, values)``."""
         parts.u_a, parts.u_b, parts.stroke_a, parts.stroke_b = self.sources
         return self.along, self.values
+
+
+def _live_strokes(rg, live):
+    """The strokes ``live`` (ndarray of int) of a key's Ragged ``rg``, for matching: the Ragged
+    itself when that is all of them (no per-stroke list to batch again), else a list of arrays."""
+    if len(live) == len(rg):
+        return rg
+    return [rg.curve(i) for i in live]
 
 
 def _mark_hints(frame, marks):
