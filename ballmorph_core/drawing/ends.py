@@ -111,10 +111,76 @@ class Ends:
 def _ends_onto(A, B, reach, rows):
     """Where the first and the last ends of curves ``rows`` of A lie along B: arc length on B,
     distance (shapes (2, K): first ends, then last; ``reach`` per curve of A), both ends in one
-    search of B's edges."""
+    search of the stretches of B's edges that may lie within reach (:func:`_reachable`)."""
     ends = np.take(A.pts, np.r_[A.offsets[rows], A.offsets[rows + 1] - 1], axis=0)
-    dist, edge, frac = nearest_within(ends, np.r_[rows, rows], B, np.r_[reach[rows], reach[rows]])
+    first, count = (np.concatenate(v) for v in _reachable(ends.reshape(2, -1, 2), rows, B, reach[rows]))
+    curve, r = np.r_[rows, rows], np.r_[reach[rows], reach[rows]]
+    dist, edge, frac = np.full(len(ends), np.inf), np.zeros(len(ends), np.int64), np.zeros(len(ends))
+    some = np.flatnonzero(count >= 2)
+    if len(some):
+        # Each query searches its own stretch, a curve of its own: the same edges (the same
+        # differences of the same points), the same arithmetic and, in the same order, the
+        # same ties as a search of its whole curve.
+        start = B.offsets[curve[some]] + first[some]
+        owner, local = ragged_arange(count[some])
+        stretch = Ragged(
+            np.take(B.pts, start[owner] + local, axis=0),
+            np.r_[0, np.cumsum(count[some])],
+            B.closed[curve[some]] & (count[some] == B.n[curve[some]]),
+        )
+        d, e, f = nearest_within(ends[some], np.arange(len(some)), stretch, r[some])
+        found = np.isfinite(d)
+        dist[some], frac[some] = d, f
+        edge[some[found]] = (start[owner] + local)[e[found]]
     return (B.s[edge] + frac * B.length_of_edge[edge]).reshape(2, -1), dist.reshape(2, -1)
+
+
+#: Both vertices of an edge within reach ``r`` of a point lie within ``r`` plus its length of
+#: it: the stretch searched runs from the first to the last vertex within this many times
+#: ``r`` plus the curve's longest edge (a margin for round-off, however large the coordinates).
+_STRETCH_MARGIN = 2.0
+
+
+def _reachable(points, curves, B, reach):
+    """The stretch of its curve of B each query searches (see ``_STRETCH_MARGIN``): it holds
+    every edge within reach (a loop's closing edge only in a stretch of the whole loop).
+
+    Parameters
+    ----------
+    points : ndarray, shape (J, K, 2)
+        ``J`` queries per curve.
+    curves : ndarray of int, shape (K,)
+        Their curves of B (with points).
+    B : Ragged
+    reach : ndarray, shape (K,)
+
+    Returns
+    -------
+    first, count : ndarray of int, shape (J, K)
+        The stretch's first vertex (local to its curve) and its vertex count (below 2 when
+        no edge lies within reach).
+    """
+    n = B.n[curves]
+    owner, local = ragged_arange(n)
+    v = B.offsets[curves][owner] + local
+    x, y = np.take(B.pts[:, 0], v), np.take(B.pts[:, 1], v)
+    longest = np.maximum.reduceat(np.take(B.length_of_edge, v), np.cumsum(n) - n)
+    span = reach + longest
+    bound = _STRETCH_MARGIN * span + tol.ROUNDOFF * (np.abs(points).max(axis=(0, 2)) + span)
+    bound2 = np.repeat(np.square(bound), n)
+    first, count = np.zeros(points.shape[:2], np.int64), np.zeros(points.shape[:2], np.int64)
+    for j, p in enumerate(points):
+        dx, dy = x - np.repeat(p[:, 0], n), y - np.repeat(p[:, 1], n)
+        near = np.flatnonzero(dx * dx + dy * dy <= bound2)
+        if not len(near):
+            continue
+        # Near vertices come curve by curve, in order: each curve's first and last of them.
+        k = owner[near]
+        opens, closes = np.r_[True, k[1:] != k[:-1]], np.r_[k[1:] != k[:-1], True]
+        q = k[opens]
+        first[j, q] = local[near[opens]]
+        count[j, q] = local[near[closes]] - first[j, q] + 1
+    return first, count
 
 
 def _along(s_on_other, dist, length_other, end_tol, which):
