@@ -302,16 +302,19 @@ class _SlidingPaths:
 
     @classmethod
     def join(cls, parts):
-        """Many of them (``(paths, kept points)`` each) as one: one evaluation for them all."""
+        """Many of them (``(paths, kept points)`` each, the points as indices) as one: one
+        evaluation for them all."""
         curves = [c for paths, _ in parts for c in paths._curves]
-        ends = np.cumsum([0] + [len(paths._curves) for paths, _ in parts])
-        columns = (
-            np.concatenate([first + paths._curve[keep] for first, (paths, keep) in zip(ends, parts)]),
-            *(np.concatenate([getattr(paths, name)[keep] for paths, keep in parts]) for name in ("_s", "_attach")),
-            np.concatenate([paths._towards[keep] for paths, keep in parts]).reshape(-1, 2),
-            np.concatenate([paths._grow[keep] for paths, keep in parts]),
-        )
-        return cls(curves, *columns)
+        first = np.cumsum([0] + [len(paths._curves) for paths, _ in parts[:-1]])
+        # Every part's columns joined, then their kept points taken at once (hundreds of parts).
+        sizes = np.array([len(paths._s) for paths, _ in parts], dtype=np.int64)
+        kept = np.concatenate([keep + start for (_, keep), start in zip(parts, np.cumsum(sizes) - sizes)])
+        curve = np.concatenate([paths._curve for paths, _ in parts]) + np.repeat(first, sizes)
+        columns = [
+            np.concatenate([getattr(paths, name) for paths, _ in parts])
+            for name in ("_s", "_attach", "_towards", "_grow")
+        ]
+        return cls(curves, curve[kept], *(np.take(column, kept, axis=0) for column in columns))
 
     def __len__(self):
         return len(self._s)
@@ -372,12 +375,11 @@ def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
     """
     count = max(int(np.ceil((s1 - s0) / max(spacing, 1e-300))) + 1, 2)
     s, u = _even(s0, s1, count), _even(0.0, 1.0, count)
-    paths = _SlidingPaths(
-        [curve],
-        np.zeros(count, np.int64),
-        s,
-        np.full(count, float(attach)),
-        np.broadcast_to(np.asarray(towards, dtype=np.float64), (count, 2)),
-        np.full(count, bool(grow)),
-    )
+    # Filled in place rather than by np.full and np.broadcast_to (a drawing makes hundreds of
+    # overhangs: their Python wrappers cost several times the filling).
+    columns = np.empty(count), np.empty((count, 2)), np.empty(count, dtype=bool)
+    columns[0].fill(float(attach))
+    columns[1][:] = towards
+    columns[2].fill(bool(grow))
+    paths = _SlidingPaths([curve], np.zeros(count, np.int64), s, *columns)
     return PathMorph("overhang", False, paths, u, u.copy())
