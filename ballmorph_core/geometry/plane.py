@@ -36,6 +36,18 @@ class Plane:
         rel = np.asarray(points, dtype=np.float64).reshape(-1, 3) - self.origin
         return np.stack([rel @ self.u, rel @ self.v], axis=1), rel @ self.normal
 
+    def farthest(self, points):
+        """The largest distance of points (N, 3), N > 0, from the plane (float).
+
+        On a world axis plane (the normal a unit axis) it is the largest ``|coordinate -
+        origin|`` along the axis: the distances ``|rel @ normal|`` are exactly those (products
+        by 0 and 1, sums with zeros), without the projection."""
+        points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+        axis = np.flatnonzero(self.normal)
+        if len(axis) == 1 and abs(self.normal[axis[0]]) == 1.0:
+            return float(np.abs(points[:, axis[0]] - self.origin[axis[0]]).max())
+        return float(np.abs(self.to_2d(points)[1]).max())
+
     def to_3d(self, coords, offsets=None, out=None):
         """Lift coordinates (N, 2) (and optional normal offsets (N,)) back to 3D, shape (N, 3)
         (into ``out`` when given)."""

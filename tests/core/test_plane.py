@@ -99,3 +99,16 @@ def test_the_axis_plane_shortcut_takes_exact_axis_planes_of_spread_points_only()
     assert plane._on_axis_plane(pts, pts.mean(axis=0)) is None
     pts[:, 1], pts[:, 2] = 2.0, pts[:, 0] * 0.3  # collinear
     assert plane._on_axis_plane(pts, pts.mean(axis=0)) is None
+
+
+@pytest.mark.parametrize("tilt", [0.0, 1e-5, 0.3])
+def test_the_farthest_point_is_the_projections_farthest_bit_for_bit(tilt):
+    # Points a little off the front canvas (its frame, or a tilted fit): the largest distance
+    # read off the axis is the projection's.
+    rng = np.random.default_rng(3)
+    pts = rng.normal(size=(300, 3)) * [2.0, 1e-4, 1.0]
+    pts[:, 1] += tilt * pts[:, 0] + 0.25
+    pts[7, 1] = -0.0
+    p = fit_plane(pts)
+    assert p.farthest(pts) == float(np.abs(p.to_2d(pts)[1]).max())
+    assert (np.flatnonzero(p.normal).size == 1) == (tilt < 1e-3)  # both roads taken
