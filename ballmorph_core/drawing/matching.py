@@ -330,38 +330,60 @@ def _shared_ends(a, b, spread):
     return shared(0, 0) + shared(-1, -1), shared(0, -1) + shared(-1, 0)
 
 
+class _LoopFits:
+    """Residuals of loop pairs over every cyclic shift of B's samples (by FFT), for any pairs.
+
+    Parameters
+    ----------
+    a, b : ndarray of complex, shape (L_a, m), (L_b, m)
+        Samples centred on their own centroids.
+    sign_a, sign_b : ndarray, shape (L_a,), (L_b,), optional
+        The loops' areas' signs: B's loop is read backwards where the two run opposite ways
+        (each pair's correlation is computed once, in the direction it needs). Default: all
+        read as given.
+
+    Each pair's residual is computed on its own (its spectra, product and inverse transform
+    are its own rows): the same values however many pairs are asked at once, so a table can
+    fit only the pairs whose cost may matter.
+    """
+
+    def __init__(self, a, b, sign_a=None, sign_b=None):
+        self._fa = np.conj(np.fft.fft(a, axis=1))
+        self._na = np.sum(np.abs(a) ** 2, axis=1)
+        # B read as given and backwards (the norm summed in the order it is read).
+        self._fb = [np.fft.fft(v, axis=1) for v in (b, _backwards(b))]
+        self._nb = [np.sum(np.abs(v) ** 2, axis=1) for v in (b, _backwards(b))]
+        self._sign_a = np.ones(len(a)) if sign_a is None else sign_a
+        self._sign_b = np.ones(len(b)) if sign_b is None else sign_b
+
+    def residuals(self, i, j):
+        """Residuals of pairs ``(i[k], j[k])`` (rows of ``a`` and ``b``), shape (K,)."""
+        back = self._sign_a[i] * self._sign_b[j] < 0
+        fb, nb = np.take(self._fb[0], j, axis=0), np.take(self._nb[0], j)
+        fb[back], nb[back] = self._fb[1][j[back]], self._nb[1][j[back]]
+        norms = np.maximum(np.take(self._na, i) * nb, 1e-300)
+        best = np.empty(len(i))
+        m = self._fa.shape[1]
+        for sl in budget_slices(np.full(len(i), m), _CHUNK):
+            corr = np.fft.ifft(np.take(self._fa, i[sl], axis=0) * fb[sl], axis=1)
+            best[sl] = np.abs(corr).max(axis=1) ** 2
+        return np.clip(1.0 - best / norms, 0.0, 1.0)
+
+
 def _loop_shapes(a, b):
-    """Residuals of loop pairs over every cyclic shift of B's samples, shape (L_a, L_b).
+    """Residuals of every loop pair over every cyclic shift of B's samples, shape (L_a, L_b).
 
     ``a`` and ``b`` (complex, centred) run the same way (the caller reversed B's where needed).
     """
-    m = a.shape[1]
-    fa, fb = np.conj(np.fft.fft(a, axis=1)), np.fft.fft(b, axis=1)
-    norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
-    best = np.empty((len(a), len(b)))
-    for sl in budget_slices(np.full(len(a), len(b) * m), _CHUNK):
-        corr = np.fft.ifft(fa[sl, None, :] * fb[None, :, :], axis=2)
-        best[sl] = np.abs(corr).max(axis=2) ** 2
-    return np.clip(1.0 - best / norms, 0.0, 1.0)
+    i, j = (g.ravel() for g in np.meshgrid(np.arange(len(a)), np.arange(len(b)), indexing="ij"))
+    return _LoopFits(a, b).residuals(i, j).reshape(len(a), len(b))
 
 
 def _oriented_loop_shapes(a, b, sign_a, sign_b):
     """:func:`_loop_shapes` of every loop pair, B's loop read backwards where the two run opposite
-    ways (``sign_a``, ``sign_b``: their areas' signs, shapes (L_a,), (L_b,)), shape (L_a, L_b).
-
-    Loops of one sign against B's of the opposite sign are read backwards, every other block
-    forwards: each pair's correlation is computed once, in the direction it needs (the same
-    values as both directions for every pair and a choice after).
-    """
-    out = np.empty((len(a), len(b)))
-    backwards = _backwards(b)
-    for sign in np.unique(sign_a):
-        rows = np.flatnonzero(sign_a == sign)
-        opposite = sign_b * sign < 0
-        for cols, samples in ((np.flatnonzero(~opposite), b), (np.flatnonzero(opposite), backwards)):
-            if len(cols):
-                out[np.ix_(rows, cols)] = _loop_shapes(a[rows], samples[cols])
-    return out
+    ways (``sign_a``, ``sign_b``: their areas' signs, shapes (L_a,), (L_b,)), shape (L_a, L_b)."""
+    i, j = (g.ravel() for g in np.meshgrid(np.arange(len(a)), np.arange(len(b)), indexing="ij"))
+    return _LoopFits(a, b, sign_a, sign_b).residuals(i, j).reshape(len(a), len(b))
 
 
 def _backwards(samples):
@@ -372,10 +394,14 @@ def _backwards(samples):
 class _CostTable:
     """Pair costs of two keys, for any overall motion (see the module notes).
 
+    A loop pair's shape term (its FFT fit, the bulk of the table) is fitted only once a cost
+    asked for may fall below ``MATCH_MAX_COST`` (the other terms alone say when it cannot):
+    a pair never formed needs no exact cost.
+
     Attributes
     ----------
     shape : ndarray, shape (S_a, S_b)
-        ``sqrt(e_ij)``, the similarity-free shape difference.
+        ``sqrt(e_ij)``, the similarity-free shape difference; 0 where not fitted yet.
     """
 
     def __init__(self, key_a, key_b):
@@ -393,21 +419,36 @@ class _CostTable:
         self._open = key_a.open, key_b.open
         self._signs = None  # the loops' areas' signs (0 for open strokes), when both keys have loops
         self._loop = None  # and the keys' loop flags then
-        e = np.minimum(e_f, e_r)
+        self.shape = np.sqrt(np.minimum(e_f, e_r))
+        both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)
+        one_dot = (self.ra[:, None] <= 0) != (self.rb[None, :] <= 0)
+        self.shape = np.where(both_dots, 0.0, np.where(one_dot, DOT_SHAPE, self.shape))
+        self._unfitted = np.zeros(self.shape.shape, dtype=bool)  # loop pairs not fitted yet
         la, lb = np.flatnonzero(key_a.loop), np.flatnonzero(key_b.loop)
         if la.size and lb.size:
             ra = _complex(key_a.ring[la]) - self.ca[la, None]
             rb = _complex(key_b.ring[lb]) - self.cb[lb, None]
             # A loop drawn the other way (its area's sign) is read backwards before fitting.
             sign_a, sign_b = np.sign(key_a.areas()[la]), np.sign(key_b.areas()[lb])
-            e[np.ix_(la, lb)] = _oriented_loop_shapes(ra, rb, sign_a, sign_b)
+            self._loop_fits = _LoopFits(ra, rb, sign_a, sign_b)
+            # Each stroke's row among the loops (-1 for open strokes).
+            self._loop_row = np.full(key_a.count, -1), np.full(key_b.count, -1)
+            self._loop_row[0][la], self._loop_row[1][lb] = np.arange(len(la)), np.arange(len(lb))
+            self._unfitted[np.ix_(la, lb)] = ~(both_dots | one_dot)[np.ix_(la, lb)]
+            self.shape[self._unfitted] = 0.0
             self._signs = np.zeros(key_a.count), np.zeros(key_b.count)
             self._signs[0][la], self._signs[1][lb] = sign_a, sign_b
             self._loop = key_a.loop, key_b.loop
-        self.shape = np.sqrt(e)
-        both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)
-        one_dot = (self.ra[:, None] <= 0) != (self.rb[None, :] <= 0)
-        self.shape = np.where(both_dots, 0.0, np.where(one_dot, DOT_SHAPE, self.shape))
+
+    def _fit(self, rows, cols):
+        """Fit the loop pairs ``(rows[k], cols[k])`` (shapes (K,)) not fitted yet."""
+        todo = self._unfitted[rows, cols]
+        if not todo.any():
+            return
+        rows, cols = rows[todo], cols[todo]
+        e = self._loop_fits.residuals(self._loop_row[0][rows], self._loop_row[1][cols])
+        self.shape[rows, cols] = np.sqrt(e)
+        self._unfitted[rows, cols] = False
 
     def directions(self, turn, rows, cols):
         """Whether B's stroke runs opposite to A's in pairs ``(rows[k], cols[k])`` (shapes (K,)),
@@ -431,9 +472,27 @@ class _CostTable:
         return reverse & (self.ra[rows] > 0) & (self.rb[cols] > 0)
 
     def costs(self, a, b, rows=None, cols=None):
-        """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b); with
-        ``rows`` and ``cols`` (shapes (K,)) those of pairs ``(rows[k], cols[k])`` only, shape
-        (K,) (elementwise: the same values as every pair's)."""
+        """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b): exact
+        where below ``MATCH_MAX_COST``, elsewhere at least that (those of loop pairs not fitted,
+        bounds from the other terms); with ``rows`` and ``cols`` (shapes (K,)) the exact costs
+        of pairs ``(rows[k], cols[k])`` only, shape (K,) (elementwise: the same values as
+        every pair's).
+
+        A cost with its shape term left out is a bound of the cost: the term is not negative
+        and every rounded sum after it grows with it."""
+        if rows is not None:
+            self._fit(rows, cols)
+            return self._costs(a, b, rows, cols)
+        c = self._costs(a, b)
+        may = self._unfitted & (c < MATCH_MAX_COST)
+        if may.any():
+            rows, cols = np.nonzero(may)
+            self._fit(rows, cols)
+            c[rows, cols] = self._costs(a, b, rows, cols)
+        return c
+
+    def _costs(self, a, b, rows=None, cols=None):
+        """:meth:`costs` from the shape terms as they are (fitted or not)."""
         scale = max(abs(a), 1e-300)
         moved = a * self.ca + b
         if rows is None:
@@ -515,7 +574,8 @@ def _best_assignment(table, key_a, key_b, motion=None):
             rows, cols = _assign_within(costs)
             if key_a.valid.sum() == 1 and key_b.valid.sum() == 1:  # alone in both keys: always a pair
                 rows, cols = np.flatnonzero(key_a.valid), np.flatnonzero(key_b.valid)
-            total = _padded_total(costs[rows, cols], key_a.count, key_b.count)
+            # (Exact costs: such a pair may cost more than the table's bounds say.)
+            total = _padded_total(table.costs(*motion, rows, cols), key_a.count, key_b.count)
             if best is None or total < best[0]:
                 best = (total, rows, cols, motion)
             if not len(rows):
