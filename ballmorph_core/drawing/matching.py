@@ -247,8 +247,11 @@ class _Key:
             else:
                 looped = Ragged(opened.pts, opened.offsets, closed[keep])
             self.open[keep] = opened.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
-            ring = looped.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
-            self.ring[keep] = np.where(closed[keep][:, None, None], ring, self.open[keep])
+            if looped is opened:  # no loop: the ring is the open read
+                self.ring[keep] = self.open[keep]
+            else:
+                ring = looped.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
+                self.ring[keep] = np.where(closed[keep][:, None, None], ring, self.open[keep])
             self.length[keep] = looped.length
         return True
 
