@@ -161,10 +161,14 @@ def _reachable(points, curves, B, reach):
         no edge lies within reach).
     """
     n = B.n[curves]
-    owner, local = ragged_arange(n)
-    v = B.offsets[curves][owner] + local
-    x, y = np.take(B.pts[:, 0], v), np.take(B.pts[:, 1], v)
-    longest = np.maximum.reduceat(np.take(B.length_of_edge, v), np.cumsum(n) - n)
+    if len(curves) == len(B) and np.array_equal(curves, np.arange(len(B))):  # every curve: B's own arrays
+        owner, local = B.owner, np.arange(len(B.pts)) - np.repeat(B.offsets[:-1], n)
+        x, y, lengths = B.pts[:, 0], B.pts[:, 1], B.length_of_edge
+    else:
+        owner, local = ragged_arange(n)
+        v = B.offsets[curves][owner] + local
+        x, y, lengths = np.take(B.pts[:, 0], v), np.take(B.pts[:, 1], v), np.take(B.length_of_edge, v)
+    longest = np.maximum.reduceat(lengths, np.cumsum(n) - n)
     span = reach + longest
     bound = _STRETCH_MARGIN * span + tol.ROUNDOFF * (np.abs(points).max(axis=(0, 2)) + span)
     bound2 = np.repeat(np.square(bound), n)
