@@ -415,9 +415,15 @@ class _CostTable:
         self.mixed = key_a.loop[:, None] != key_b.loop[None, :]
         self.dot_spread = DOT_SPREAD * max(key_a.diagonal, key_b.diagonal, 1e-300)
         self.prior_turn = 1.0 + 0j  # the turn motions are charged from (the hints' when given)
-        oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
-        ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
-        e_f, e_r, fwd, rev = _open_shapes(oa, ob)
+        if key_a.loop.all() and key_b.loop.all():
+            # Every pair is a loop pair: its shape is its loop fit (or a dot's), its direction
+            # its loops' orientations; the open reads' fits would never be read.
+            e_f = e_r = np.zeros((key_a.count, key_b.count))
+            fwd = rev = np.ones((key_a.count, key_b.count), dtype=complex)
+        else:
+            oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
+            ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
+            e_f, e_r, fwd, rev = _open_shapes(oa, ob)
         self._fits, self._products = (e_f, e_r), (fwd, rev)
         self._open = key_a.open, key_b.open
         self._signs = None  # the loops' areas' signs (0 for open strokes), when both keys have loops
