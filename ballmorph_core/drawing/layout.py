@@ -339,7 +339,7 @@ class Layout:
         for k, (seg, a) in enumerate(zip(segments, starts.tolist())):
             run = slice(bounds[k], bounds[k + 1])
             local = kept_rows[run] - a
-            offset = None if seg.offset is None or not seg.offset.any() else seg.offset[local]
+            offset = None if seg.offset is None or not np.any(seg.offset) else seg.offset[local]
             item = (seg.morph, local, frame_rows[run], offset)
             if _joinable(seg.morph):
                 joinable.setdefault(type(seg.morph.paths), []).append(item)

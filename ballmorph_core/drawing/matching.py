@@ -246,14 +246,19 @@ class _Key:
                 looped = given  # the batch given, read as drawn
             else:
                 looped = Ragged(opened.pts, opened.offsets, closed[keep])
-            self.open[keep] = opened.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
-            if looped is opened:  # no loop: the ring is the open read
-                self.ring[keep] = self.open[keep]
-            else:
-                ring = looped.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
-                self.ring[keep] = np.where(closed[keep][:, None, None], ring, self.open[keep])
-            self.length[keep] = looped.length
+            self._read(keep, opened, looped, closed[keep], m)
         return True
+
+    def _read(self, keep, opened, looped, closed, m):
+        """The descriptors of strokes ``keep`` (shape (K,)) from their batch read open and as
+        drawn (Ragged, the same one when no stroke is a loop: then the ring is the open read)."""
+        self.open[keep] = opened.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
+        if looped is opened:
+            self.ring[keep] = self.open[keep]
+        else:
+            ring = looped.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
+            self.ring[keep] = np.where(closed[:, None, None], ring, self.open[keep])
+        self.length[keep] = looped.length
 
     def centroids(self):
         """Sample centroid of each stroke's own descriptor (ring for loops), shape (S, 2)."""
