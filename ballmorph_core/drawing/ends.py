@@ -111,10 +111,80 @@ class Ends:
 def _ends_onto(A, B, reach, rows):
     """Where the first and the last ends of curves ``rows`` of A lie along B: arc length on B,
     distance (shapes (2, K): first ends, then last; ``reach`` per curve of A), both ends in one
-    search of B's edges."""
+    search of the stretches of B's edges that may lie within reach (:func:`_reachable`)."""
     ends = np.take(A.pts, np.r_[A.offsets[rows], A.offsets[rows + 1] - 1], axis=0)
-    dist, edge, frac = nearest_within(ends, np.r_[rows, rows], B, np.r_[reach[rows], reach[rows]])
+    first, count = (np.concatenate(v) for v in _reachable(ends.reshape(2, -1, 2), rows, B, reach[rows]))
+    curve, r = np.r_[rows, rows], np.r_[reach[rows], reach[rows]]
+    dist, edge, frac = np.full(len(ends), np.inf), np.zeros(len(ends), np.int64), np.zeros(len(ends))
+    some = np.flatnonzero(count >= 2)
+    if len(some):
+        # Each query searches its own stretch, a curve of its own: the same edges (the same
+        # differences of the same points), the same arithmetic and, in the same order, the
+        # same ties as a search of its whole curve.
+        start = B.offsets[curve[some]] + first[some]
+        owner, local = ragged_arange(count[some])
+        stretch = Ragged(
+            np.take(B.pts, start[owner] + local, axis=0),
+            np.r_[0, np.cumsum(count[some])],
+            B.closed[curve[some]] & (count[some] == B.n[curve[some]]),
+        )
+        d, e, f = nearest_within(ends[some], np.arange(len(some)), stretch, r[some])
+        found = np.isfinite(d)
+        dist[some], frac[some] = d, f
+        edge[some[found]] = (start[owner] + local)[e[found]]
     return (B.s[edge] + frac * B.length_of_edge[edge]).reshape(2, -1), dist.reshape(2, -1)
+
+
+#: Both vertices of an edge within reach ``r`` of a point lie within ``r`` plus its length of
+#: it: the stretch searched runs from the first to the last vertex within this many times
+#: ``r`` plus the curve's longest edge (a margin for round-off, however large the coordinates).
+_STRETCH_MARGIN = 2.0
+
+
+def _reachable(points, curves, B, reach):
+    """The stretch of its curve of B each query searches (see ``_STRETCH_MARGIN``): it holds
+    every edge within reach (a loop's closing edge only in a stretch of the whole loop).
+
+    Parameters
+    ----------
+    points : ndarray, shape (J, K, 2)
+        ``J`` queries per curve.
+    curves : ndarray of int, shape (K,)
+        Their curves of B (with points).
+    B : Ragged
+    reach : ndarray, shape (K,)
+
+    Returns
+    -------
+    first, count : ndarray of int, shape (J, K)
+        The stretch's first vertex (local to its curve) and its vertex count (below 2 when
+        no edge lies within reach).
+    """
+    n = B.n[curves]
+    if len(curves) == len(B) and np.array_equal(curves, np.arange(len(B))):  # every curve: B's own arrays
+        owner, local = B.owner, np.arange(len(B.pts)) - np.repeat(B.offsets[:-1], n)
+        x, y, lengths = B.pts[:, 0], B.pts[:, 1], B.length_of_edge
+    else:
+        owner, local = ragged_arange(n)
+        v = B.offsets[curves][owner] + local
+        x, y, lengths = np.take(B.pts[:, 0], v), np.take(B.pts[:, 1], v), np.take(B.length_of_edge, v)
+    longest = np.maximum.reduceat(lengths, np.cumsum(n) - n)
+    span = reach + longest
+    bound = _STRETCH_MARGIN * span + tol.ROUNDOFF * (np.abs(points).max(axis=(0, 2)) + span)
+    bound2 = np.repeat(np.square(bound), n)
+    first, count = np.zeros(points.shape[:2], np.int64), np.zeros(points.shape[:2], np.int64)
+    for j, p in enumerate(points):
+        dx, dy = x - np.repeat(p[:, 0], n), y - np.repeat(p[:, 1], n)
+        near = np.flatnonzero(dx * dx + dy * dy <= bound2)
+        if not len(near):
+            continue
+        # Near vertices come curve by curve, in order: each curve's first and last of them.
+        k = owner[near]
+        opens, closes = np.r_[True, k[1:] != k[:-1]], np.r_[k[1:] != k[:-1], True]
+        q = k[opens]
+        first[j, q] = local[near[opens]]
+        count[j, q] = local[near[closes]] - first[j, q] + 1
+    return first, count
 
 
 def _along(s_on_other, dist, length_other, end_tol, which):
@@ -180,8 +250,15 @@ def settle_ends(R, Q, scale, opened, trim=None):
     # Ends already shared need no displacement.
     gap = np.where(np.linalg.norm(gap, axis=2)[..., None] <= tol.SHARED_ENDPOINT * scale[:, None, None], 0.0, gap)
     u = part_p.s / np.maximum(part_p.length, 1e-300)[part_p.owner]
-    shift = (1 - u)[:, None] * gap[part_p.owner, 0] + u[:, None] * gap[part_p.owner, 1]
-    common_p = Ragged(part_p.pts + shift, part_p.offsets, R.closed)
+    # R's common part displaced by (1 - u) gap_first + u gap_last, coordinate by coordinate
+    # (1-D gathers of the pairs' gaps, not (N, 2) rows of them: the same values, several
+    # times faster).
+    moved, rest = np.empty_like(part_p.pts), 1 - u
+    for k in range(2):
+        shift = rest * np.take(gap[:, 0, k], part_p.owner)
+        shift += u * np.take(gap[:, 1, k], part_p.owner)
+        np.add(part_p.pts[:, k], shift, out=moved[:, k])
+    common_p = Ragged(moved, part_p.offsets, R.closed)
     # The pieces are open curves: of open pairs they are the common parts as they come.
     common_q = Ragged(part_q.pts, part_q.offsets, Q.closed) if Q.closed.any() else part_q
     whole = ~opened
@@ -236,16 +313,19 @@ class _SlidingPaths:
 
     @classmethod
     def join(cls, parts):
-        """Many of them (``(paths, kept points)`` each) as one: one evaluation for them all."""
+        """Many of them (``(paths, kept points)`` each, the points as indices) as one: one
+        evaluation for them all."""
         curves = [c for paths, _ in parts for c in paths._curves]
-        ends = np.cumsum([0] + [len(paths._curves) for paths, _ in parts])
-        columns = (
-            np.concatenate([first + paths._curve[keep] for first, (paths, keep) in zip(ends, parts)]),
-            *(np.concatenate([getattr(paths, name)[keep] for paths, keep in parts]) for name in ("_s", "_attach")),
-            np.concatenate([paths._towards[keep] for paths, keep in parts]).reshape(-1, 2),
-            np.concatenate([paths._grow[keep] for paths, keep in parts]),
-        )
-        return cls(curves, *columns)
+        first = np.cumsum([0] + [len(paths._curves) for paths, _ in parts[:-1]])
+        # Every part's columns joined, then their kept points taken at once (hundreds of parts).
+        sizes = np.array([len(paths._s) for paths, _ in parts], dtype=np.int64)
+        kept = np.concatenate([keep + start for (_, keep), start in zip(parts, np.cumsum(sizes) - sizes)])
+        curve = np.concatenate([paths._curve for paths, _ in parts]) + np.repeat(first, sizes)
+        columns = [
+            np.concatenate([getattr(paths, name) for paths, _ in parts])
+            for name in ("_s", "_attach", "_towards", "_grow")
+        ]
+        return cls(curves, curve[kept], *(np.take(column, kept, axis=0) for column in columns))
 
     def __len__(self):
         return len(self._s)
@@ -306,12 +386,11 @@ def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
     """
     count = max(int(np.ceil((s1 - s0) / max(spacing, 1e-300))) + 1, 2)
     s, u = _even(s0, s1, count), _even(0.0, 1.0, count)
-    paths = _SlidingPaths(
-        [curve],
-        np.zeros(count, np.int64),
-        s,
-        np.full(count, float(attach)),
-        np.broadcast_to(np.asarray(towards, dtype=np.float64), (count, 2)),
-        np.full(count, bool(grow)),
-    )
+    # Filled in place rather than by np.full and np.broadcast_to (a drawing makes hundreds of
+    # overhangs: their Python wrappers cost several times the filling).
+    columns = np.empty(count), np.empty((count, 2)), np.empty(count, dtype=bool)
+    columns[0].fill(float(attach))
+    columns[1][:] = towards
+    columns[2].fill(bool(grow))
+    paths = _SlidingPaths([curve], np.zeros(count, np.int64), s, *columns)
     return PathMorph("overhang", False, paths, u, u.copy())

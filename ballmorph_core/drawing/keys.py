@@ -60,11 +60,7 @@ class ProjectedKey:
         extra = np.zeros((len(xy), 0)) if extra_values is None else np.asarray(extra_values, dtype=np.float64)
         columns = [depth, strokes.radius, strokes.opacity, *np.asarray(strokes.vertex_color).T, *extra.T]
         self.width = len(columns)
-        length = self.rg.length[self.rg.owner]
-        local = np.arange(len(xy)) - strokes.offsets[:-1][self.rg.owner]
-        n = self.rg.n[self.rg.owner]
-        even = np.divide(local, np.maximum(n - 1, 1))
-        self.u = np.where(length > 0, np.divide(self.rg.s, np.where(length > 0, length, 1.0)), even)
+        self.u = self._fractions(strokes.offsets)
         # Interpolation table: every stroke's fractions shifted by 2 per stroke, loops closed by
         # their first point at fraction 1, so one np.interp serves all strokes at once.
         first = strokes.offsets[:-1][self.rg.n > 0]
@@ -84,6 +80,17 @@ class ProjectedKey:
         self._row = np.empty(len(xy), dtype=np.int64)
         own = np.flatnonzero(order < len(xy))
         self._row[order[own]] = own
+
+    def _fractions(self, offsets):
+        """Each point's arc-length fraction along its stroke, evenly spaced along a stroke of no
+        length, shape (N,) (the even spacing only made when some stroke needs it)."""
+        rg = self.rg
+        length = rg.length[rg.owner]
+        if np.all(rg.length[rg.n > 0] > 0):
+            return np.divide(rg.s, length)
+        local = np.arange(len(rg.pts)) - offsets[:-1][rg.owner]
+        even = np.divide(local, np.maximum(rg.n[rg.owner] - 1, 1))
+        return np.where(length > 0, np.divide(rg.s, np.where(length > 0, length, 1.0)), even)
 
     def stroke(self, i, flip=False):
         """Stroke ``i`` for morphing (KeyStroke), reversed if ``flip``."""

@@ -175,7 +175,7 @@ class _Key:
     """
 
     def __init__(self, strokes, closed, name, closed_name, m):
-        strokes = list(strokes)
+        strokes = strokes if isinstance(strokes, Ragged) else list(strokes)
         s = len(strokes)
         closed = np.asarray(closed, dtype=bool).reshape(-1)
         if len(closed) != s:
@@ -188,6 +188,8 @@ class _Key:
         self.length = np.zeros(s)
         if self._batched(strokes, closed, m):
             return
+        if isinstance(strokes, Ragged):
+            strokes = [strokes.curve(i) for i in range(s)]
         lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
         for i, points in enumerate(strokes):
             clean = _clean(points, f"{name}[{i}]", bool(closed[i]))
@@ -205,24 +207,25 @@ class _Key:
 
     def _batched(self, strokes, closed, m):
         """All descriptors at once for well-formed keys (finite points); False to go one by one."""
-        try:
-            arrays = [np.asarray(p, dtype=np.float64) for p in strokes]
-        except (TypeError, ValueError):
-            return False
-        if any(a.ndim != 2 or a.shape[1] != 2 for a in arrays if a.size):
+        given = strokes if isinstance(strokes, Ragged) else None
+        flat = (given.pts, given.n, given.offsets) if given is not None else _flattened(strokes)
+        if flat is None:
             return False  # the per-stroke road names the malformed stroke
-        arrays = [a.reshape(-1, 2) for a in arrays]
-        sizes = np.array([len(a) for a in arrays], dtype=np.int64)
-        pts = np.concatenate(arrays) if arrays else np.zeros((0, 2))
+        pts, sizes, offsets = flat
         if not np.all(np.isfinite(pts)):
             return False  # the per-stroke road names the bad stroke
         self.valid = sizes > 0
         if not self.valid.any():
             self.diagonal = 0.0
             return True
-        self.diagonal = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
-        offsets = np.concatenate([[0], np.cumsum(sizes)])
-        line = Ragged(pts, offsets, np.zeros(len(sizes), dtype=bool))
+        # Column by column: a reduction along axis 0 of an (N, 2) array is ~25 times slower.
+        x, y = pts[:, 0], pts[:, 1]
+        self.diagonal = float(np.linalg.norm(np.array([x.max() - x.min(), y.max() - y.min()])))
+        # A batch given read open is the one read open here (the same arithmetic on the same points).
+        if given is not None and not given.closed.any():
+            line = given
+        else:
+            line = Ragged(pts, offsets, np.zeros(len(sizes), dtype=bool))
         # Dots (one point, or all points the same) repeat their point.
         dot = self.valid & (line.length <= tol.COINCIDENT * max(self.diagonal, 1e-300))
         first = pts[np.minimum(offsets[:-1], max(len(pts) - 1, 0))]
@@ -237,12 +240,25 @@ class _Key:
                 owner, local = ragged_arange(sizes[keep])
                 sub = np.concatenate([[0], np.cumsum(sizes[keep])])
                 opened = Ragged(pts[offsets[keep][owner] + local], sub, np.zeros(len(keep), dtype=bool))
-            looped = Ragged(opened.pts, opened.offsets, closed[keep]) if closed[keep].any() else opened
-            self.open[keep] = opened.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
-            ring = looped.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
-            self.ring[keep] = np.where(closed[keep][:, None, None], ring, self.open[keep])
-            self.length[keep] = looped.length
+            if not closed[keep].any():
+                looped = opened
+            elif opened is line and given is not None and np.array_equal(given.closed, closed):
+                looped = given  # the batch given, read as drawn
+            else:
+                looped = Ragged(opened.pts, opened.offsets, closed[keep])
+            self._read(keep, opened, looped, closed[keep], m)
         return True
+
+    def _read(self, keep, opened, looped, closed, m):
+        """The descriptors of strokes ``keep`` (shape (K,)) from their batch read open and as
+        drawn (Ragged, the same one when no stroke is a loop: then the ring is the open read)."""
+        self.open[keep] = opened.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
+        if looped is opened:
+            self.ring[keep] = self.open[keep]
+        else:
+            ring = looped.resample(np.full(len(keep), m), smooth=False).pts.reshape(-1, m, 2)
+            self.ring[keep] = np.where(closed[:, None, None], ring, self.open[keep])
+        self.length[keep] = looped.length
 
     def centroids(self):
         """Sample centroid of each stroke's own descriptor (ring for loops), shape (S, 2)."""
@@ -269,6 +285,21 @@ class _Key:
         return (w[:, None] * ctr).sum(axis=0) / w.sum()
 
 
+def _flattened(strokes):
+    """Points, sizes and offsets of a list of strokes, shapes (N, 2), (S,), (S + 1,); None when
+    a stroke is not an array of 2D points."""
+    try:
+        arrays = [np.asarray(p, dtype=np.float64) for p in strokes]
+    except (TypeError, ValueError):
+        return None
+    if any(a.ndim != 2 or a.shape[1] != 2 for a in arrays if a.size):
+        return None
+    arrays = [a.reshape(-1, 2) for a in arrays]
+    sizes = np.array([len(a) for a in arrays], dtype=np.int64)
+    pts = np.concatenate(arrays) if arrays else np.zeros((0, 2))
+    return pts, sizes, np.concatenate([[0], np.cumsum(sizes)])
+
+
 def _complex(samples):
     return samples[..., 0] + 1j * samples[..., 1]
 
@@ -284,58 +315,83 @@ def _open_shapes(a, b):
     Returns
     -------
     e_fwd, e_rev : ndarray, shape (S_a, S_b)
-    turn_fwd, turn_rev : ndarray, shape (S_a, S_b)
+    fwd, rev : ndarray of complex, shape (S_a, S_b)
+        The products ``<a_i, b_j>`` whose angles are the fits' turns.
     """
     norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
     fwd, rev = np.conj(a) @ b.T, np.conj(a) @ b[:, ::-1].T
     e = [np.clip(1.0 - np.abs(d) ** 2 / norms, 0.0, 1.0) for d in (fwd, rev)]
-    return e[0], e[1], np.angle(fwd), np.angle(rev)
+    return e[0], e[1], fwd, rev
 
 
 def _shared_ends(a, b, spread):
-    """How many ends open strokes share read forward and read backwards, shapes (S_a, S_b).
+    """How many ends pairs of open strokes share read forward and read backwards, shapes (K,).
 
-    ``a``, ``b``: samples, shapes (S_a, m, 2), (S_b, m, 2); ``spread``: sizes, shape (S_a, S_b).
+    ``a``, ``b``: the pairs' samples, shapes (K, m, 2); ``spread``: their sizes, shape (K,).
     """
 
     def shared(i, j):
-        return (np.linalg.norm(a[:, None, i] - b[None, :, j], axis=2) <= MATCH_SHARED_ENDS * spread).astype(int)
+        d = a[:, i] - b[:, j]
+        # np.linalg.norm's arithmetic (a sum of two squares), without its call.
+        return (np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]) <= MATCH_SHARED_ENDS * spread).astype(int)
 
     return shared(0, 0) + shared(-1, -1), shared(0, -1) + shared(-1, 0)
 
 
+class _LoopFits:
+    """Residuals of loop pairs over every cyclic shift of B's samples (by FFT), for any pairs.
+
+    Parameters
+    ----------
+    a, b : ndarray of complex, shape (L_a, m), (L_b, m)
+        Samples centred on their own centroids.
+    sign_a, sign_b : ndarray, shape (L_a,), (L_b,), optional
+        The loops' areas' signs: B's loop is read backwards where the two run opposite ways
+        (each pair's correlation is computed once, in the direction it needs). Default: all
+        read as given.
+
+    Each pair's residual is computed on its own (its spectra, product and inverse transform
+    are its own rows): the same values however many pairs are asked at once, so a table can
+    fit only the pairs whose cost may matter.
+    """
+
+    def __init__(self, a, b, sign_a=None, sign_b=None):
+        self._fa = np.conj(np.fft.fft(a, axis=1))
+        self._na = np.sum(np.abs(a) ** 2, axis=1)
+        # B read as given and backwards (the norm summed in the order it is read).
+        self._fb = [np.fft.fft(v, axis=1) for v in (b, _backwards(b))]
+        self._nb = [np.sum(np.abs(v) ** 2, axis=1) for v in (b, _backwards(b))]
+        self._sign_a = np.ones(len(a)) if sign_a is None else sign_a
+        self._sign_b = np.ones(len(b)) if sign_b is None else sign_b
+
+    def residuals(self, i, j):
+        """Residuals of pairs ``(i[k], j[k])`` (rows of ``a`` and ``b``), shape (K,)."""
+        back = self._sign_a[i] * self._sign_b[j] < 0
+        fb, nb = np.take(self._fb[0], j, axis=0), np.take(self._nb[0], j)
+        fb[back], nb[back] = self._fb[1][j[back]], self._nb[1][j[back]]
+        norms = np.maximum(np.take(self._na, i) * nb, 1e-300)
+        best = np.empty(len(i))
+        m = self._fa.shape[1]
+        for sl in budget_slices(np.full(len(i), m), _CHUNK):
+            corr = np.fft.ifft(np.take(self._fa, i[sl], axis=0) * fb[sl], axis=1)
+            best[sl] = np.abs(corr).max(axis=1) ** 2
+        return np.clip(1.0 - best / norms, 0.0, 1.0)
+
+
 def _loop_shapes(a, b):
-    """Residuals of loop pairs over every cyclic shift of B's samples, shape (L_a, L_b).
+    """Residuals of every loop pair over every cyclic shift of B's samples, shape (L_a, L_b).
 
     ``a`` and ``b`` (complex, centred) run the same way (the caller reversed B's where needed).
     """
-    m = a.shape[1]
-    fa, fb = np.conj(np.fft.fft(a, axis=1)), np.fft.fft(b, axis=1)
-    norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
-    best = np.empty((len(a), len(b)))
-    for sl in budget_slices(np.full(len(a), len(b) * m), _CHUNK):
-        corr = np.fft.ifft(fa[sl, None, :] * fb[None, :, :], axis=2)
-        best[sl] = np.abs(corr).max(axis=2) ** 2
-    return np.clip(1.0 - best / norms, 0.0, 1.0)
+    i, j = (g.ravel() for g in np.meshgrid(np.arange(len(a)), np.arange(len(b)), indexing="ij"))
+    return _LoopFits(a, b).residuals(i, j).reshape(len(a), len(b))
 
 
 def _oriented_loop_shapes(a, b, sign_a, sign_b):
     """:func:`_loop_shapes` of every loop pair, B's loop read backwards where the two run opposite
-    ways (``sign_a``, ``sign_b``: their areas' signs, shapes (L_a,), (L_b,)), shape (L_a, L_b).
-
-    Loops of one sign against B's of the opposite sign are read backwards, every other block
-    forwards: each pair's correlation is computed once, in the direction it needs (the same
-    values as both directions for every pair and a choice after).
-    """
-    out = np.empty((len(a), len(b)))
-    backwards = _backwards(b)
-    for sign in np.unique(sign_a):
-        rows = np.flatnonzero(sign_a == sign)
-        opposite = sign_b * sign < 0
-        for cols, samples in ((np.flatnonzero(~opposite), b), (np.flatnonzero(opposite), backwards)):
-            if len(cols):
-                out[np.ix_(rows, cols)] = _loop_shapes(a[rows], samples[cols])
-    return out
+    ways (``sign_a``, ``sign_b``: their areas' signs, shapes (L_a,), (L_b,)), shape (L_a, L_b)."""
+    i, j = (g.ravel() for g in np.meshgrid(np.arange(len(a)), np.arange(len(b)), indexing="ij"))
+    return _LoopFits(a, b, sign_a, sign_b).residuals(i, j).reshape(len(a), len(b))
 
 
 def _backwards(samples):
@@ -346,10 +402,14 @@ def _backwards(samples):
 class _CostTable:
     """Pair costs of two keys, for any overall motion (see the module notes).
 
+    A loop pair's shape term (its FFT fit, the bulk of the table) is fitted only once a cost
+    asked for may fall below ``MATCH_MAX_COST`` (the other terms alone say when it cannot):
+    a pair never formed needs no exact cost.
+
     Attributes
     ----------
     shape : ndarray, shape (S_a, S_b)
-        ``sqrt(e_ij)``, the similarity-free shape difference.
+        ``sqrt(e_ij)``, the similarity-free shape difference; 0 where not fitted yet.
     """
 
     def __init__(self, key_a, key_b):
@@ -360,54 +420,108 @@ class _CostTable:
         self.mixed = key_a.loop[:, None] != key_b.loop[None, :]
         self.dot_spread = DOT_SPREAD * max(key_a.diagonal, key_b.diagonal, 1e-300)
         self.prior_turn = 1.0 + 0j  # the turn motions are charged from (the hints' when given)
-        oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
-        ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
-        e_f, e_r, t_f, t_r = _open_shapes(oa, ob)
-        self._fits, self._turns = (e_f, e_r), (t_f, t_r)
-        self._shared = _shared_ends(key_a.open, key_b.open, self.ra[:, None] + self.rb[None, :])
-        self._loops = None
-        e = np.minimum(e_f, e_r)
+        if key_a.loop.all() and key_b.loop.all():
+            # Every pair is a loop pair: its shape is its loop fit (or a dot's), its direction
+            # its loops' orientations; the open reads' fits would never be read.
+            e_f = e_r = np.zeros((key_a.count, key_b.count))
+            fwd = rev = np.ones((key_a.count, key_b.count), dtype=complex)
+        else:
+            oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
+            ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
+            e_f, e_r, fwd, rev = _open_shapes(oa, ob)
+        self._fits, self._products = (e_f, e_r), (fwd, rev)
+        self._open = key_a.open, key_b.open
+        self._signs = None  # the loops' areas' signs (0 for open strokes), when both keys have loops
+        self._loop = None  # and the keys' loop flags then
+        self.shape = np.sqrt(np.minimum(e_f, e_r))
+        both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)
+        one_dot = (self.ra[:, None] <= 0) != (self.rb[None, :] <= 0)
+        self.shape = np.where(both_dots, 0.0, np.where(one_dot, DOT_SHAPE, self.shape))
+        self._unfitted = np.zeros(self.shape.shape, dtype=bool)  # loop pairs not fitted yet
         la, lb = np.flatnonzero(key_a.loop), np.flatnonzero(key_b.loop)
         if la.size and lb.size:
             ra = _complex(key_a.ring[la]) - self.ca[la, None]
             rb = _complex(key_b.ring[lb]) - self.cb[lb, None]
             # A loop drawn the other way (its area's sign) is read backwards before fitting.
             sign_a, sign_b = np.sign(key_a.areas()[la]), np.sign(key_b.areas()[lb])
-            flip = sign_a[:, None] * sign_b[None, :] < 0
-            e[np.ix_(la, lb)] = _oriented_loop_shapes(ra, rb, sign_a, sign_b)
-            self._loops = (la, lb, flip)
-        self.shape = np.sqrt(e)
-        both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)
-        one_dot = (self.ra[:, None] <= 0) != (self.rb[None, :] <= 0)
-        self.shape = np.where(both_dots, 0.0, np.where(one_dot, DOT_SHAPE, self.shape))
+            self._loop_fits = _LoopFits(ra, rb, sign_a, sign_b)
+            # Each stroke's row among the loops (-1 for open strokes).
+            self._loop_row = np.full(key_a.count, -1), np.full(key_b.count, -1)
+            self._loop_row[0][la], self._loop_row[1][lb] = np.arange(len(la)), np.arange(len(lb))
+            self._unfitted[np.ix_(la, lb)] = ~(both_dots | one_dot)[np.ix_(la, lb)]
+            self.shape[self._unfitted] = 0.0
+            self._signs = np.zeros(key_a.count), np.zeros(key_b.count)
+            self._signs[0][la], self._signs[1][lb] = sign_a, sign_b
+            self._loop = key_a.loop, key_b.loop
 
-    def directions(self, turn):
-        """Whether B's stroke runs opposite to A's, given the drawing's turn (radians), shape
-        (S_a, S_b): the direction sharing more ends; then the better fit, a turn away from the
-        drawing's counting against it; then the drawn direction (always, next to a dot)."""
-        (e_f, e_r), (t_f, t_r) = self._fits, self._turns
-        away = [np.angle(np.exp(1j * (t - turn))) / np.pi for t in (t_f, t_r)]
+    def _fit(self, rows, cols):
+        """Fit the loop pairs ``(rows[k], cols[k])`` (shapes (K,)) not fitted yet."""
+        todo = self._unfitted[rows, cols]
+        if not todo.any():
+            return
+        rows, cols = rows[todo], cols[todo]
+        e = self._loop_fits.residuals(self._loop_row[0][rows], self._loop_row[1][cols])
+        self.shape[rows, cols] = np.sqrt(e)
+        self._unfitted[rows, cols] = False
+
+    def directions(self, turn, rows, cols):
+        """Whether B's stroke runs opposite to A's in pairs ``(rows[k], cols[k])`` (shapes (K,)),
+        given the drawing's turn (radians), shape (K,): the direction sharing more ends; then the
+        better fit, a turn away from the drawing's counting against it; then the drawn direction
+        (always, next to a dot). Only the pairs formed are read (elementwise: the same values
+        as reading every pair)."""
+        (e_f, e_r), (fwd, rev) = self._fits, self._products
+        e_f, e_r = e_f[rows, cols], e_r[rows, cols]
+        away = [np.angle(np.exp(1j * (np.angle(t[rows, cols]) - turn))) / np.pi for t in (fwd, rev)]
         cost_f, cost_r = e_f + DIRECTION_TURN * away[0] ** 2, e_r + DIRECTION_TURN * away[1] ** 2
         reverse = cost_r < cost_f - EQUAL_FIT
-        shared_f, shared_r = self._shared
+        open_a, open_b = self._open
+        shared_f, shared_r = _shared_ends(open_a[rows], open_b[cols], self.ra[rows] + self.rb[cols])
         reverse = np.where(shared_f > shared_r, False, np.where(shared_r > shared_f, True, reverse))
-        if self._loops is not None:
-            la, lb, flip = self._loops
-            reverse[np.ix_(la, lb)] = flip
+        if self._signs is not None:
+            sign_a, sign_b = self._signs[0][rows], self._signs[1][cols]
+            loops = self._loop[0][rows] & self._loop[1][cols]
+            reverse[loops] = (sign_a * sign_b < 0)[loops]
         # A dot has no direction: its partner keeps the one it was drawn in.
-        return reverse & (self.ra[:, None] > 0) & (self.rb[None, :] > 0)
+        return reverse & (self.ra[rows] > 0) & (self.rb[cols] > 0)
 
-    def costs(self, a, b):
-        """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b)."""
+    def costs(self, a, b, rows=None, cols=None):
+        """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b): exact
+        where below ``MATCH_MAX_COST``, elsewhere at least that (those of loop pairs not fitted,
+        bounds from the other terms); with ``rows`` and ``cols`` (shapes (K,)) the exact costs
+        of pairs ``(rows[k], cols[k])`` only, shape (K,) (elementwise: the same values as
+        every pair's).
+
+        A cost with its shape term left out is a bound of the cost: the term is not negative
+        and every rounded sum after it grows with it."""
+        if rows is not None:
+            self._fit(rows, cols)
+            return self._costs(a, b, rows, cols)
+        c = self._costs(a, b)
+        may = self._unfitted & (c < MATCH_MAX_COST)
+        if may.any():
+            rows, cols = np.nonzero(may)
+            self._fit(rows, cols)
+            c[rows, cols] = self._costs(a, b, rows, cols)
+        return c
+
+    def _costs(self, a, b, rows=None, cols=None):
+        """:meth:`costs` from the shape terms as they are (fitted or not)."""
         scale = max(abs(a), 1e-300)
         moved = a * self.ca + b
-        spread = np.maximum(scale * self.ra[:, None] + self.rb[None, :], self.dot_spread)
-        place = np.abs(moved[:, None] - self.cb[None, :]) / spread
-        ratio = np.maximum(self.rb[None, :], 1e-300) / np.maximum(scale * self.ra[:, None], 1e-300)
-        size = np.where((self.ra[:, None] > 0) & (self.rb[None, :] > 0), np.abs(np.log(ratio)) / np.log(4.0), 0.0)
-        c = W_SHAPE * self.shape + W_PLACE * place + W_SCALE * size + MATCH_CYCLIC_PENALTY * self.mixed
+        if rows is None:
+            ra, rb, za, zb = self.ra[:, None], self.rb[None, :], moved[:, None], self.cb[None, :]
+            shape, mixed, valid = self.shape, self.mixed, self.valid
+        else:
+            ra, rb, za, zb = self.ra[rows], self.rb[cols], moved[rows], self.cb[cols]
+            shape, mixed, valid = self.shape[rows, cols], self.mixed[rows, cols], self.valid[rows, cols]
+        spread = np.maximum(scale * ra + rb, self.dot_spread)
+        place = np.abs(za - zb) / spread
+        ratio = np.maximum(rb, 1e-300) / np.maximum(scale * ra, 1e-300)
+        size = np.where((ra > 0) & (rb > 0), np.abs(np.log(ratio)) / np.log(4.0), 0.0)
+        c = W_SHAPE * shape + W_PLACE * place + W_SCALE * size + MATCH_CYCLIC_PENALTY * mixed
         c = c + W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
-        return np.where(self.valid, c, np.inf)
+        return np.where(valid, c, np.inf)
 
     def fit_motion(self, rows, cols):
         """Least-squares similarity of the paired centroids (weighted by size): ``(a, b)`` complex."""
@@ -474,7 +588,8 @@ def _best_assignment(table, key_a, key_b, motion=None):
             rows, cols = _assign_within(costs)
             if key_a.valid.sum() == 1 and key_b.valid.sum() == 1:  # alone in both keys: always a pair
                 rows, cols = np.flatnonzero(key_a.valid), np.flatnonzero(key_b.valid)
-            total = _padded_total(costs[rows, cols], key_a.count, key_b.count)
+            # (Exact costs: such a pair may cost more than the table's bounds say.)
+            total = _padded_total(table.costs(*motion, rows, cols), key_a.count, key_b.count)
             if best is None or total < best[0]:
                 best = (total, rows, cols, motion)
             if not len(rows):
@@ -484,12 +599,12 @@ def _best_assignment(table, key_a, key_b, motion=None):
 
 
 def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
-    costs = table.costs(*motion)[rows, cols]
+    costs = table.costs(*motion, rows, cols)
     order = np.argsort(rows, kind="stable")
     rows, cols, costs = rows[order], cols[order], costs[order]
-    reverse = table.directions(float(np.angle(motion[0])))
+    reverse = table.directions(float(np.angle(motion[0])), rows, cols) & table.valid[rows, cols]
     return Matching(
-        pairs=[(int(i), int(j), bool(reverse[i, j]) if table.valid[i, j] else False) for i, j in zip(rows, cols)],
+        pairs=[(int(i), int(j), bool(flip)) for i, j, flip in zip(rows, cols, reverse)],
         unmatched_a=sorted(set(range(key_a.count)) - {int(i) for i in rows}),
         unmatched_b=sorted(set(range(key_b.count)) - {int(j) for j in cols}),
         method=method,
@@ -505,7 +620,8 @@ def pair_direction(stroke_a, stroke_b, closed_a, closed_b, turn=0.0):
     the rules of :func:`match_strokes` (a pair the caller formed, e.g. by hints)."""
     key_a = _Key([stroke_a], [closed_a], "stroke_a", "closed_a", MATCH_SAMPLES)
     key_b = _Key([stroke_b], [closed_b], "stroke_b", "closed_b", MATCH_SAMPLES)
-    return bool(_CostTable(key_a, key_b).directions(turn)[0, 0])
+    first = np.zeros(1, np.int64)
+    return bool(_CostTable(key_a, key_b).directions(turn, first, first)[0])
 
 
 def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto", motion=None):
@@ -513,10 +629,10 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto", motion=
 
     Parameters
     ----------
-    strokes_a, strokes_b : sequence of array_like, each shape (n_i, 2)
+    strokes_a, strokes_b : sequence of array_like, each shape (n_i, 2), or Ragged
         The strokes of each key in the drawing plane, in drawing order. A stroke may have one
         point, repeated points or no point at all; a stroke with no point is never paired by
-        'auto'.
+        'auto'. A Ragged (its closed flags those of ``closed_a``, ``closed_b``) is read as it is.
     closed_a, closed_b : array_like of bool, shape (S_a,), (S_b,)
         Cyclic flags.
     mode : {'auto', 'index'}
@@ -582,7 +698,7 @@ def _order_or_assignment(key_a, key_b, table, total, rows, cols, motion):
         # The optimal assignment is the drawing order itself: keep it, however far strokes moved.
         reason = "same stroke count and the optimal assignment is the drawing order"
         return _matching(key_a, key_b, table, index, index, motion, "index", reason)
-    index_costs = table.costs(*index_motion)[index, index]
+    index_costs = table.costs(*index_motion, index, index)
     worst = int(np.argmax(index_costs))
     index_total = _padded_total(index_costs, n_a, n_b)
     if index_costs[worst] >= MATCH_INDEX_MAX_COST:

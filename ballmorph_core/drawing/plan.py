@@ -116,7 +116,8 @@ class InbetweenPlan:
 
     def __init__(self, key_a, key_b, method, carrier, matching, unmatched, spacing):
         self.method, self.unmatched = method, unmatched
-        self.plane = plane = fit_plane(np.concatenate([key_a.positions, key_b.positions]))
+        points = np.concatenate([key_a.positions, key_b.positions])
+        self.plane = plane = fit_plane(points)
         self.extras = extras = Extras.of(key_a, key_b)
         ka = ProjectedKey(key_a, plane, extras.point_columns(key_a))
         kb = ProjectedKey(key_b, plane, extras.point_columns(key_b))
@@ -136,7 +137,7 @@ class InbetweenPlan:
             [_curves(a, b) for a, b, _ in self.strokes], self.strokes, hinted, carrier, drawing, _curves
         )
         self.pairs = plan_pairs(self.pieces.curves, method, carrier, spacing, drawing)
-        self.planarity = _planarity_messages(key_a, key_b, plane)
+        self.planarity = _planarity_messages(points, plane)
         self._samples = None  # _Samples, from the first evaluation
         self._staged = np.empty((0, 0, 2))  # the pairs' frames of a chunk of times (see _frames)
         self._recycled = Recycled()  # the arrays of the last evaluation's in-betweens
@@ -237,8 +238,8 @@ class InbetweenPlan:
         live_a = np.array([i for i in live_a if i not in {a for a, _ in forced}], dtype=np.int64)
         live_b = np.array([j for j in live_b if j not in {b for _, b in forced}], dtype=np.int64)
         pairing = match_strokes(
-            [ka.rg.curve(i) for i in live_a],
-            [kb.rg.curve(j) for j in live_b],
+            _live_strokes(ka.rg, live_a),
+            _live_strokes(kb.rg, live_b),
             ka.rg.closed[live_a],
             kb.rg.closed[live_b],
             mode=matching,
@@ -390,6 +391,14 @@ class _Samples:
         return self.along, self.values
 
 
+def _live_strokes(rg, live):
+    """The strokes ``live`` (ndarray of int) of a key's Ragged ``rg``, for matching: the Ragged
+    itself when that is all of them (no per-stroke list to batch again), else a list of arrays."""
+    if len(live) == len(rg):
+        return rg
+    return [rg.curve(i) for i in live]
+
+
 def _mark_hints(frame, marks):
     """Give an in-between the hint attribute: hint k on the one sample that is its image."""
     values = np.zeros(len(frame.positions), dtype=np.int64)
@@ -519,14 +528,14 @@ def _report_unmatched(result, index, from_a, unmatched):
     result.messages.append(Message("WARNING", f"stroke {index} of the {key} key has no partner: {what}"))
 
 
-def _planarity_messages(key_a, key_b, plane):
-    """A warning when the keys are not flat, as a list (empty when they are)."""
-    pts = np.concatenate([key_a.positions, key_b.positions])
+def _planarity_messages(pts, plane):
+    """A warning when the keys (both keys' points, shape (N, 3)) are not flat, as a list (empty
+    when they are)."""
     if len(pts) < 3:
         return []
-    scale = float(np.linalg.norm(np.ptp(pts, axis=0)))
-    _, depth = plane.to_2d(pts)
-    worst = float(np.abs(depth).max())
+    # Column by column (a reduction along axis 0 of an (N, 3) array is many times slower).
+    scale = float(np.linalg.norm([np.ptp(pts[:, k]) for k in range(3)]))
+    worst = plane.farthest(pts)
     if scale > 0 and worst > PLANARITY * scale:
         return [
             Message(

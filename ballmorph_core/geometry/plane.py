@@ -36,6 +36,18 @@ class Plane:
         rel = np.asarray(points, dtype=np.float64).reshape(-1, 3) - self.origin
         return np.stack([rel @ self.u, rel @ self.v], axis=1), rel @ self.normal
 
+    def farthest(self, points):
+        """The largest distance of points (N, 3), N > 0, from the plane (float).
+
+        On a world axis plane (the normal a unit axis) it is the largest ``|coordinate -
+        origin|`` along the axis: the distances ``|rel @ normal|`` are exactly those (products
+        by 0 and 1, sums with zeros), without the projection."""
+        points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+        axis = np.flatnonzero(self.normal)
+        if len(axis) == 1 and abs(self.normal[axis[0]]) == 1.0:
+            return float(np.abs(points[:, axis[0]] - self.origin[axis[0]]).max())
+        return float(np.abs(self.to_2d(points)[1]).max())
+
     def to_3d(self, coords, offsets=None, out=None):
         """Lift coordinates (N, 2) (and optional normal offsets (N,)) back to 3D, shape (N, 3)
         (into ``out`` when given)."""
@@ -76,6 +88,36 @@ _AXIS_FRAMES = (
 )
 
 
+#: The SVD's normal of points lying exactly on an axis plane (see :func:`_on_axis_plane`) is
+#: far less than this (1 - |cos|) off the axis.
+_AXIS_ROUNDOFF = 1e-12
+#: Two coordinates' spread whose Gram determinant is at least this fraction of its largest
+#: possible value (their singular values' ratio at least its square root) is far from collinear.
+_SPREAD = 1e-6
+
+
+def _on_axis_plane(pts, origin):
+    """The world axis (0, 1 or 2) along which every point lies exactly at ``origin``, when the
+    other two coordinates spread far from collinear (see ``_SPREAD``); else None.
+
+    Then the fit needs no SVD: the points lie exactly in that axis plane, and the SVD's normal
+    (that of the points less round-off, its singular value apart from the others by
+    ``sqrt(_SPREAD)`` of the largest) is within round-off over that gap of the axis, so its
+    frame is the one :func:`fit_plane` returns (for ``axis_tolerance`` from ``_AXIS_ROUNDOFF``).
+
+    Parameters
+    ----------
+    pts : ndarray, shape (N, 3)
+    origin : ndarray, shape (3,)
+    """
+    for axis in range(3):
+        if np.all(pts[:, axis] == origin[axis]):
+            a, b = (pts[:, k] - origin[k] for k in range(3) if k != axis)
+            aa, bb, ab = a @ a, b @ b, a @ b
+            return axis if aa * bb - ab * ab > _SPREAD * (aa + bb) ** 2 else None
+    return None
+
+
 def fit_plane(points, axis_tolerance=PLANE_AXIS):
     """Least-squares plane through points.
 
@@ -93,6 +135,11 @@ def fit_plane(points, axis_tolerance=PLANE_AXIS):
     """
     pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
     origin = pts.mean(axis=0) if len(pts) else np.zeros(3)
+    shortcut = len(pts) >= 3 and _AXIS_ROUNDOFF <= axis_tolerance <= 0.5  # (one frame fits)
+    axis = _on_axis_plane(pts, origin) if shortcut else None
+    if axis is not None:
+        u, v, n = next(frame for frame in _AXIS_FRAMES if frame[2][axis] != 0.0)
+        return Plane(origin, u, v, n)
     if len(pts) >= 3:
         _, sing, vt = np.linalg.svd(pts - origin, full_matrices=False)
         planar_enough = sing[1] > 1e-12 * max(sing[0], 1e-300)

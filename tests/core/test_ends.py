@@ -7,10 +7,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapes import distance_to_polyline
 
-from ballmorph_core.drawing import sliding
+from ballmorph_core.drawing import ends, sliding
 from ballmorph_core.drawing.ends import overhang_morph, settle_ends
 from ballmorph_core.drawing.pipeline import PairMorph
 from ballmorph_core.drawing.registration import FIT_SAMPLES, fit_pairs
+from ballmorph_core.geometry.projection import nearest_within
 from ballmorph_core.geometry.ragged import Ragged
 from ballmorph_core.geometry.similarity import as_complex
 
@@ -279,3 +280,40 @@ def test_overhang_samples_are_numpys_linspace_bit_for_bit(start, stop, count):
 
     np.testing.assert_array_equal(_even(start, stop, count), np.linspace(start, stop, count))
     np.testing.assert_array_equal(_even(start, start, count), np.linspace(start, start, count))
+
+
+def _curves(rng, count, closed):
+    """Random walks (some of them scribbles with one long edge), as a Ragged."""
+    curves = []
+    for _ in range(count):
+        walk = np.cumsum(rng.normal(size=(int(rng.integers(2, 40)), 2)) * rng.uniform(0.01, 1.0), axis=0)
+        if rng.random() < 0.2:
+            walk[len(walk) // 2 :] += rng.normal(size=2) * 20.0  # one long edge
+        curves.append(walk + rng.normal(size=2) * rng.choice([1.0, 1e4]))
+    return Ragged.from_list(curves, closed)
+
+
+@given(st.integers(0, 2**32 - 1), st.floats(1e-6, 30.0))
+@settings(max_examples=60, deadline=None)
+def test_ends_searched_along_stretches_are_those_of_the_whole_curves(seed, reach):
+    # Each end searches only the stretch of the other curve that may lie within reach: the same
+    # distance, edge and fraction as a search of the whole curve, bit for bit.
+    rng = np.random.default_rng(seed)
+    count = int(rng.integers(1, 12))
+    closed = rng.random(count) < 0.3
+    A, B = _curves(rng, count, closed), _curves(rng, count, closed)
+    if rng.random() < 0.5:  # ends on the other curve's vertices and edges: ties and zero distances
+        B.pts[B.offsets[:-1]] = A.pts[A.offsets[:-1]]
+        B = Ragged(B.pts, B.offsets, B.closed)
+    # Last ends next to the middle of the other curve's last edge (a loop's closing edge).
+    last = B.offsets[1:] - 1
+    closing = np.where(B.closed, B.offsets[:-1], last - 1)
+    A.pts[A.offsets[1:] - 1] = 0.5 * (B.pts[last] + B.pts[closing]) + rng.normal(size=(count, 2)) * 1e-3
+    A = Ragged(A.pts, A.offsets, A.closed)
+    rows = np.flatnonzero(rng.random(count) < 0.8)
+    reaches = np.full(count, reach) * rng.uniform(0.1, 10.0, count)
+    found, dist = ends._ends_onto(A, B, reaches, rows)
+    points = np.take(A.pts, np.r_[A.offsets[rows], A.offsets[rows + 1] - 1], axis=0)
+    d, e, f = nearest_within(points, np.r_[rows, rows], B, np.r_[reaches[rows], reaches[rows]])
+    assert np.array_equal(dist.ravel(), d)
+    assert np.array_equal(found.ravel(), B.s[e] + f * B.length_of_edge[e])

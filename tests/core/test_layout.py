@@ -8,6 +8,7 @@ import pytest
 from golden_cases import cases
 
 import ballmorph_core as bm
+from ballmorph_core.drawing.layout import _fractions
 
 _CASES = {name: (a, b, options) for name, a, b, options in cases()}
 
@@ -76,3 +77,21 @@ def test_a_plan_stages_every_chunk_in_one_buffer_and_its_frames_own_their_memory
         np.testing.assert_array_equal(first.frames[k].positions, kept[k])
         np.testing.assert_array_equal(first.frames[k].positions, whole[k])
         np.testing.assert_array_equal(later.frames[len(times) - 1 - k].positions, whole[k])
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_fractions_along_pairs_are_those_of_each_samples_own_range(seed):
+    # Per-chain starts and spans gathered per sample: bit for bit the sample-by-sample
+    # arithmetic, taken round loops and clipped on open curves.
+    rng = np.random.default_rng(seed)
+    pairs, chains, samples = 6, 15, 400
+    lengths = rng.uniform(0.0, 3.0, pairs) * (rng.random(pairs) < 0.9)  # some of no length
+    ranges = np.sort(rng.uniform(-0.5, 4.0, (chains, 2)), axis=1)
+    chain = np.sort(rng.integers(0, chains, samples))
+    owner = rng.integers(0, pairs, chains)[chain]
+    loop = (rng.random(pairs) < 0.5)[owner]
+    local = rng.uniform(0.0, 1.0, samples)
+    u = (ranges[chain, 0] + local * (ranges[chain, 1] - ranges[chain, 0])) / np.maximum(lengths[owner], 1e-300)
+    expected = np.where(loop, np.mod(u, 1.0), np.clip(u, 0.0, 1.0))
+    got = _fractions(local, ranges, lengths, chain, owner, loop)
+    assert np.array_equal(got.view(np.int64), expected.view(np.int64))

@@ -21,6 +21,7 @@ from ballmorph_core.drawing.matching import (
 )
 from ballmorph_core.errors import InvalidCurveError
 from ballmorph_core.geometry.polyline import resample, reverse, signed_area
+from ballmorph_core.geometry.ragged import Ragged
 
 
 def face():
@@ -405,3 +406,69 @@ def test_the_batched_key_descriptors_are_the_stroke_by_stroke_ones(seed):
         single = matching._Key(strokes, closed, "s", "c", 8)
     for name in ("valid", "open", "ring", "length", "diagonal"):
         np.testing.assert_allclose(getattr(batched, name), getattr(single, name), rtol=1e-12, atol=1e-12)
+
+
+def _random_keys(seed):
+    """Two keys of random walks (some loops, a dot, a two-point stroke): (strokes, flags) twice."""
+    rng = np.random.default_rng(seed)
+    keys = []
+    for count in rng.integers(2, 12, 2):
+        strokes = [np.cumsum(rng.normal(size=(int(rng.integers(3, 30)), 2)), axis=0) for _ in range(count)]
+        strokes[0] = strokes[0][:1]  # a dot
+        strokes[-1] = strokes[-1][:2]
+        keys.append((strokes, rng.random(count) < 0.5))
+    return keys
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_a_ragged_batch_matches_like_the_list_of_its_strokes(seed):
+    (sa, ca), (sb, cb) = _random_keys(seed)
+    listed = match_strokes(sa, sb, ca, cb)
+    batched = match_strokes(Ragged.from_list(sa, ca), Ragged.from_list(sb, cb), ca, cb)
+    assert batched.pairs == listed.pairs and batched.costs == listed.costs
+    assert (batched.unmatched_a, batched.unmatched_b) == (listed.unmatched_a, listed.unmatched_b)
+    assert batched.rotation == listed.rotation and np.array_equal(batched.motion, listed.motion)
+
+
+def test_a_ragged_batch_with_a_bad_point_is_named_stroke_by_stroke():
+    strokes = [np.zeros((3, 2)), np.array([[0.0, 0.0], [np.nan, 1.0]])]
+    with pytest.raises(InvalidCurveError, match=r"strokes_a\[1\]"):
+        match_strokes(Ragged.from_list(strokes, False), [np.eye(2)], [False, False], [False])
+
+
+def _table(keys):
+    (sa, ca), (sb, cb) = keys
+    key = [matching._Key(st, c, "k", "c", matching.MATCH_SAMPLES) for st, c in ((sa, ca), (sb, cb))]
+    return matching._CostTable(*key)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_costs_and_directions_of_some_pairs_are_those_of_the_whole_table(seed):
+    # The whole table's costs are exact below MATCH_MAX_COST and at least that elsewhere (loop
+    # pairs it need not fit); those of some pairs are exact, the same values.
+    keys = _random_keys(seed)
+    (sa, _), (sb, _) = keys
+    rows, cols = (g.ravel() for g in np.meshgrid(np.arange(len(sa)), np.arange(len(sb)), indexing="ij"))
+    pick = np.random.default_rng(seed).permutation(len(rows))[: len(rows) // 2 + 1]
+    motion = (0.9 + 0.2j, 0.3 - 0.1j)
+    whole = _table(keys).costs(*motion)[rows[pick], cols[pick]]
+    some = _table(keys).costs(*motion, rows[pick], cols[pick])
+    low = some < matching.MATCH_MAX_COST
+    assert np.array_equal(whole[low], some[low]) and np.all(whole[~low] >= matching.MATCH_MAX_COST)
+    table = _table(keys)
+    every = table.costs(*motion, rows, cols)
+    assert np.array_equal(table.costs(*motion, rows[pick], cols[pick]), every[pick])
+    assert np.array_equal(np.minimum(table.costs(*motion), 9.0).ravel(), np.minimum(every, 9.0))
+    every = table.directions(0.4, rows, cols)
+    assert np.array_equal(table.directions(0.4, rows[pick], cols[pick]), every[pick])
+
+
+@given(st.integers(0, 2**32 - 1))
+def test_loop_fits_of_some_pairs_are_those_of_every_pair(seed):
+    rng = np.random.default_rng(seed)
+    (la, lb), m = (int(v) for v in rng.integers(1, 9, 2)), 8
+    a, b = (rng.normal(size=(n, m)) + 1j * rng.normal(size=(n, m)) for n in (la, lb))
+    sign_a, sign_b = rng.integers(-1, 2, la).astype(float), rng.integers(-1, 2, lb).astype(float)
+    every = _oriented_loop_shapes(a, b, sign_a, sign_b)
+    i, j = rng.integers(0, la, 5), rng.integers(0, lb, 5)
+    assert np.array_equal(matching._LoopFits(a, b, sign_a, sign_b).residuals(i, j), every[i, j])

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from ballmorph_core.geometry import plane
 from ballmorph_core.geometry.plane import fit_plane
 
 
@@ -65,3 +66,49 @@ def test_lifting_sums_origin_u_v_and_normal_terms_in_that_order():
     lifted = front.to_3d(coords)
     np.testing.assert_array_equal(lifted[:, 1], np.full(40, front.origin[1]))
     np.testing.assert_array_equal(lifted[:, 0], coords[:, 0] + front.origin[0])
+
+
+def _svd_plane(points, monkeypatch, **options):
+    """fit_plane by its SVD road alone."""
+    with monkeypatch.context() as m:
+        m.setattr(plane, "_on_axis_plane", lambda pts, origin: None)
+        return fit_plane(points, **options)
+
+
+@pytest.mark.parametrize("axis", [0, 1, 2])
+@pytest.mark.parametrize("spread", [1.0, 1e-2, 1e-4, 1e-9, 0.0])
+@pytest.mark.parametrize("offset", [0.0, 0.37])
+def test_points_on_an_axis_plane_get_the_frame_the_svd_would_give(monkeypatch, axis, spread, offset):
+    # Exactly on an axis plane, however thin their spread across it (down to collinear): the
+    # frame without the SVD is the SVD's, bit for bit.
+    rng = np.random.default_rng(axis)
+    pts = rng.normal(size=(500, 3)) * [3.0, 1.0, 1.0]
+    pts[:, (axis + 2) % 3] = spread * pts[:, (axis + 2) % 3] + 0.5 * pts[:, (axis + 1) % 3]
+    pts[:, axis] = offset
+    for options in ({}, {"axis_tolerance": 1e-9}, {"axis_tolerance": 0.0}):
+        got, expected = fit_plane(pts, **options), _svd_plane(pts, monkeypatch, **options)
+        for name in ("origin", "u", "v", "normal"):
+            assert np.array_equal(getattr(got, name), getattr(expected, name)), (name, options)
+
+
+def test_the_axis_plane_shortcut_takes_exact_axis_planes_of_spread_points_only():
+    pts = np.random.default_rng(1).normal(size=(50, 3))
+    pts[:, 1] = 2.0
+    assert plane._on_axis_plane(pts, pts.mean(axis=0)) == 1
+    pts[7, 1] = np.nextafter(2.0, 3.0)  # one point off the plane
+    assert plane._on_axis_plane(pts, pts.mean(axis=0)) is None
+    pts[:, 1], pts[:, 2] = 2.0, pts[:, 0] * 0.3  # collinear
+    assert plane._on_axis_plane(pts, pts.mean(axis=0)) is None
+
+
+@pytest.mark.parametrize("tilt", [0.0, 1e-5, 0.3])
+def test_the_farthest_point_is_the_projections_farthest_bit_for_bit(tilt):
+    # Points a little off the front canvas (its frame, or a tilted fit): the largest distance
+    # read off the axis is the projection's.
+    rng = np.random.default_rng(3)
+    pts = rng.normal(size=(300, 3)) * [2.0, 1e-4, 1.0]
+    pts[:, 1] += tilt * pts[:, 0] + 0.25
+    pts[7, 1] = -0.0
+    p = fit_plane(pts)
+    assert p.farthest(pts) == float(np.abs(p.to_2d(pts)[1]).max())
+    assert (np.flatnonzero(p.normal).size == 1) == (tilt < 1e-3)  # both roads taken
