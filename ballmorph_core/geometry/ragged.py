@@ -342,21 +342,16 @@ class Ragged:
         s1_in = np.where(lap, s1 - length, s1)
         hi = np.searchsorted(g, s1_in + base[curve] - tiny, side="left") - self.offsets[curve] + np.where(lap, n, 0)
         inner = np.maximum(hi - lo, 0)
-        owner, local = ragged_arange(inner)
-        k_local = lo[owner] + local
+        # Every stretch's rows gathered at once, its two end rows then written over (a masked
+        # scatter of the vertices into place cost several times the gather): the rows before
+        # and after its vertices, which the clip keeps in range.
+        owner, local = ragged_arange(inner + 2)
+        k_local = lo[owner] + local - 1
         k_local = np.where(closed[owner], np.mod(k_local, np.maximum(n[owner], 1)), k_local)
-        verts = _rows(self.pts, self.offsets[curve][owner] + k_local)
-        start = self.point_at(curve, s0)
-        end = self.point_at(curve, np.where(lap, s1_in, s1))
-        sizes = inner + 2
-        offsets = np.concatenate([[0], np.cumsum(sizes)])
-        pts = np.empty((offsets[-1], 2))
-        pts[offsets[:-1]] = start
-        pts[offsets[1:] - 1] = end
-        mid = np.ones(offsets[-1], dtype=bool)
-        mid[offsets[:-1]] = False
-        mid[offsets[1:] - 1] = False
-        pts[mid] = verts
+        pts = np.take(self.pts, self.offsets[curve][owner] + k_local, axis=0, mode="clip")
+        offsets = np.concatenate([[0], np.cumsum(inner + 2)])
+        pts[offsets[:-1]] = self.point_at(curve, s0)
+        pts[offsets[1:] - 1] = self.point_at(curve, np.where(lap, s1_in, s1))
         return Ragged(pts, offsets, np.zeros(len(curve), dtype=bool))
 
     def vertex_normals(self):

@@ -97,6 +97,31 @@ def test_ragged_measures_each_curve_as_the_single_curve_functions_do():
     np.testing.assert_allclose(piece.curve(0), subcurve(a, True, 1.0, 2.0))
 
 
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=40)
+def test_pieces_are_the_ends_points_and_the_vertices_strictly_between(seed):
+    """Stretches of open curves and loops (some running on past a loop's first vertex, some
+    of one curve only, some shorter than an edge): the point at s0, every vertex whose arc
+    length lies strictly between (a loop's second lap after its first), the point at s1."""
+    rng = np.random.default_rng(seed)
+    closed = rng.integers(0, 2, 4).astype(bool)
+    curves = [_wobbly(int(rng.integers(3, 30)), int(rng.integers(1, 4)), closed=bool(c)) for c in closed]
+    rg = Ragged.from_list(curves, closed)
+    curve = rng.integers(0, 4, 12)
+    length = rg.length[curve]
+    s0 = rng.uniform(0, 1, 12) * length
+    s1 = s0 + rng.uniform(0, 1, 12) * np.where(rg.closed[curve], length, length - s0)
+    got = rg.pieces(curve, s0, s1)
+    for k, c in enumerate(curve):
+        s, pts = rg.s[rg.offsets[c] : rg.offsets[c + 1]], rg.curve(c)
+        laps = [(s, pts), (s + length[k], pts)] if rg.closed[c] else [(s, pts)]
+        between = [p for lap_s, lap_pts in laps for t, p in zip(lap_s, lap_pts) if s0[k] < t < s1[k]]
+        end = s1[k] - length[k] if rg.closed[c] and s1[k] > length[k] else s1[k]
+        first, last = (rg.point_at(np.array([c]), np.array([at])) for at in (s0[k], end))
+        want = np.vstack([first, *between, last])
+        np.testing.assert_array_equal(got.curve(k), want)
+
+
 @given(POINTS)
 @settings(max_examples=20)
 def test_containment_matches_brute_force(points):
