@@ -509,7 +509,9 @@ def test_local_depths_are_the_nearest_vertex_of_the_window_round_each_contact(cl
     chain = np.sort(rng.integers(0, 3, 300))
     s = rng.uniform(-0.1, 1.1, 300) * rg.length[chain]
     centres, radii = rng.uniform(-2, 2, (300, 2)), rng.uniform(0, 1, 300)
-    depth, witness = check._local_depths(side, chain, s, centres, radii)
+    start = check._window_starts(side, chain, s)
+    depth = check._local_depths(side, start, centres, radii)
+    witness = check._nearest_vertices(side, start, centres)
     edge, _ = rg.locate(chain, s)
     for k, c in enumerate(chain):
         local = edge[k] - rg.offsets[c] + np.arange(-check.LOCAL_WINDOW, check.LOCAL_WINDOW + 2)
@@ -611,3 +613,4 @@ def test_sides_densify_exactly_the_coarse_curves():
     assert len(raw.pts) > sum(len(c) for c in curves)  # the coarse ones were subdivided
     np.testing.assert_array_equal(side.rg.pts, want.pts)
     np.testing.assert_array_equal(side.rg.offsets, want.offsets)
+
