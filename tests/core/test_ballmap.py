@@ -614,3 +614,20 @@ def test_sides_densify_exactly_the_coarse_curves():
     np.testing.assert_array_equal(side.rg.pts, want.pts)
     np.testing.assert_array_equal(side.rg.offsets, want.offsets)
 
+
+@pytest.mark.parametrize("seed", range(6))
+def test_chain_order_is_lexsort_by_chain_then_key(seed):
+    # Two runs of chains (as both one-way maps come), keys with many ties, signed zeros,
+    # infinities (and NaNs): the very permutation of np.lexsort.
+    from ballmorph_core.ballmap.thinning import chain_order
+
+    rng = np.random.default_rng(seed)
+    chain = np.concatenate([np.sort(rng.integers(0, 30, 400)), np.sort(rng.integers(0, 30, 300))])
+    key = rng.integers(-3, 4, len(chain)).astype(float)
+    key[rng.random(len(chain)) < 0.2] = -0.0
+    key[rng.random(len(chain)) < 0.05] = rng.choice([np.inf, -np.inf])
+    if seed >= 4:
+        key[rng.random(len(chain)) < 0.05] = np.nan
+    if seed % 2:
+        rng.shuffle(chain)
+    np.testing.assert_array_equal(chain_order(chain, key), np.lexsort((key, chain)))
