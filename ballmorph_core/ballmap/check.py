@@ -37,22 +37,48 @@ NONLOCAL_PENETRATION = 1.0
 REPAIR_LIMIT = 2048
 
 
-def _local_depths(side, chain, s, centres, radii):
-    """Deepest penetration of each disk by the vertices near its contact on one curve, and the
-    deepest vertex (global index), each shape (K,)."""
+#: The window round a contact on edge ``e``: vertices ``e - LOCAL_WINDOW`` to ``e + LOCAL_WINDOW + 1``.
+_WINDOW = (LOCAL_WINDOW, LOCAL_WINDOW + 1)
+_WIDTH = sum(_WINDOW) + 1
+
+
+def _window_starts(side, chain, s):
+    """Where the window round each contact's edge starts in ``side.windows`` (the contacts at
+    arc lengths ``s`` of their chains), shape (K,)."""
     edge, _ = side.rg.locate(chain, s)
-    # The windows of every vertex are laid out once per side: a contact's is its edge's row (in
-    # range: take's 'wrap' mode skips the bounds check).
-    x, y, vertex = side.windows(LOCAL_WINDOW, LOCAL_WINDOW + 1)
-    row = edge + (x.shape[1] - 1) * chain
-    dx, dy = np.take(x, row, axis=0, mode="wrap"), np.take(y, row, axis=0, mode="wrap")
-    dx -= centres[:, :1]
-    dy -= centres[:, 1:]
-    d2 = np.square(dx, out=dx)
-    d2 += np.square(dy, out=dy)
-    k = np.argmin(d2, axis=1)
-    nearest = np.take(vertex, row + k, mode="wrap")
-    return radii - np.sqrt(np.take_along_axis(d2, k[:, None], axis=1)[:, 0]), nearest
+    return edge + (_WIDTH - 1) * chain
+
+
+def _local_depths(side, start, centres, radii):
+    """Deepest penetration of each disk by the vertices of its window (starting at ``start``,
+    see :func:`_window_starts`) on one curve, shape (K,).
+
+    Place by place, the running minimum of the squared distances (each the same value as
+    from a (K, W) table of the windows, whose rows numpy would reduce a row at a time).
+    """
+    x, y, _ = side.windows(*_WINDOW)
+    cx, cy = (np.ascontiguousarray(v) for v in centres.T)
+    nearest = None
+    for j in range(_WIDTH):
+        at = start + j
+        # In range: take's 'wrap' mode skips the bounds check.
+        dx, dy = np.take(x, at, mode="wrap"), np.take(y, at, mode="wrap")
+        dx -= cx
+        dy -= cy
+        d2 = np.square(dx, out=dx)
+        d2 += np.square(dy, out=dy)
+        nearest = d2 if nearest is None else np.minimum(nearest, d2, out=nearest)
+    return radii - np.sqrt(nearest)
+
+
+def _nearest_vertices(side, start, centres):
+    """The first vertex of each window (see :func:`_local_depths`) nearest its disk's centre:
+    the global vertex index, shape (K,). Asked only for the disks the check flags."""
+    x, y, vertex = side.windows(*_WINDOW)
+    at = start[:, None] + np.arange(_WIDTH)
+    dx, dy = x[at] - centres[:, :1], y[at] - centres[:, 1:]
+    k = np.argmin(dx * dx + dy * dy, axis=1)
+    return vertex[at[np.arange(len(at)), k]]
 
 
 #: The nonlocal search asks runs of this many consecutive disks of a chain as one disk holding
@@ -150,13 +176,21 @@ def _depths(one_way, src, dst, spacing, eps, trees):
     whether that fails the check."""
     m, r, ok, chain = one_way.m, one_way.r, one_way.ok, one_way.chain
     h = spacing[chain]
-    d_src, w_src = _local_depths(src, chain, one_way.s_src, m, r)
-    d_dst, w_dst = _local_depths(dst, chain, one_way.s_dst, m, r)
+    at_src = _window_starts(src, chain, one_way.s_src)
+    at_dst = _window_starts(dst, chain, one_way.s_dst)
+    d_src = _local_depths(src, at_src, m, r)
+    d_dst = _local_depths(dst, at_dst, m, r)
     n_src = len(src.rg.pts)
     verts = np.concatenate([src.rg.pts, dst.rg.pts])
     depth = np.maximum(d_src, d_dst)
-    witness = np.where(d_src >= d_dst, w_src, w_dst + n_src)
     bad = depth > np.maximum(DISK_PENETRATION * h, eps)
+    # The deepest vertex, where a found disk fails locally (the only ones a report names).
+    witness = np.zeros(len(r), dtype=np.int64)
+    failing = np.flatnonzero(bad & ok)
+    if len(failing):
+        w_src = _nearest_vertices(src, at_src[failing], m[failing])
+        w_dst = _nearest_vertices(dst, at_dst[failing], m[failing])
+        witness[failing] = np.where(d_src[failing] >= d_dst[failing], w_src, w_dst + n_src)
     # Other parts of the same chain's curves reaching into a disk.
     radius = r * (1.0 - NONLOCAL_RELATIVE) - NONLOCAL_PENETRATION * h
     query = np.flatnonzero((radius > 0) & ok)

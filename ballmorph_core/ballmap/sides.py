@@ -4,7 +4,6 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from numpy.lib.stride_tricks import sliding_window_view
 
 from ..geometry.ragged import Ragged, ragged_arange
 from ..geometry.spline import densify, needs_subdivision
@@ -64,20 +63,20 @@ class Sides:
 
     def windows(self, before, after):
         """The vertices ``before`` before to ``after`` after every vertex, on its curve (wrapping
-        round a loop, stopping at a stroke's ends), made once per width.
+        round a loop, stopping at a stroke's ends), laid out once per width.
 
         Every curve's vertices are laid out padded by its window's overhang, so the window of
-        a vertex is a run of the padded layout and one row of the tables: the disk check reads
-        the window round every contact of both directions with one gather per contact.
+        a vertex is a run of the padded layout: the disk check reads the window round every
+        contact of both directions place by place, one gather per place.
 
         Returns
         -------
-        x, y : ndarray, shape (R, W)
-            Coordinates of the windows' vertices, ``W = before + after + 1``; the window of
-            global vertex ``v`` of curve ``c`` is row ``v + (W - 1) c``.
+        x, y : ndarray, shape (R + W - 1,)
+            Coordinates of the padded layout, ``W = before + after + 1``; the window of global
+            vertex ``v`` of curve ``c`` starts at place ``v + (W - 1) c`` and holds the next
+            ``W`` places.
         vertex : ndarray of int, shape (R + W - 1,)
-            The global vertex at each place of the padded layout: row ``r``'s entry ``j`` is
-            vertex ``vertex[r + j]``.
+            The global vertex at each place.
         """
         key = (before, after)
         if key not in self._windows:
@@ -92,8 +91,8 @@ class Sides:
             np.clip(vertex, first, first + n_v - 1, out=vertex)
             vertex[loops] = wrapped
             # In range: take's 'wrap' mode skips the bounds check.
-            x, y = (sliding_window_view(np.take(v, vertex, mode="wrap"), before + after + 1) for v in self.columns[0])
-            self._windows[key] = np.ascontiguousarray(x), np.ascontiguousarray(y), vertex
+            x, y = (np.take(v, vertex, mode="wrap") for v in self.columns[0])
+            self._windows[key] = x, y, vertex
         return self._windows[key]
 
     @cached_property

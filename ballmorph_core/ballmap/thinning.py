@@ -14,7 +14,7 @@ from ..geometry.ragged import ragged_arange
 from .onemap import OneWayMap
 from .report import Violation
 
-__all__ = ["symmetric_samples", "running_backsteps", "uniform_picks"]
+__all__ = ["symmetric_samples", "chain_order", "running_backsteps", "uniform_picks"]
 
 #: The forward (P -> Q) and backward (Q -> P) maps may disagree by this many dense spacings
 #: before the pair counts as not b-compatible there (a disk touching a curve at two places makes
@@ -49,6 +49,32 @@ def _onto_forward_laps(fwd, bwd, sp, sq):
     laps = np.divide(ref - bwd.s_dst, len_q[cb], out=np.zeros_like(ref), where=closed[cb] & (len_q[cb] > 0))
     bwd.s_src, bwd.s_dst = sp_b, bwd.s_dst + len_q[cb] * np.round(laps)
     return bwd
+
+
+def chain_order(chain, key):
+    """``np.lexsort((key, chain))``: the rows by chain, then by key, ties in row order.
+
+    One stable sort of ``chain + key j`` (numpy orders complex numbers by their real parts,
+    then their imaginary ones): rows that come in a few runs already in order (both one-way
+    maps, chain after chain) take one merge of the runs instead of lexsort's two full sorts,
+    a tenth of the time. A NaN key (never from finite curves) sorts a complex number last
+    whatever its chain, so such keys take lexsort itself.
+
+    Parameters
+    ----------
+    chain : ndarray of int, shape (K,)
+        Below 2**53 (exact as floats).
+    key : ndarray, shape (K,)
+
+    Returns
+    -------
+    ndarray of int, shape (K,)
+    """
+    if np.isnan(key).any():
+        return np.lexsort((key, chain))
+    z = np.empty(len(key), dtype=np.complex128)
+    z.real, z.imag = chain, key
+    return np.argsort(z, kind="stable")
 
 
 def running_backsteps(s, chain, span):
@@ -164,7 +190,7 @@ def symmetric_samples(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
     allp = OneWayMap.concatenate([fwd, bwd])
     # Only the positions and chains are read in order before the thinning: the other fields
     # are taken once, for the kept rows.
-    order = np.lexsort((allp.s_src + allp.s_dst, allp.chain))
+    order = chain_order(allp.chain, allp.s_src + allp.s_dst)
     s_p, s_q, chain = (np.take(v, order) for v in (allp.s_src, allp.s_dst, allp.chain))
     span = 4.0 * (max(len_p.max(), len_q.max()) + 1.0)
     back_p = running_backsteps(s_p, chain, span)

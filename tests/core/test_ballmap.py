@@ -509,7 +509,9 @@ def test_local_depths_are_the_nearest_vertex_of_the_window_round_each_contact(cl
     chain = np.sort(rng.integers(0, 3, 300))
     s = rng.uniform(-0.1, 1.1, 300) * rg.length[chain]
     centres, radii = rng.uniform(-2, 2, (300, 2)), rng.uniform(0, 1, 300)
-    depth, witness = check._local_depths(side, chain, s, centres, radii)
+    start = check._window_starts(side, chain, s)
+    depth = check._local_depths(side, start, centres, radii)
+    witness = check._nearest_vertices(side, start, centres)
     edge, _ = rg.locate(chain, s)
     for k, c in enumerate(chain):
         local = edge[k] - rg.offsets[c] + np.arange(-check.LOCAL_WINDOW, check.LOCAL_WINDOW + 2)
@@ -611,3 +613,21 @@ def test_sides_densify_exactly_the_coarse_curves():
     assert len(raw.pts) > sum(len(c) for c in curves)  # the coarse ones were subdivided
     np.testing.assert_array_equal(side.rg.pts, want.pts)
     np.testing.assert_array_equal(side.rg.offsets, want.offsets)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_chain_order_is_lexsort_by_chain_then_key(seed):
+    # Two runs of chains (as both one-way maps come), keys with many ties, signed zeros,
+    # infinities (and NaNs): the very permutation of np.lexsort.
+    from ballmorph_core.ballmap.thinning import chain_order
+
+    rng = np.random.default_rng(seed)
+    chain = np.concatenate([np.sort(rng.integers(0, 30, 400)), np.sort(rng.integers(0, 30, 300))])
+    key = rng.integers(-3, 4, len(chain)).astype(float)
+    key[rng.random(len(chain)) < 0.2] = -0.0
+    key[rng.random(len(chain)) < 0.05] = rng.choice([np.inf, -np.inf])
+    if seed >= 4:
+        key[rng.random(len(chain)) < 0.05] = np.nan
+    if seed % 2:
+        rng.shuffle(chain)
+    np.testing.assert_array_equal(chain_order(chain, key), np.lexsort((key, chain)))
