@@ -154,3 +154,16 @@ def test_circular_paths_sines_and_cosines_are_numpys_to_round_off(bound):
     doublings, sin_terms, cos_terms = _sincos_terms(bound)
     assert doublings == (0 if bound <= np.pi / 4 else 1 if bound <= np.pi / 2 else 2)
     assert len(sin_terms) + len(cos_terms) <= (3 if bound <= 1e-6 else 11 if bound <= 0.144 else 18)
+
+
+def test_path_lengths_of_rows_are_numpys_norms_bit_for_bit():
+    """The paths' row lengths (column by column) against np.linalg.norm(axis=1): rows of every
+    scale, zeros, subnormals and values whose squares overflow."""
+    from ballmorph_core.morphs.paths import _norms
+
+    rng = np.random.default_rng(3)
+    v = rng.standard_normal((4000, 2)) * 10.0 ** rng.integers(-320, 300, (4000, 1))
+    v[:5] = [[0.0, 0.0], [-0.0, 5e-324], [1e300, 1e300], [3.0, -4.0], [np.inf, 1.0]]
+    with np.errstate(over="ignore"):
+        np.testing.assert_array_equal(_norms(v), np.linalg.norm(v, axis=1))
+        np.testing.assert_array_equal(_norms(v[::3]), np.linalg.norm(v[::3], axis=1))  # a strided view
