@@ -123,15 +123,16 @@ def _ends_onto(A, B, reach, rows):
         # same ties as a search of its whole curve.
         start = B.offsets[curve[some]] + first[some]
         owner, local = ragged_arange(count[some])
+        vertex = start[owner] + local  # the stretches' vertices in B
         stretch = Ragged(
-            np.take(B.pts, start[owner] + local, axis=0),
+            np.take(B.pts, vertex, axis=0),
             np.r_[0, np.cumsum(count[some])],
             B.closed[curve[some]] & (count[some] == B.n[curve[some]]),
         )
         d, e, f = nearest_within(ends[some], np.arange(len(some)), stretch, r[some])
         found = np.isfinite(d)
         dist[some], frac[some] = d, f
-        edge[some[found]] = (start[owner] + local)[e[found]]
+        edge[some[found]] = vertex[e[found]]
     return (B.s[edge] + frac * B.length_of_edge[edge]).reshape(2, -1), dist.reshape(2, -1)
 
 

@@ -378,18 +378,11 @@ class _LoopFits:
         return np.clip(1.0 - best / norms, 0.0, 1.0)
 
 
-def _loop_shapes(a, b):
-    """Residuals of every loop pair over every cyclic shift of B's samples, shape (L_a, L_b).
-
-    ``a`` and ``b`` (complex, centred) run the same way (the caller reversed B's where needed).
+def _loop_shapes(a, b, sign_a=None, sign_b=None):
+    """Residuals of every loop pair over every cyclic shift of B's samples, shape (L_a, L_b):
+    the whole table of :class:`_LoopFits` (``a``, ``b`` complex and centred; with ``sign_a``,
+    ``sign_b``, their areas' signs, B's loop read backwards where the two run opposite ways).
     """
-    i, j = (g.ravel() for g in np.meshgrid(np.arange(len(a)), np.arange(len(b)), indexing="ij"))
-    return _LoopFits(a, b).residuals(i, j).reshape(len(a), len(b))
-
-
-def _oriented_loop_shapes(a, b, sign_a, sign_b):
-    """:func:`_loop_shapes` of every loop pair, B's loop read backwards where the two run opposite
-    ways (``sign_a``, ``sign_b``: their areas' signs, shapes (L_a,), (L_b,)), shape (L_a, L_b)."""
     i, j = (g.ravel() for g in np.meshgrid(np.arange(len(a)), np.arange(len(b)), indexing="ij"))
     return _LoopFits(a, b, sign_a, sign_b).residuals(i, j).reshape(len(a), len(b))
 

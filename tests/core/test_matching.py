@@ -15,7 +15,6 @@ from ballmorph_core.drawing.matching import (
     _assign_within,
     _backwards,
     _loop_shapes,
-    _oriented_loop_shapes,
     _padded_total,
     match_strokes,
 )
@@ -310,7 +309,7 @@ def test_each_loop_pair_is_fitted_in_the_direction_it_needs(seed):
     sign_a, sign_b = rng.integers(-1, 2, la).astype(float), rng.integers(-1, 2, lb).astype(float)
     flip = sign_a[:, None] * sign_b[None, :] < 0
     want = np.where(flip, _loop_shapes(a, _backwards(b)), _loop_shapes(a, b))
-    np.testing.assert_array_equal(_oriented_loop_shapes(a, b, sign_a, sign_b), want)
+    np.testing.assert_array_equal(_loop_shapes(a, b, sign_a, sign_b), want)
 
 
 def test_turned_and_scaled_strokes_pair_whatever_the_angle():
@@ -469,6 +468,6 @@ def test_loop_fits_of_some_pairs_are_those_of_every_pair(seed):
     (la, lb), m = (int(v) for v in rng.integers(1, 9, 2)), 8
     a, b = (rng.normal(size=(n, m)) + 1j * rng.normal(size=(n, m)) for n in (la, lb))
     sign_a, sign_b = rng.integers(-1, 2, la).astype(float), rng.integers(-1, 2, lb).astype(float)
-    every = _oriented_loop_shapes(a, b, sign_a, sign_b)
+    every = _loop_shapes(a, b, sign_a, sign_b)
     i, j = rng.integers(0, la, 5), rng.integers(0, lb, 5)
     assert np.array_equal(matching._LoopFits(a, b, sign_a, sign_b).residuals(i, j), every[i, j])
