@@ -39,25 +39,36 @@ class _Duals:
 
     def shortest_path(self, cur):
         """Dijkstra from row ``cur`` to a free column: (end column, predecessors, distances,
-        scanned columns, visited rows, path length)."""
+        scanned columns, visited rows, path length); the distances are final where scanned.
+
+        One step is a few passes over the columns, in place: the distances of the columns not
+        scanned yet (``remaining``, inf once scanned) are kept as they change, and a scanned
+        column's distance is set aside as it is scanned (it never changes after)."""
         n_cols = len(self.v)
-        shortest, path = np.full(n_cols, np.inf), np.full(n_cols, -1, np.int64)
-        scanned, visited = np.zeros(n_cols, bool), []
+        remaining, shortest = np.full(n_cols, np.inf), np.full(n_cols, np.inf)
+        path = np.full(n_cols, -1, np.int64)
+        scanned, unscanned, visited = np.zeros(n_cols, bool), np.ones(n_cols, bool), []
+        reduced, better = np.empty(n_cols), np.empty(n_cols, bool)
+        free = self.row4col < 0
         i, min_val = int(cur), 0.0
         while True:
             visited.append(i)
-            reduced = min_val + self.c[i] - self.u[i] - self.v
-            better = ~scanned & (reduced < shortest)
-            path[better] = i
-            shortest[better] = reduced[better]
-            remaining = np.where(scanned, np.inf, shortest)
+            # min_val + c_i - u_i - v, in that order (the same rounding as written out).
+            np.add(self.c[i], min_val, out=reduced)
+            reduced -= self.u[i]
+            reduced -= self.v
+            np.less(reduced, remaining, out=better)
+            better &= unscanned
+            np.copyto(path, i, where=better)
+            np.copyto(remaining, reduced, where=better)
             min_val = remaining.min()
-            ties = remaining == min_val
-            free_ties = ties & (self.row4col < 0)
+            ties = np.flatnonzero(remaining == min_val)
             # Prefer a free column among equals: it ends the search at once.
-            j = int(np.argmax(free_ties)) if free_ties.any() else int(np.argmax(ties))
-            scanned[j] = True
-            if self.row4col[j] < 0:
+            free_ties = ties[free[ties]]
+            j = int(free_ties[0]) if len(free_ties) else int(ties[0])
+            scanned[j], unscanned[j] = True, False
+            shortest[j], remaining[j] = remaining[j], np.inf
+            if free[j]:
                 return j, path, shortest, scanned, visited, min_val
             i = int(self.row4col[j])
 
