@@ -129,6 +129,14 @@ class NearestEdges:
         """The edge (row of ``a``) of each of the tree's pieces, ndarray of int, shape (M,)."""
         return self._index[1]
 
+    @property
+    def most_pieces(self):
+        """The most pieces (see :func:`_pieces`) any one curve's edges are cut into (0 without edges)."""
+        if not len(self.e):
+            return 0
+        starts, ends, _ = self.tree.levels[0]
+        return int((ends - starts).max())
+
     def within(self, points, owner, reach):
         """The closest point of each query's curve, among edges within ``reach`` of the query.
 
@@ -275,8 +283,13 @@ class FollowedQueries:
         self.margin = np.broadcast_to(np.asarray(margin, dtype=np.float64), self.owner.shape)
         n = len(self.owner)
         self.at, self.held = np.zeros((n, 2)), np.full(n, -np.inf)
-        # Each query's kept edges (rows of search.a) and their distances from `at` (inf: no edge).
-        self.kept, self.kept_d = np.zeros((n, _KEPT), np.int64), np.full((n, _KEPT), np.inf)
+        # A query's candidates are pieces of its own curve: it never keeps more than the most
+        # pieces a curve has (short strokes: far fewer than _KEPT).
+        self.width = min(_KEPT, search.most_pieces)
+        # Each query's kept edges (rows of search.a) and their distances from `at`: the first
+        # `count` slots of its row (the others are never read, so never written either).
+        self.kept, self.kept_d = np.empty((n, self.width), np.int64), np.empty((n, self.width))
+        self.count = np.zeros(n, np.int64)
 
     def within(self, rows, points, reach):
         """:meth:`NearestEdges.within` of queries ``rows`` (ndarray of int, shape (K,)) now at
@@ -298,11 +311,15 @@ class FollowedQueries:
         # A kept edge that lay farther than cut + moved from the query then lies farther than
         # cut now: only the others can answer.
         asked = np.take(rows, tried, mode="wrap")
-        near = np.take(self.kept_d, asked, axis=0, mode="wrap")
-        near = near <= (cut + np.take(moved, tried, mode="wrap") + 2.0 * slack)[:, None]
-        flat = np.flatnonzero(near)
-        i = flat // _KEPT
-        j = np.take(np.take(self.kept, asked, axis=0, mode="wrap"), flat, mode="wrap")
+        # Only the kept slots, query after query (most queries keep a few of the width): slot s
+        # of query i is flat position asked[i] width + s of the tables.
+        count = np.take(self.count, asked, mode="wrap")
+        i = np.repeat(np.arange(len(tried)), count)
+        at = np.repeat(asked * self.width - (np.cumsum(count) - count), count) + np.arange(len(i))
+        near = np.take(self.kept_d, at, mode="wrap")
+        near = near <= np.take(cut + np.take(moved, tried, mode="wrap") + 2.0 * slack, i, mode="wrap")
+        at, i = at[near], i[near]
+        j = np.take(self.kept, at, mode="wrap")
         search._closest(out, tried, np.take(points, tried, axis=0, mode="wrap"), i, j, cut)
         # Settled: a kept edge within the room is closer than any other edge, and with the
         # whole reach in the room nothing outside it is within reach either.
@@ -322,27 +339,27 @@ class FollowedQueries:
     def _keep(self, new, x, i, j, d2, held, slack):
         """Queries ``new`` at ``x`` keep their candidates ``(i, j)`` (see
         :meth:`NearestEdges._closest`) at squared distances ``d2``, which hold every edge within
-        ``held`` of ``x``; a query with more than ``_KEPT`` keeps its nearest, and holds less."""
+        ``held`` of ``x``; a query with more than the tables' width (``_KEPT`` then) keeps its
+        nearest, and holds less."""
         count = np.bincount(i, minlength=len(new))
-        over = count > _KEPT
+        over = count > self.width
         if over.any():
-            # The nearest _KEPT of those; the rest lie at least as far as the first one dropped.
+            # The nearest `width` of those; the rest lie at least as far as the first one dropped.
             many = over[i]
             order = np.flatnonzero(many)[np.lexsort((d2[many], i[many]))]
             rank = np.arange(len(order)) - np.repeat(np.cumsum(count[over]) - count[over], count[over])
-            dropped = order[rank == _KEPT]
+            dropped = order[rank == self.width]
             held[over] = np.fmin(held[over], np.sqrt(d2[dropped]) - slack)
             keep = np.ones(len(i), bool)
-            keep[order[rank >= _KEPT]] = False
+            keep[order[rank >= self.width]] = False
             i, j, d2 = i[keep], j[keep], d2[keep]
-            count = np.minimum(count, _KEPT)
-        # Flat positions in the (n, _KEPT) tables: row new[i], slot = rank within its query.
+            count = np.minimum(count, self.width)
+        # Flat positions in the (n, width) tables: row new[i], slot = rank within its query.
         start = np.cumsum(count) - count
-        at = np.take(new * _KEPT - start, i, mode="wrap") + np.arange(len(i))
-        self.kept_d[new] = np.inf
+        at = np.take(new * self.width - start, i, mode="wrap") + np.arange(len(i))
         self.kept.reshape(-1)[at] = j
         self.kept_d.reshape(-1)[at] = np.sqrt(d2)
-        self.at[new], self.held[new] = x, held
+        self.at[new], self.held[new], self.count[new] = x, held, count
 
 
 def _empty(n):

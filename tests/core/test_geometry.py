@@ -519,6 +519,26 @@ def test_followed_queries_with_more_candidates_than_kept_answer_as_the_tree_does
         _answer_as_the_tree(rng, batch, FollowedQueries(search, owner, 0.1), points, [0.05, 0.3, np.inf], 6)
 
 
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=20, deadline=None)
+def test_followed_queries_on_short_curves_keep_every_piece_in_narrow_tables(seed):
+    # Short scribbles (long edges cut into pieces): the kept tables are as wide as the most
+    # pieces a curve has, fewer than _KEPT, and a query taking every piece of its curve (an
+    # unbounded margin) keeps them all; its answers stay the tree's as it drifts.
+    rng = np.random.default_rng(seed)
+    curves = [rng.random((int(rng.integers(2, 6)), 2)) + c for c in range(3)]
+    batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
+    search, k = NearestEdges(batch), 40
+    pieces = np.bincount(batch.owner[search.e[search.piece_edge]], minlength=3)
+    owner = rng.integers(0, 3, k)
+    followed = FollowedQueries(search, owner, np.inf)
+    assert followed.width == pieces.max() < projection._KEPT
+    points = rng.uniform(-0.5, 3.5, (k, 2))
+    followed.within(np.arange(k), points, np.full(k, np.inf))
+    np.testing.assert_array_equal(followed.count, pieces[owner])
+    _answer_as_the_tree(rng, batch, followed, points, [0.01, 0.3, np.inf], 6)
+
+
 def test_followed_queries_settle_on_a_kept_edge_and_measure_only_those_within_reach():
     # Asked with no reach (the far corner of the curve, far beyond what they hold), queries
     # drifting 0.002 still settle: their closest kept edge lies within what they hold, so no
@@ -545,7 +565,7 @@ def test_followed_queries_settle_on_a_kept_edge_and_measure_only_those_within_re
     for g, w in zip(got, foot):
         np.testing.assert_array_equal(g, w)
     assert asked == [len(points)]
-    assert measured[0] < 0.25 * np.isfinite(followed.kept_d).sum()
+    assert measured[0] < 0.25 * followed.count.sum()
 
 
 @given(st.integers(0, 2**32 - 1), st.booleans())
