@@ -35,6 +35,11 @@ _LEAF_PIECES = 8
 #: Candidates a followed query keeps at most (one with more searches the tree every time).
 _KEPT = 32
 
+#: A reach at most this fraction of its curve's bounding-box diagonal lies within the box's far
+#: corner from anywhere (which is at least half the diagonal away), round-off and all: the far
+#: corner would not cut it.
+_UNCUT_DIAGONAL = 0.49
+
 #: A search whose queries' curves hold at most this many edges per edge of the batch measures
 #: every one of them: fewer pairs than building the tree sorts (about one query per curve).
 _DIRECT_PAIRS_PER_EDGE = 2
@@ -107,6 +112,12 @@ class NearestEdges:
         return self.curves.boxes()
 
     @cached_property
+    def _uncut(self):
+        """The reach each curve's far corner cuts from nowhere (see ``_UNCUT_DIAGONAL``), shape (C,)."""
+        box = self._curve_boxes
+        return _UNCUT_DIAGONAL * np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1])
+
+    @cached_property
     def _index(self):
         """The k-d tree over the pieces (see Notes), each piece's edge and the largest coordinate
         of their boxes; built when a search first needs them."""
@@ -177,11 +188,22 @@ class NearestEdges:
         owner = np.asarray(owner, dtype=np.int64).reshape(-1)
         if len(points) == 0 or len(self.e) == 0:
             return points, owner, np.zeros(len(points))
-        # No edge of a curve lies farther than the far corner of its bounding box: a bound for any reach.
+        # No edge of a curve lies farther than the far corner of its bounding box: a bound for any
+        # reach, though not for the short ones (an iterative fit's): only the others are cut.
+        reach = np.broadcast_to(np.asarray(reach, dtype=np.float64), owner.shape)
+        far = np.flatnonzero(~(reach <= np.take(self._uncut, owner, mode="wrap")))
+        if len(far) == len(owner):
+            return points, owner, self._far_corner_cut(points, owner, reach)
+        reach = reach.copy()
+        cut = (np.take(v, far, axis=0, mode="wrap") for v in (points, owner, reach))
+        reach[far] = self._far_corner_cut(*cut)
+        return points, owner, reach
+
+    def _far_corner_cut(self, points, owner, reach):
+        """Reaches cut to their curve's far corner, shape (K,) (arguments as :meth:`_bounded` makes them)."""
         box = np.take(self._curve_boxes, owner, axis=0, mode="wrap")
         corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
-        reach = np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
-        return points, owner, reach
+        return np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
 
     def _slack(self, points):
         """The tree's round-off slack for ``points`` (shape (K, 2), K > 0): distances computed
