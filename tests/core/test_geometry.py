@@ -418,6 +418,27 @@ def test_nearest_edges_match_brute_force_edge_and_fraction(seed, kind):
         np.testing.assert_array_equal(g, w)
 
 
+@given(st.integers(0, 2**32 - 1), st.floats(1e-6, 1e6))
+@settings(max_examples=40, deadline=None)
+def test_nearest_edges_cut_only_reaches_their_far_corner_would(seed, scale):
+    # Reaches around the uncut share of the diagonal, from the boxes' centres (whose far corner
+    # is half the diagonal away), corners and afar: the very reaches of cutting every one.
+    rng = np.random.default_rng(seed)
+    curves = [scale * (rng.random((int(rng.integers(1, 8)), 2)) + c) for c in range(3)]
+    search = NearestEdges(Ragged.from_list(curves, [False, True, False]))
+    box, k = search._curve_boxes, 90
+    owner = rng.integers(0, 3, k)
+    diagonal = np.hypot(box[owner, 2] - box[owner, 0], box[owner, 3] - box[owner, 1])
+    centre, corner = 0.5 * (box[owner, :2] + box[owner, 2:]), box[owner, :2]
+    afar = rng.uniform(-2 * scale, 5 * scale, (k, 2))
+    points = np.select([rng.random((k, 1)) < 0.4, rng.random((k, 1)) < 0.5], [centre, corner], afar)
+    share = rng.choice([0.0, 0.3, projection._UNCUT_DIAGONAL, 0.4901, 0.5, 0.5001, 2.0], k)
+    reach = np.where(rng.random(k) < 0.1, np.inf, share * diagonal)
+    _, _, got = search._bounded(points, owner, reach)
+    np.testing.assert_array_equal(got, search._far_corner_cut(points, owner, reach))
+    assert (got < reach).any() and (got == reach).any()
+
+
 @pytest.mark.parametrize("seed", range(6))
 def test_few_queries_per_curve_measure_every_edge_as_the_tree_would(seed, monkeypatch):
     # One query per curve (the ends of strokes): every edge of its curve is measured and no
