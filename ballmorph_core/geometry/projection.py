@@ -262,21 +262,25 @@ class NearestEdges:
         # edge at it (pieces of one edge repeat it: any of them).
         run = np.flatnonzero(np.concatenate(([True], i[1:] != i[:-1])))
         least = np.empty(len(x))
-        least[i[run]] = np.minimum.reduceat(d2, run)
+        least[np.take(i, run, mode="wrap")] = np.minimum.reduceat(d2, run)
         first = np.flatnonzero(d2 == np.take(least, i, mode="wrap"))
-        owner = i[first]
+        owner = np.take(i, first, mode="wrap")
         again = owner[1:] == owner[:-1]
         if again.any():
             # Ties (a foot on a shared vertex, pieces of one edge): among the queries that have
             # them, the lowest edge first, then the first of each query.
             tied = np.concatenate((again, [False])) | np.concatenate(([False], again))
             some = first[tied]
-            some = some[np.lexsort((j[some], i[some]))]
+            some = some[np.lexsort((j[some], owner[tied]))]
             first = np.concatenate((first[~tied], some[np.concatenate(([True], i[some][1:] != i[some][:-1]))]))
+            owner = np.take(i, first, mode="wrap")
         # Every edge within the bound is a candidate, so the best one is the closest.
-        first = first[d2[first] <= np.square(reach[i[first]])]
-        hit = rows[i[first]]
-        out[0][hit], out[1][hit], out[2][hit] = np.sqrt(d2[first]), self.e[j[first]], f[first]
+        d2_first = np.take(d2, first, mode="wrap")
+        within = d2_first <= np.square(np.take(reach, owner, mode="wrap"))
+        first, hit = first[within], np.take(rows, owner[within], mode="wrap")
+        out[0][hit] = np.sqrt(d2_first[within])
+        out[1][hit] = np.take(self.e, np.take(j, first, mode="wrap"), mode="wrap")
+        out[2][hit] = np.take(f, first, mode="wrap")
         return d2
 
 
