@@ -35,6 +35,11 @@ _LEAF_PIECES = 8
 #: Candidates a followed query keeps at most (one with more searches the tree every time).
 _KEPT = 32
 
+#: Candidates per query up to which :func:`_least` steps through the queries' runs side by side
+#: (few steps, over ever fewer runs: a followed query measures one or two), not reduceat and a
+#: sort of the ties.
+_SHORT_RUNS = 8
+
 #: A reach at most this fraction of its curve's bounding-box diagonal lies within the box's far
 #: corner from anywhere (which is at least half the diagonal away), round-off and all: the far
 #: corner would not cut it.
@@ -258,22 +263,8 @@ class NearestEdges:
         ay -= xy
         d2 = np.square(ax, out=ax)
         d2 += np.square(ay, out=ay)
-        # Candidates come query by query: keep each query's least distance, then the lowest
-        # edge at it (pieces of one edge repeat it: any of them).
-        run = np.flatnonzero(np.concatenate(([True], i[1:] != i[:-1])))
-        least = np.empty(len(x))
-        least[np.take(i, run, mode="wrap")] = np.minimum.reduceat(d2, run)
-        first = np.flatnonzero(d2 == np.take(least, i, mode="wrap"))
+        first = _least(d2, i, j)
         owner = np.take(i, first, mode="wrap")
-        again = owner[1:] == owner[:-1]
-        if again.any():
-            # Ties (a foot on a shared vertex, pieces of one edge): among the queries that have
-            # them, the lowest edge first, then the first of each query.
-            tied = np.concatenate((again, [False])) | np.concatenate(([False], again))
-            some = first[tied]
-            some = some[np.lexsort((j[some], owner[tied]))]
-            first = np.concatenate((first[~tied], some[np.concatenate(([True], i[some][1:] != i[some][:-1]))]))
-            owner = np.take(i, first, mode="wrap")
         # Every edge within the bound is a candidate, so the best one is the closest.
         d2_first = np.take(d2, first, mode="wrap")
         within = d2_first <= np.square(np.take(reach, owner, mode="wrap"))
@@ -386,6 +377,45 @@ class FollowedQueries:
         self.kept.reshape(-1)[at] = j
         self.kept_d.reshape(-1)[at] = np.sqrt(d2)
         self.at[new], self.held[new], self.count[new] = x, held, count
+
+
+def _least(d2, i, j):
+    """Each query's least candidate: the least ``d2``, ties to the lowest edge ``j`` (pieces of
+    one edge repeat it: any of them), for the candidates ``(i, j)`` of :meth:`NearestEdges._closest`.
+
+    Returns
+    -------
+    first : ndarray of int, shape (Q,)
+        Rows of the candidates, one for each query that has any.
+    """
+    run = np.flatnonzero(np.concatenate(([True], i[1:] != i[:-1])))
+    length = np.diff(run, append=len(i))
+    longest = int(length.max())
+    if longest <= _SHORT_RUNS:
+        # Each run's best so far against its next candidate, for the runs that have one.
+        first, longer = run.copy(), np.flatnonzero(length > 1)
+        for step in range(1, longest):
+            longer = longer[np.take(length, longer, mode="wrap") > step]
+            now, then = np.take(run, longer, mode="wrap") + step, np.take(first, longer, mode="wrap")
+            d_now, d_then = np.take(d2, now, mode="wrap"), np.take(d2, then, mode="wrap")
+            better = (d_now < d_then) | (
+                (d_now == d_then) & (np.take(j, now, mode="wrap") < np.take(j, then, mode="wrap"))
+            )
+            first[longer[better]] = now[better]
+        return first
+    least = np.empty(int(i[-1]) + 1)
+    least[np.take(i, run, mode="wrap")] = np.minimum.reduceat(d2, run)
+    first = np.flatnonzero(d2 == np.take(least, i, mode="wrap"))
+    owner = np.take(i, first, mode="wrap")
+    again = owner[1:] == owner[:-1]
+    if again.any():
+        # Ties (a foot on a shared vertex, pieces of one edge): among the queries that have
+        # them, the lowest edge first, then the first of each query.
+        tied = np.concatenate((again, [False])) | np.concatenate(([False], again))
+        some = first[tied]
+        some = some[np.lexsort((j[some], owner[tied]))]
+        first = np.concatenate((first[~tied], some[np.concatenate(([True], i[some][1:] != i[some][:-1]))]))
+    return first
 
 
 def _empty(n):

@@ -418,6 +418,32 @@ def test_nearest_edges_match_brute_force_edge_and_fraction(seed, kind):
         np.testing.assert_array_equal(g, w)
 
 
+@given(st.integers(0, 2**32 - 1), st.sampled_from([0, 2, 1000]))
+@settings(max_examples=30, deadline=None)
+def test_nearest_edges_pick_the_least_candidate_stepping_or_sorting(seed, short_runs):
+    # Each query's least candidate, found by stepping through the runs (short ones) or by
+    # reduceat and a sort of the ties (long ones): the brute force's edge and fraction, with
+    # exact ties (feet on shared and repeated vertices) and pieces of one edge.
+    rng = np.random.default_rng(seed)
+    curves = []
+    for c in range(int(rng.integers(1, 4))):
+        n = int(rng.integers(2, 40))
+        pts = rng.random((n, 2)) + c * 0.3 if rng.random() < 0.5 else np.cumsum(rng.normal(0, 0.05, (n, 2)), axis=0)
+        pts[rng.integers(n)] = pts[0]
+        curves.append(pts)
+    batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
+    owner = rng.integers(0, len(curves), 80)
+    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 3, 80) % batch.n[owner]]
+    points = np.where(rng.random((80, 1)) < 0.4, on_vertex, rng.uniform(-0.5, 1.5, (80, 2)))
+    reach = rng.choice([0.01, 0.2, np.inf], 80)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(projection, "_SHORT_RUNS", short_runs)
+        patch.setattr(projection, "_DIRECT_PAIRS_PER_EDGE", 0)
+        got = NearestEdges(batch).within(points, owner, reach)
+    for g, w in zip(got, _nearest_edges_brute(points, owner, batch, reach)):
+        np.testing.assert_array_equal(g, w)
+
+
 @given(st.integers(0, 2**32 - 1), st.floats(1e-6, 1e6))
 @settings(max_examples=40, deadline=None)
 def test_nearest_edges_cut_only_reaches_their_far_corner_would(seed, scale):
