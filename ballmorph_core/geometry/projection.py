@@ -332,11 +332,11 @@ class FollowedQueries:
         # of query i is flat position asked[i] width + s of the tables.
         count = np.take(self.count, asked, mode="wrap")
         i = np.repeat(np.arange(len(tried)), count)
-        at = np.repeat(asked * self.width - (np.cumsum(count) - count), count) + np.arange(len(i))
+        at = np.repeat(asked * self.width - (np.cumsum(count) - count), count)
+        at += np.arange(len(i))
         near = np.take(self.kept_d, at, mode="wrap")
-        near = near <= np.take(cut + np.take(moved, tried, mode="wrap") + 2.0 * slack, i, mode="wrap")
-        at, i = at[near], i[near]
-        j = np.take(self.kept, at, mode="wrap")
+        near = np.flatnonzero(near <= np.repeat(cut + np.take(moved, tried, mode="wrap") + 2.0 * slack, count))
+        i, j = np.take(i, near, mode="wrap"), np.take(self.kept, np.take(at, near, mode="wrap"), mode="wrap")
         search._closest(out, tried, np.take(points, tried, axis=0, mode="wrap"), i, j, cut)
         # Settled: a kept edge within the room is closer than any other edge, and with the
         # whole reach in the room nothing outside it is within reach either.
