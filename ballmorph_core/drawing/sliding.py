@@ -28,11 +28,12 @@ SLIDE_REACH = 0.3
 #: a settling fit moves samples by about 0.002 sizes an iteration, so the next iterations
 #: find their closest edges among those (FollowedQueries) instead of in the tree.
 SLIDE_FOLLOW = 0.01
-#: ... and at least this share of Q's mean edge: where Q has few, long edges (hair, grass: short
-#: strokes of 20 points), a drift of a fraction of one would send a sample back to the tree
-#: every few iterations, while keeping an edge more costs little (1000 such strokes: the fit
-#: 590 -> 510 ms; long strokes' edges are far shorter than their size, and keep the first rule).
+#: ... and, where Q's edges are long (short strokes of few points: hair, grass), this share of
+#: Q's mean edge, up to ``SLIDE_FOLLOW_MOST`` sizes: a drift of a fraction of an edge would send
+#: a sample back to the tree every few iterations, while keeping an edge more costs little. The
+#: cap keeps a scribble's samples (its edges span the drawing) from keeping every piece near them.
 SLIDE_FOLLOW_EDGES = 0.5
+SLIDE_FOLLOW_MOST = 0.03
 
 #: The sliding fit is first run on every ``SLIDE_COARSE``-th sample against every
 #: ``SLIDE_COARSE``-th vertex of Q, from the same starts, with a looser overlap rule
@@ -148,7 +149,7 @@ def _iterate(xp, Q, index, search, size, a, b):
     d, w, s_q = np.full((L, k), np.inf), np.zeros((L, k)), np.zeros(L * k)
     foot = np.full(L * k, np.nan, dtype=complex)
     mean_edge = Q.length[index] / np.maximum(Q.n_edges[index], 1)
-    margin = np.maximum(SLIDE_FOLLOW * size, SLIDE_FOLLOW_EDGES * mean_edge)
+    margin = np.clip(SLIDE_FOLLOW_EDGES * mean_edge, SLIDE_FOLLOW * size, SLIDE_FOLLOW_MOST * size)
     followed = FollowedQueries(search, owner, np.repeat(margin, k))
     active = np.arange(L)
     for step in range(SLIDE_ITERATIONS):
