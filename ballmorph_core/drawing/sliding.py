@@ -28,6 +28,12 @@ SLIDE_REACH = 0.3
 #: a settling fit moves samples by about 0.002 sizes an iteration, so the next iterations
 #: find their closest edges among those (FollowedQueries) instead of in the tree.
 SLIDE_FOLLOW = 0.01
+#: ... and, where Q's edges are long (short strokes of few points: hair, grass), this share of
+#: Q's mean edge, up to ``SLIDE_FOLLOW_MOST`` sizes: a drift of a fraction of an edge would send
+#: a sample back to the tree every few iterations, while keeping an edge more costs little. The
+#: cap keeps a scribble's samples (its edges span the drawing) from keeping every piece near them.
+SLIDE_FOLLOW_EDGES = 0.5
+SLIDE_FOLLOW_MOST = 0.03
 
 #: The sliding fit is first run on every ``SLIDE_COARSE``-th sample against every
 #: ``SLIDE_COARSE``-th vertex of Q, from the same starts, with a looser overlap rule
@@ -142,7 +148,9 @@ def _iterate(xp, Q, index, search, size, a, b):
     cols = np.arange(k)
     d, w, s_q = np.full((L, k), np.inf), np.zeros((L, k)), np.zeros(L * k)
     foot = np.full(L * k, np.nan, dtype=complex)
-    followed = FollowedQueries(search, owner, SLIDE_FOLLOW * np.repeat(size, k))
+    mean_edge = Q.length[index] / np.maximum(Q.n_edges[index], 1)
+    margin = np.clip(SLIDE_FOLLOW_EDGES * mean_edge, SLIDE_FOLLOW * size, SLIDE_FOLLOW_MOST * size)
+    followed = FollowedQueries(search, owner, np.repeat(margin, k))
     active = np.arange(L)
     for step in range(SLIDE_ITERATIONS):
         if not len(active):

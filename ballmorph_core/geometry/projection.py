@@ -35,6 +35,16 @@ _LEAF_PIECES = 8
 #: Candidates a followed query keeps at most (one with more searches the tree every time).
 _KEPT = 32
 
+#: Candidates per query up to which :func:`_least` steps through the queries' runs side by side
+#: (few steps, over ever fewer runs: a followed query measures one or two), not reduceat and a
+#: sort of the ties.
+_SHORT_RUNS = 8
+
+#: A reach at most this fraction of its curve's bounding-box diagonal lies within the box's far
+#: corner from anywhere (which is at least half the diagonal away), round-off and all: the far
+#: corner would not cut it.
+_UNCUT_DIAGONAL = 0.49
+
 #: A search whose queries' curves hold at most this many edges per edge of the batch measures
 #: every one of them: fewer pairs than building the tree sorts (about one query per curve).
 _DIRECT_PAIRS_PER_EDGE = 2
@@ -107,6 +117,12 @@ class NearestEdges:
         return self.curves.boxes()
 
     @cached_property
+    def _uncut(self):
+        """The reach each curve's far corner cuts from nowhere (see ``_UNCUT_DIAGONAL``), shape (C,)."""
+        box = self._curve_boxes
+        return _UNCUT_DIAGONAL * np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1])
+
+    @cached_property
     def _index(self):
         """The k-d tree over the pieces (see Notes), each piece's edge and the largest coordinate
         of their boxes; built when a search first needs them."""
@@ -128,6 +144,14 @@ class NearestEdges:
     def piece_edge(self):
         """The edge (row of ``a``) of each of the tree's pieces, ndarray of int, shape (M,)."""
         return self._index[1]
+
+    @property
+    def most_pieces(self):
+        """The most pieces (see :func:`_pieces`) any one curve's edges are cut into (0 without edges)."""
+        if not len(self.e):
+            return 0
+        starts, ends, _ = self.tree.levels[0]
+        return int((ends - starts).max())
 
     def within(self, points, owner, reach):
         """The closest point of each query's curve, among edges within ``reach`` of the query.
@@ -169,11 +193,22 @@ class NearestEdges:
         owner = np.asarray(owner, dtype=np.int64).reshape(-1)
         if len(points) == 0 or len(self.e) == 0:
             return points, owner, np.zeros(len(points))
-        # No edge of a curve lies farther than the far corner of its bounding box: a bound for any reach.
+        # No edge of a curve lies farther than the far corner of its bounding box: a bound for any
+        # reach, though not for the short ones (an iterative fit's): only the others are cut.
+        reach = np.broadcast_to(np.asarray(reach, dtype=np.float64), owner.shape)
+        far = np.flatnonzero(~(reach <= np.take(self._uncut, owner, mode="wrap")))
+        if len(far) == len(owner):
+            return points, owner, self._far_corner_cut(points, owner, reach)
+        reach = reach.copy()
+        cut = (np.take(v, far, axis=0, mode="wrap") for v in (points, owner, reach))
+        reach[far] = self._far_corner_cut(*cut)
+        return points, owner, reach
+
+    def _far_corner_cut(self, points, owner, reach):
+        """Reaches cut to their curve's far corner, shape (K,) (arguments as :meth:`_bounded` makes them)."""
         box = np.take(self._curve_boxes, owner, axis=0, mode="wrap")
         corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
-        reach = np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
-        return points, owner, reach
+        return np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
 
     def _slack(self, points):
         """The tree's round-off slack for ``points`` (shape (K, 2), K > 0): distances computed
@@ -228,25 +263,15 @@ class NearestEdges:
         ay -= xy
         d2 = np.square(ax, out=ax)
         d2 += np.square(ay, out=ay)
-        # Candidates come query by query: keep each query's least distance, then the lowest
-        # edge at it (pieces of one edge repeat it: any of them).
-        run = np.flatnonzero(np.concatenate(([True], i[1:] != i[:-1])))
-        least = np.empty(len(x))
-        least[i[run]] = np.minimum.reduceat(d2, run)
-        first = np.flatnonzero(d2 == np.take(least, i, mode="wrap"))
-        owner = i[first]
-        again = owner[1:] == owner[:-1]
-        if again.any():
-            # Ties (a foot on a shared vertex, pieces of one edge): among the queries that have
-            # them, the lowest edge first, then the first of each query.
-            tied = np.concatenate((again, [False])) | np.concatenate(([False], again))
-            some = first[tied]
-            some = some[np.lexsort((j[some], i[some]))]
-            first = np.concatenate((first[~tied], some[np.concatenate(([True], i[some][1:] != i[some][:-1]))]))
+        first = _least(d2, i, j)
+        owner = np.take(i, first, mode="wrap")
         # Every edge within the bound is a candidate, so the best one is the closest.
-        first = first[d2[first] <= np.square(reach[i[first]])]
-        hit = rows[i[first]]
-        out[0][hit], out[1][hit], out[2][hit] = np.sqrt(d2[first]), self.e[j[first]], f[first]
+        d2_first = np.take(d2, first, mode="wrap")
+        within = d2_first <= np.square(np.take(reach, owner, mode="wrap"))
+        first, hit = first[within], np.take(rows, owner[within], mode="wrap")
+        out[0][hit] = np.sqrt(d2_first[within])
+        out[1][hit] = np.take(self.e, np.take(j, first, mode="wrap"), mode="wrap")
+        out[2][hit] = np.take(f, first, mode="wrap")
         return d2
 
 
@@ -275,8 +300,13 @@ class FollowedQueries:
         self.margin = np.broadcast_to(np.asarray(margin, dtype=np.float64), self.owner.shape)
         n = len(self.owner)
         self.at, self.held = np.zeros((n, 2)), np.full(n, -np.inf)
-        # Each query's kept edges (rows of search.a) and their distances from `at` (inf: no edge).
-        self.kept, self.kept_d = np.zeros((n, _KEPT), np.int64), np.full((n, _KEPT), np.inf)
+        # A query's candidates are pieces of its own curve: it never keeps more than the most
+        # pieces a curve has (short strokes: far fewer than _KEPT).
+        self.width = min(_KEPT, search.most_pieces)
+        # Each query's kept edges (rows of search.a) and their distances from `at`: the first
+        # `count` slots of its row (the others are never read, so never written either).
+        self.kept, self.kept_d = np.empty((n, self.width), np.int64), np.empty((n, self.width))
+        self.count = np.zeros(n, np.int64)
 
     def within(self, rows, points, reach):
         """:meth:`NearestEdges.within` of queries ``rows`` (ndarray of int, shape (K,)) now at
@@ -298,11 +328,15 @@ class FollowedQueries:
         # A kept edge that lay farther than cut + moved from the query then lies farther than
         # cut now: only the others can answer.
         asked = np.take(rows, tried, mode="wrap")
-        near = np.take(self.kept_d, asked, axis=0, mode="wrap")
-        near = near <= (cut + np.take(moved, tried, mode="wrap") + 2.0 * slack)[:, None]
-        flat = np.flatnonzero(near)
-        i = flat // _KEPT
-        j = np.take(np.take(self.kept, asked, axis=0, mode="wrap"), flat, mode="wrap")
+        # Only the kept slots, query after query (most queries keep a few of the width): slot s
+        # of query i is flat position asked[i] width + s of the tables.
+        count = np.take(self.count, asked, mode="wrap")
+        i = np.repeat(np.arange(len(tried)), count)
+        at = np.repeat(asked * self.width - (np.cumsum(count) - count), count)
+        at += np.arange(len(i))
+        near = np.take(self.kept_d, at, mode="wrap")
+        near = np.flatnonzero(near <= np.repeat(cut + np.take(moved, tried, mode="wrap") + 2.0 * slack, count))
+        i, j = np.take(i, near, mode="wrap"), np.take(self.kept, np.take(at, near, mode="wrap"), mode="wrap")
         search._closest(out, tried, np.take(points, tried, axis=0, mode="wrap"), i, j, cut)
         # Settled: a kept edge within the room is closer than any other edge, and with the
         # whole reach in the room nothing outside it is within reach either.
@@ -322,27 +356,66 @@ class FollowedQueries:
     def _keep(self, new, x, i, j, d2, held, slack):
         """Queries ``new`` at ``x`` keep their candidates ``(i, j)`` (see
         :meth:`NearestEdges._closest`) at squared distances ``d2``, which hold every edge within
-        ``held`` of ``x``; a query with more than ``_KEPT`` keeps its nearest, and holds less."""
+        ``held`` of ``x``; a query with more than the tables' width (``_KEPT`` then) keeps its
+        nearest, and holds less."""
         count = np.bincount(i, minlength=len(new))
-        over = count > _KEPT
+        over = count > self.width
         if over.any():
-            # The nearest _KEPT of those; the rest lie at least as far as the first one dropped.
+            # The nearest `width` of those; the rest lie at least as far as the first one dropped.
             many = over[i]
             order = np.flatnonzero(many)[np.lexsort((d2[many], i[many]))]
             rank = np.arange(len(order)) - np.repeat(np.cumsum(count[over]) - count[over], count[over])
-            dropped = order[rank == _KEPT]
+            dropped = order[rank == self.width]
             held[over] = np.fmin(held[over], np.sqrt(d2[dropped]) - slack)
             keep = np.ones(len(i), bool)
-            keep[order[rank >= _KEPT]] = False
+            keep[order[rank >= self.width]] = False
             i, j, d2 = i[keep], j[keep], d2[keep]
-            count = np.minimum(count, _KEPT)
-        # Flat positions in the (n, _KEPT) tables: row new[i], slot = rank within its query.
+            count = np.minimum(count, self.width)
+        # Flat positions in the (n, width) tables: row new[i], slot = rank within its query.
         start = np.cumsum(count) - count
-        at = np.take(new * _KEPT - start, i, mode="wrap") + np.arange(len(i))
-        self.kept_d[new] = np.inf
+        at = np.take(new * self.width - start, i, mode="wrap") + np.arange(len(i))
         self.kept.reshape(-1)[at] = j
         self.kept_d.reshape(-1)[at] = np.sqrt(d2)
-        self.at[new], self.held[new] = x, held
+        self.at[new], self.held[new], self.count[new] = x, held, count
+
+
+def _least(d2, i, j):
+    """Each query's least candidate: the least ``d2``, ties to the lowest edge ``j`` (pieces of
+    one edge repeat it: any of them), for the candidates ``(i, j)`` of :meth:`NearestEdges._closest`.
+
+    Returns
+    -------
+    first : ndarray of int, shape (Q,)
+        Rows of the candidates, one for each query that has any.
+    """
+    run = np.flatnonzero(np.concatenate(([True], i[1:] != i[:-1])))
+    length = np.diff(run, append=len(i))
+    longest = int(length.max())
+    if longest <= _SHORT_RUNS:
+        # Each run's best so far against its next candidate, for the runs that have one.
+        first, longer = run.copy(), np.flatnonzero(length > 1)
+        for step in range(1, longest):
+            longer = longer[np.take(length, longer, mode="wrap") > step]
+            now, then = np.take(run, longer, mode="wrap") + step, np.take(first, longer, mode="wrap")
+            d_now, d_then = np.take(d2, now, mode="wrap"), np.take(d2, then, mode="wrap")
+            better = (d_now < d_then) | (
+                (d_now == d_then) & (np.take(j, now, mode="wrap") < np.take(j, then, mode="wrap"))
+            )
+            first[longer[better]] = now[better]
+        return first
+    least = np.empty(int(i[-1]) + 1)
+    least[np.take(i, run, mode="wrap")] = np.minimum.reduceat(d2, run)
+    first = np.flatnonzero(d2 == np.take(least, i, mode="wrap"))
+    owner = np.take(i, first, mode="wrap")
+    again = owner[1:] == owner[:-1]
+    if again.any():
+        # Ties (a foot on a shared vertex, pieces of one edge): among the queries that have
+        # them, the lowest edge first, then the first of each query.
+        tied = np.concatenate((again, [False])) | np.concatenate(([False], again))
+        some = first[tied]
+        some = some[np.lexsort((j[some], owner[tied]))]
+        first = np.concatenate((first[~tied], some[np.concatenate(([True], i[some][1:] != i[some][:-1]))]))
+    return first
 
 
 def _empty(n):

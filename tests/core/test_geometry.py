@@ -418,6 +418,53 @@ def test_nearest_edges_match_brute_force_edge_and_fraction(seed, kind):
         np.testing.assert_array_equal(g, w)
 
 
+@given(st.integers(0, 2**32 - 1), st.sampled_from([0, 2, 1000]))
+@settings(max_examples=30, deadline=None)
+def test_nearest_edges_pick_the_least_candidate_stepping_or_sorting(seed, short_runs):
+    # Each query's least candidate, found by stepping through the runs (short ones) or by
+    # reduceat and a sort of the ties (long ones): the brute force's edge and fraction, with
+    # exact ties (feet on shared and repeated vertices) and pieces of one edge.
+    rng = np.random.default_rng(seed)
+    curves = []
+    for c in range(int(rng.integers(1, 4))):
+        n = int(rng.integers(2, 40))
+        pts = rng.random((n, 2)) + c * 0.3 if rng.random() < 0.5 else np.cumsum(rng.normal(0, 0.05, (n, 2)), axis=0)
+        pts[rng.integers(n)] = pts[0]
+        curves.append(pts)
+    batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
+    owner = rng.integers(0, len(curves), 80)
+    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 3, 80) % batch.n[owner]]
+    points = np.where(rng.random((80, 1)) < 0.4, on_vertex, rng.uniform(-0.5, 1.5, (80, 2)))
+    reach = rng.choice([0.01, 0.2, np.inf], 80)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(projection, "_SHORT_RUNS", short_runs)
+        patch.setattr(projection, "_DIRECT_PAIRS_PER_EDGE", 0)
+        got = NearestEdges(batch).within(points, owner, reach)
+    for g, w in zip(got, _nearest_edges_brute(points, owner, batch, reach)):
+        np.testing.assert_array_equal(g, w)
+
+
+@given(st.integers(0, 2**32 - 1), st.floats(1e-6, 1e6))
+@settings(max_examples=40, deadline=None)
+def test_nearest_edges_cut_only_reaches_their_far_corner_would(seed, scale):
+    # Reaches around the uncut share of the diagonal, from the boxes' centres (whose far corner
+    # is half the diagonal away), corners and afar: the very reaches of cutting every one.
+    rng = np.random.default_rng(seed)
+    curves = [scale * (rng.random((int(rng.integers(1, 8)), 2)) + c) for c in range(3)]
+    search = NearestEdges(Ragged.from_list(curves, [False, True, False]))
+    box, k = search._curve_boxes, 90
+    owner = rng.integers(0, 3, k)
+    diagonal = np.hypot(box[owner, 2] - box[owner, 0], box[owner, 3] - box[owner, 1])
+    centre, corner = 0.5 * (box[owner, :2] + box[owner, 2:]), box[owner, :2]
+    afar = rng.uniform(-2 * scale, 5 * scale, (k, 2))
+    points = np.select([rng.random((k, 1)) < 0.4, rng.random((k, 1)) < 0.5], [centre, corner], afar)
+    share = rng.choice([0.0, 0.3, projection._UNCUT_DIAGONAL, 0.4901, 0.5, 0.5001, 2.0], k)
+    reach = np.where(rng.random(k) < 0.1, np.inf, share * diagonal)
+    _, _, got = search._bounded(points, owner, reach)
+    np.testing.assert_array_equal(got, search._far_corner_cut(points, owner, reach))
+    assert (got < reach).any() and (got == reach).any()
+
+
 @pytest.mark.parametrize("seed", range(6))
 def test_few_queries_per_curve_measure_every_edge_as_the_tree_would(seed, monkeypatch):
     # One query per curve (the ends of strokes): every edge of its curve is measured and no
@@ -519,6 +566,26 @@ def test_followed_queries_with_more_candidates_than_kept_answer_as_the_tree_does
         _answer_as_the_tree(rng, batch, FollowedQueries(search, owner, 0.1), points, [0.05, 0.3, np.inf], 6)
 
 
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=20, deadline=None)
+def test_followed_queries_on_short_curves_keep_every_piece_in_narrow_tables(seed):
+    # Short scribbles (long edges cut into pieces): the kept tables are as wide as the most
+    # pieces a curve has, fewer than _KEPT, and a query taking every piece of its curve (an
+    # unbounded margin) keeps them all; its answers stay the tree's as it drifts.
+    rng = np.random.default_rng(seed)
+    curves = [rng.random((int(rng.integers(2, 6)), 2)) + c for c in range(3)]
+    batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
+    search, k = NearestEdges(batch), 40
+    pieces = np.bincount(batch.owner[search.e[search.piece_edge]], minlength=3)
+    owner = rng.integers(0, 3, k)
+    followed = FollowedQueries(search, owner, np.inf)
+    assert followed.width == pieces.max() < projection._KEPT
+    points = rng.uniform(-0.5, 3.5, (k, 2))
+    followed.within(np.arange(k), points, np.full(k, np.inf))
+    np.testing.assert_array_equal(followed.count, pieces[owner])
+    _answer_as_the_tree(rng, batch, followed, points, [0.01, 0.3, np.inf], 6)
+
+
 def test_followed_queries_settle_on_a_kept_edge_and_measure_only_those_within_reach():
     # Asked with no reach (the far corner of the curve, far beyond what they hold), queries
     # drifting 0.002 still settle: their closest kept edge lies within what they hold, so no
@@ -545,7 +612,7 @@ def test_followed_queries_settle_on_a_kept_edge_and_measure_only_those_within_re
     for g, w in zip(got, foot):
         np.testing.assert_array_equal(g, w)
     assert asked == [len(points)]
-    assert measured[0] < 0.25 * np.isfinite(followed.kept_d).sum()
+    assert measured[0] < 0.25 * followed.count.sum()
 
 
 @given(st.integers(0, 2**32 - 1), st.booleans())
