@@ -23,6 +23,11 @@ PARALLEL = 1e-12
 #: Slack, as a fraction of the edge length, when deciding that a contact lies on an edge.
 ON_EDGE = 1e-9
 
+#: Levels of :func:`disk_between`'s bisection decided per evaluation of the disks (every
+#: midpoint they may visit, 2**levels - 1 per row, evaluated at once: a bridge is one row, and
+#: evaluating it alone level after level is all call overhead).
+BISECTION_LEVELS = 5
+
 
 def tangent_disks(x, n, a, b, N, eps):
     """Smallest disk tangent at ``x`` (normal ``n``) touching edge ``a -> b`` (normal ``N``) or its ends.
@@ -139,19 +144,34 @@ def disk_between(ends, edges, windows, eps, iterations=40):
     x0, n0, x1, n1 = ends
     lo = np.zeros(len(x0))
     hi = np.ones(len(x0))
+    step_x, step_n = x1 - x0, n1 - n0
 
-    def evaluate(lam):
-        x = x0 + lam[:, None] * (x1 - x0)
-        n = n0 + lam[:, None] * (n1 - n0)
+    def evaluate(lam, rows):
+        x = x0[rows] + lam[:, None] * step_x[rows]
+        n = n0[rows] + lam[:, None] * step_n[rows]
         n /= np.linalg.norm(n, axis=1, keepdims=True)
-        return x, n, [_smallest_in_windows(x, n, edges, w, eps) for w in windows]
+        return x, n, [_smallest_in_windows(x, n, edges, [w[i] for i in rows], eps) for w in windows]
 
-    for _ in range(iterations):
-        mid = (lo + hi) / 2
-        _, _, ((ra, _), (rb, _)) = evaluate(mid)
-        # Window a is touched first at lo (ra < rb), window b first at hi.
-        first_a = ra < rb
-        lo = np.where(first_a, mid, lo)
-        hi = np.where(first_a, hi, mid)
-    x, n, ((ra, qa), (rb, qb)) = evaluate((lo + hi) / 2)
+    every = np.arange(len(x0))
+    done = 0
+    while done < iterations:
+        # Every midpoint the next levels may visit, at once (level by level: 1, 2, 4, ... per
+        # row); dyadic, so lo + (2k + 1) (hi - lo) / 2^(level + 1) is exactly the midpoint the
+        # bisection reaches there, and each row's disks are its own: the same decisions.
+        depth = min(BISECTION_LEVELS, iterations - done)
+        level = np.repeat(np.arange(depth), 2 ** np.arange(depth))
+        k = np.arange(len(level)) - (2**level - 1)
+        lam = lo[:, None] + (2 * k + 1) * (hi - lo)[:, None] / 2.0 ** (level + 1)
+        _, _, ((ra, _), (rb, _)) = evaluate(lam.ravel(), np.repeat(every, len(level)))
+        first_a = (ra < rb).reshape(lam.shape)
+        at = np.zeros(len(x0), dtype=np.int64)
+        for d in range(depth):
+            node = 2**d - 1 + at
+            mid, here = lam[every, node], first_a[every, node]
+            # Window a is touched first at lo (ra < rb), window b first at hi.
+            lo = np.where(here, mid, lo)
+            hi = np.where(here, hi, mid)
+            at = 2 * at + here
+        done += depth
+    x, n, ((ra, qa), (rb, qb)) = evaluate((lo + hi) / 2, every)
     return x, n, np.minimum(ra, rb), qa, qb

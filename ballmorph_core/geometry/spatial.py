@@ -58,6 +58,12 @@ def _cell_entries(ranges):
 PAIR_BUDGET = 1 << 18
 
 
+#: Sets of boxes with at most this many pairs between them are paired directly, every pair
+#: tested: for a short curve's edges (the composite morph checks a few dozen pieces of 20
+#: edges each) building the grid costs several times more than testing them all.
+DIRECT_PAIRS = 4096
+
+
 def _grid_cell(a, b, origin, extent, cell):
     """The grid's cell size: the given one, else the larger typical box size, grown while long
     boxes would fill too many cells; and both sets' :func:`_cell_ranges` at that size."""
@@ -129,6 +135,15 @@ def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active
     b = a if same else _columns(boxes_b)
     n_a, n_b = len(a[0]), len(b[0])
     if n_a == 0 or n_b == 0:
+        return
+    if n_a * n_b <= DIRECT_PAIRS:
+        # Every pair tested by the grid's own test: the same pairs, in the same order.
+        rows = np.arange(n_a) if active is None else np.flatnonzero(active)
+        i, j = np.repeat(rows, n_b), np.tile(np.arange(n_b), len(rows))
+        keep = box_overlap(a, b, i, j)
+        if same:
+            keep &= i < j
+        yield i[keep], j[keep]
         return
     origin = np.array([min(a[k].min(), b[k].min()) for k in range(2)])
     extent = max(max(float(a[k].max()), float(b[k].max())) - origin[k - 2] for k in range(2, 4))

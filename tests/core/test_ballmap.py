@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from hypothesis import assume, given
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapes import (
     circle,
@@ -15,7 +15,7 @@ from shapes import (
 )
 
 import ballmorph_core as bm
-from ballmorph_core.ballmap import check
+from ballmorph_core.ballmap import candidates, check
 from ballmorph_core.ballmap.candidates import tangent_disks
 from ballmorph_core.geometry.intersections import is_simple
 from ballmorph_core.geometry.polyline import vertex_normals
@@ -631,3 +631,46 @@ def test_chain_order_is_lexsort_by_chain_then_key(seed):
     if seed % 2:
         rng.shuffle(chain)
     np.testing.assert_array_equal(chain_order(chain, key), np.lexsort((key, chain)))
+
+
+def _bisected_disks(ends, edges, windows, eps, iterations):
+    """disk_between as plain bisection, one level per evaluation (the reference)."""
+    x0, n0, x1, n1 = ends
+    lo, hi = np.zeros(len(x0)), np.ones(len(x0))
+
+    def evaluate(lam):
+        x = x0 + lam[:, None] * (x1 - x0)
+        n = n0 + lam[:, None] * (n1 - n0)
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
+        return x, n, [candidates._smallest_in_windows(x, n, edges, w, eps) for w in windows]
+
+    for _ in range(iterations):
+        mid = (lo + hi) / 2
+        _, _, ((ra, _), (rb, _)) = evaluate(mid)
+        lo, hi = np.where(ra < rb, mid, lo), np.where(ra < rb, hi, mid)
+    x, n, ((ra, qa), (rb, qb)) = evaluate((lo + hi) / 2)
+    return x, n, np.minimum(ra, rb), qa, qb
+
+
+@given(st.integers(0, 2**32 - 1), st.sampled_from([1, 4, 5, 7, 40]))
+@settings(max_examples=30, deadline=None)
+def test_disk_between_decides_several_levels_at_once_like_plain_bisection(seed, iterations):
+    """Bridging disks: every midpoint of the next levels evaluated at once gives bit for bit
+    what bisecting one level at a time gives, for rows of their own windows."""
+    rng = np.random.default_rng(seed)
+    rows = int(rng.integers(1, 4))
+    other = np.cumsum(rng.normal(size=(30, 2)), axis=0) + [0.0, 4.0]
+    a, b = other[:-1], other[1:]
+    N = np.c_[-(b - a)[:, 1], (b - a)[:, 0]]
+    N /= np.linalg.norm(N, axis=1, keepdims=True)
+    x0, x1 = rng.normal(size=(rows, 2)), rng.normal(size=(rows, 2))
+    n0, n1 = (rng.normal(size=(rows, 2)) + [0.0, 2.0] for _ in range(2))
+    n0, n1 = (v / np.linalg.norm(v, axis=1, keepdims=True) for v in (n0, n1))
+    windows = tuple(
+        [np.sort(rng.choice(29, int(rng.integers(1, 12)), replace=False)) for _ in range(rows)] for _ in range(2)
+    )
+    ends = (x0, n0, x1, n1)
+    got = candidates.disk_between(ends, (a, b, N), windows, 1e-9, iterations=iterations)
+    want = _bisected_disks(ends, (a, b, N), windows, 1e-9, iterations)
+    for g, w in zip(got, want):
+        np.testing.assert_array_equal(g, w)

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 from shapes import circle, distance_to_polyline
 
 from ballmorph_core.ballmap.onemap import OneWayMap
-from ballmorph_core.geometry import intersections, polyline, projection
+from ballmorph_core.geometry import intersections, polyline, projection, spatial
 from ballmorph_core.geometry.circles import circumcircles
 from ballmorph_core.geometry.intersections import (
     batch_crossings,
@@ -233,10 +233,45 @@ def test_box_pairs_of_points_tiny_and_long_boxes_are_exact(seed):
     assert sorted(zip(i.tolist(), j.tolist())) == [(p, q) for p, q in _overlapping(sets[0], sets[0]) if p < q]
 
 
+def _grid_only(function, *args, **kwargs):
+    """``function`` with the grid for every size of box sets (no direct pairing)."""
+    saved, spatial.DIRECT_PAIRS = spatial.DIRECT_PAIRS, 0
+    try:
+        return function(*args, **kwargs)
+    finally:
+        spatial.DIRECT_PAIRS = saved
+
+
+@given(st.integers(0, 2**32 - 1), st.booleans())
+@settings(max_examples=40)
+def test_small_box_sets_paired_directly_give_the_grids_pairs(seed, within_one):
+    """Few boxes are paired by testing every pair: the grid's pairs, in its order (by i then
+    j, i < j within one set), inactive boxes of the first set left out."""
+    rng = np.random.default_rng(seed)
+    sets = []
+    for n in rng.integers(1, 64, 2):
+        low = rng.uniform(-1, 1, (n, 2)) * rng.choice([1e-3, 1.0, 1e3])
+        sets.append(np.c_[low, low + rng.choice([0.0, 0.01, 0.3, 5.0], size=(n, 1)) * rng.uniform(0, 1, (n, 2))])
+    sets = sets[:1] if within_one else sets
+    active = rng.random(len(sets[0])) < 0.8
+    assert len(sets[0]) * len(sets[-1]) <= spatial.DIRECT_PAIRS
+    for kwargs in ({}, {"active": active}):
+        direct = list(box_pair_chunks(*sets, **kwargs))
+        grid = list(_grid_only(lambda kw: list(box_pair_chunks(*sets, **kw)), kwargs))
+        for k in range(2):
+            np.testing.assert_array_equal(
+                np.concatenate([r[k] for r in direct]), np.concatenate([r[k] for r in grid] or [np.zeros(0, int)])
+            )
+
+
 @given(POINTS, st.integers(1, 400))
 @settings(max_examples=20)
 def test_box_pair_runs_join_into_box_pairs_and_skip_inactive_boxes(a, budget):
-    boxes = np.c_[a, a + 0.5]
+    # The grid's runs (small sets like these are otherwise paired directly, in one run).
+    _grid_only(_runs_join_and_skip, np.c_[a, a + 0.5], budget)
+
+
+def _runs_join_and_skip(boxes, budget):
     runs = list(box_pair_chunks(boxes, budget=budget))
     i, j = box_pairs(boxes)
     np.testing.assert_array_equal(np.concatenate([r[0] for r in runs]) if runs else [], i)
