@@ -35,21 +35,26 @@ WIDE_WINDOW = 32
 SEARCH_SLACK = 1e-9
 
 
-def _first_minima(values, counts):
+def _first_minima(values, counts, ends=None):
     """Index of the first minimum of each group of consecutive ``values``, shape (G,).
 
-    ``counts`` (shape (G,)) sizes the groups; as :func:`~ballmorph_core.geometry.ragged.group_argmin`,
-    a group without entries (or without a minimum: NaN) gets 0.
+    ``counts`` (shape (G,)) sizes the groups, ``ends`` (optional) is their ``np.cumsum``; as
+    :func:`~ballmorph_core.geometry.ragged.group_argmin`, a group without entries (or without a
+    minimum: NaN) gets 0.
     """
-    ends = np.cumsum(counts)
+    ends = np.cumsum(counts) if ends is None else ends
     starts = ends - counts
     filled = counts > 0
-    best = np.zeros(len(counts), dtype=np.int64)
-    if not filled.any():
-        return best
-    first = starts[filled]
+    if filled.all():
+        # Every group has entries (the lacing's usual case): no group to mask out.
+        first, filled = starts, slice(None)
+    elif filled.any():
+        first = starts[filled]
+    else:
+        return np.zeros(len(counts), dtype=np.int64)
     mins = np.minimum.reduceat(values, first)
     hits = np.flatnonzero(values == np.repeat(mins, counts[filled]))
+    best = np.zeros(len(counts), dtype=np.int64)
     if not len(hits):
         return best
     # A group's first hit is the first at or after its start, if there is one before its end.
@@ -58,10 +63,11 @@ def _first_minima(values, counts):
     return best
 
 
-def _smallest(x, n, dst, g, cnt, eps):
+def _smallest(x, n, dst, g, cnt, eps, ends=None):
     """Smallest disk over each sample's run of target edges ``g`` (global indices, ``cnt`` per
-    sample, sample after sample): radii and the index into ``g`` of each sample's first best
-    edge, with its contact's fraction ``u`` along that edge."""
+    sample, sample after sample; ``ends``, optional, is ``np.cumsum(cnt)``): radii and the index
+    into ``g`` of each sample's first best edge, with its contact's fraction ``u`` along that
+    edge. ``x``, ``n``: shape (2, K), coordinate by coordinate."""
     pts, edge, normals = dst.columns
     # The indices are in range: take's 'wrap' mode skips the bounds check.
     a = np.take(pts, g, axis=1, mode="wrap")
@@ -73,14 +79,16 @@ def _smallest(x, n, dst, g, cnt, eps):
         np.take(normals, g, axis=1, mode="wrap"),
         eps,
     )
-    best = _first_minima(rr, cnt)
+    best = _first_minima(rr, cnt, ends)
     return rr[best], best, uu[best]
 
 
-def _runs(starts, cnt):
-    """Concatenated ``arange(start, start + c)`` of every run, shape (sum(cnt),)."""
-    total = int(cnt.sum())
-    return np.arange(total) - np.repeat(np.cumsum(cnt) - cnt - starts, cnt)
+def _runs(starts, cnt, ends=None):
+    """Concatenated ``arange(start, start + c)`` of every run, shape (sum(cnt),); ``ends``
+    (optional) is ``np.cumsum(cnt)``."""
+    ends = np.cumsum(cnt) if ends is None else ends
+    total = int(ends[-1]) if len(ends) else 0
+    return np.arange(total) - np.repeat(ends - cnt - starts, cnt)
 
 
 def _pruned(x, n, dst, first, last, guess, eps):
@@ -122,31 +130,35 @@ def _pruned(x, n, dst, first, last, guess, eps):
 def _search(x, n, dst, chain, e_lo, e_hi, eps, guess=None):
     """Smallest disk at each sample over target edges ``e_lo..e_hi`` of its chain (laps unrolled).
 
+    ``x``, ``n`` (shape (2, K), coordinate by coordinate) are the samples and their normals.
     ``guess`` (edge units, optional) is where each contact is expected: samples with more than
     ``WIDE_WINDOW`` edges skip the blocks of edges that cannot hold their smallest disk
     (:func:`_pruned`; the same answer). Returns radii (inf where none) and contact positions in
     units of target edges (``e + u``).
     """
     rg = dst.rg
-    x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
     counts = e_hi - e_lo + 1
     r, pos = np.full(x.shape[1], np.inf), np.zeros(x.shape[1])
     # Without loops a sample's edges are one run of the target's: no lap to wrap round.
     wraps = bool(rg.closed[chain].any())
     base = rg.offsets[chain]
     wide = np.zeros(len(counts), bool) if wraps or guess is None else counts > WIDE_WINDOW
-    for sl in budget_slices(np.where(wide, 0, counts), CANDIDATE_BUDGET):
-        cnt = np.where(wide[sl], 0, counts[sl])
-        if not cnt.any():
+    narrow = np.where(wide, 0, counts)
+    for sl in budget_slices(narrow, CANDIDATE_BUDGET):
+        cnt = narrow[sl]
+        ends = np.cumsum(cnt)
+        if not ends[-1]:
             continue
-        e_local = _runs(e_lo[sl], cnt)
         if wraps:
+            e_local = _runs(e_lo[sl], cnt, ends)
             c = np.repeat(chain[sl], cnt)
             g = rg.offsets[c] + np.where(rg.closed[c], e_local % np.maximum(rg.n_edges[c], 1), e_local)
         else:
-            g = e_local + np.repeat(base[sl], cnt)
-        rr, best, uu = _smallest(x[:, sl], n[:, sl], dst, g, cnt, eps)
-        r[sl], pos[sl] = rr, e_local[best] + uu
+            # One run of global edges per sample; its local edges are ``g - base``.
+            e_local = None
+            g = _runs(e_lo[sl] + base[sl], cnt, ends)
+        rr, best, uu = _smallest(x[:, sl], n[:, sl], dst, g, cnt, eps, ends)
+        r[sl], pos[sl] = rr, (g[best] - base[sl] if e_local is None else e_local[best]) + uu
     rows = np.flatnonzero(wide)
     for sl in budget_slices(counts[rows], CANDIDATE_BUDGET):
         k = rows[sl]
@@ -156,12 +168,14 @@ def _search(x, n, dst, chain, e_lo, e_hi, eps, guess=None):
 
 
 def full_search(x, n, dst, chain, eps):
-    """Smallest disk at each sample over all edges of its chain's target (no lacing window).
+    """Smallest disk at each sample (``x``, ``n``: shape (K, 2)) over all edges of its chain's
+    target (no lacing window).
 
     Returns radii (inf where none) and contact positions in target edge units.
     """
     n_e = dst.rg.n_edges[chain]
-    r, pos = _search(x, n, dst, chain, np.zeros(len(x), np.int64), n_e - 1, eps)
+    x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
+    r, pos = _search(x, n, dst, chain, np.zeros(len(chain), np.int64), n_e - 1, eps)
     return np.where(n_e > 0, r, np.inf), np.where(n_e > 0, pos, 0.0)
 
 
@@ -183,6 +197,7 @@ def _lace(src, dst, eps):
         r[lo[loops]], pos[lo[loops]] = rr, pp
         # A loop's chain closes on its first sample, one lap later.
         p_lo[loops], hi[loops], p_hi[loops] = pp, s_rg.offsets[1:][loops], pp + n_e[loops]
+    columns = (src.columns[0], np.ascontiguousarray(NX.T))
     chain = chains
     while True:
         keep = hi - lo > 1
@@ -195,8 +210,8 @@ def _lace(src, dst, eps):
         e_hi = np.clip(np.ceil(p_hi).astype(np.int64) - 1, e_lo, laps - 1)
         # The contact is expected in proportion between its bracket's (only a hint: see _search).
         guess = p_lo + (p_hi - p_lo) * ((mid - lo) / (hi - lo))
-        # Rows by take (several times faster than fancy indexing on (K, 2) arrays; in range).
-        rr, pp = _search(*(np.take(v, mid, axis=0, mode="wrap") for v in (X, NX)), dst, chain, e_lo, e_hi, eps, guess)
+        # Columns by take (in range: 'wrap' skips the bounds check), as the search reads them.
+        rr, pp = _search(*(np.take(v, mid, axis=1, mode="wrap") for v in columns), dst, chain, e_lo, e_hi, eps, guess)
         # The window is whole edges, so the best contact may lie just outside the bracket: then
         # the true image does not advance monotonically (or sits on the bracket's end). Clipping
         # it would move the contact off its disk, so beyond round-off it counts as no disk found

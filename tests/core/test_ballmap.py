@@ -493,7 +493,13 @@ def test_first_minima_of_groups_match_group_argmin(seed):
     values = rng.integers(0, 4, len(owner)).astype(float)
     values[rng.random(len(owner)) < 0.03] = np.nan
     values[-1] = np.nan
-    np.testing.assert_array_equal(_first_minima(values, counts), group_argmin(values, owner, len(counts)))
+    want = group_argmin(values, owner, len(counts))
+    np.testing.assert_array_equal(_first_minima(values, counts), want)
+    np.testing.assert_array_equal(_first_minima(values, counts, np.cumsum(counts)), want)
+    # Without the empty groups (the lacing's case: every group filled, none masked out).
+    filled = counts[counts > 0]
+    owner, _ = ragged_arange(filled)
+    np.testing.assert_array_equal(_first_minima(values, filled), group_argmin(values, owner, len(filled)))
 
 
 @pytest.mark.parametrize("closed", [False, True])
@@ -552,6 +558,7 @@ def test_pruned_search_finds_what_the_whole_window_finds(seed):
     e_lo = rng.integers(0, n_e // 2)
     e_hi = np.minimum(e_lo + rng.integers(0, n_e), n_e - 1)
     good = (k - rg.offsets[chain]) * n_e / np.maximum(rg.n[chain] - 1, 1)
+    x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
     for guess in (good, rng.uniform(0, n_e)):
         want = lacing._search(x, n, dst, chain, e_lo, e_hi, 1e-9)
         got = lacing._search(x, n, dst, chain, e_lo, e_hi, 1e-9, guess)
