@@ -473,8 +473,12 @@ def test_tangent_disks_are_bitwise_the_plain_expressions(seed):
         N /= np.linalg.norm(N, axis=0)
     N = np.nan_to_num(N)
     N[:, 3::29] = n[:, 3::29]
+    # NaN and infinite coordinates and normals: NaN denominators, infinite distances.
+    x[0, 11::31], n[1, 13::37], N[0, 15::41], b[1, 17::43] = np.nan, np.nan, np.nan, np.nan
+    x[1, 19::47], b[0, 21::53] = np.inf, -np.inf
     for eps in (1e-12, 1e-3):
-        got, want = tangent_disks(x, n, a, b, N, eps), _plain_tangent_disks(x, n, a, b, N, eps)
+        with np.errstate(all="ignore"):
+            got, want = tangent_disks(x, n, a, b, N, eps), _plain_tangent_disks(x, n, a, b, N, eps)
         for g, w in zip(got, want):
             np.testing.assert_array_equal(g.view(np.int64), w.view(np.int64))
 
