@@ -532,6 +532,33 @@ def test_local_depths_are_the_nearest_vertex_of_the_window_round_each_contact(cl
         assert depth[k] == pytest.approx(radii[k] - d.min(), abs=1e-12)
 
 
+@pytest.mark.parametrize("closed", [False, True])
+@pytest.mark.parametrize("repeated", [False, True])
+def test_vertex_window_starts_are_the_windows_located_at_the_vertices(closed, repeated):
+    # Curves of every size (a dot, two points), as the window starts found by locating every
+    # vertex's own arc length; with repeated vertices (edges of no length, a curve of no
+    # length: arc lengths not strictly increasing) the vertices are located as such.
+    from types import SimpleNamespace
+
+    from ballmorph_core.geometry.ragged import Ragged
+
+    rng = np.random.default_rng(7)
+    curves = [rng.uniform(-1, 1, (k, 2)) for k in (5, 1, 2, 17, 3)]
+    if repeated:
+        curves[3][6] = curves[3][5]
+        curves.append(np.zeros((3, 2)) + 0.5)
+    side = SimpleNamespace(rg=Ragged.from_list(curves, closed))
+    rg = side.rg
+    if not closed:
+        # Summed edge by edge, a stroke's last arc length may overshoot its length (located
+        # at the length: still on the last edge).
+        last = rg.offsets[1:-1:2] - 1
+        rg.s[last] = np.nextafter(rg.length[: len(last) * 2 : 2], np.inf)
+    assert np.all(np.diff(rg.global_s()[0]) > 0) != repeated
+    want = check._window_starts(side, rg.owner, rg.s)
+    np.testing.assert_array_equal(check._vertex_window_starts(side), want)
+
+
 def _wavy_sides(rng, count, shift):
     """Sides of a few open wavy strokes (gap above), shifted by ``shift``."""
     from ballmorph_core.ballmap.sides import Sides
