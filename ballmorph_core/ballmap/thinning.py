@@ -93,7 +93,8 @@ def running_backsteps(s, chain, span):
     ndarray, shape (K,)
         0 where the sequence is monotone.
     """
-    return np.maximum.accumulate(s + chain * span) - chain * span - s
+    shift = chain * span
+    return np.maximum.accumulate(s + shift) - shift - s
 
 
 def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
@@ -120,9 +121,7 @@ def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
     """
     seg = _segments(chain, n_chains)
     starts, ends = seg[:-1], seg[1:] - 1
-    step = np.maximum(np.abs(np.diff(sp_, prepend=sp_[:1])), np.abs(np.diff(sq_, prepend=sq_[:1])))
-    step[starts] = 0.0
-    tau = np.cumsum(step)
+    tau = np.cumsum(_larger_steps(sp_, sq_, starts))
     tau -= tau[starts][chain]
     closing = np.maximum(len_p - (sp_[ends] - sp_[starts]), len_q - (sq_[ends] - sq_[starts]))
     total = tau[ends] + np.where(closed, closing, 0.0)
@@ -136,7 +135,29 @@ def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
     hi = np.clip(np.searchsorted(g, want), starts[owner] + 1, np.maximum(ends[owner], starts[owner] + 1))
     hi = np.minimum(hi, len(g) - 1)
     lo = np.maximum(hi - 1, starts[owner])
-    return np.unique(np.where(want - g[lo] <= g[hi] - want, lo, hi))
+    return _sorted_unique(np.where(want - g[lo] <= g[hi] - want, lo, hi))
+
+
+def _larger_steps(sp_, sq_, starts):
+    """The larger of each row's two steps from the row before, 0 at the chains' first rows
+    (``starts``), shape (K,): np.diff's differences, without its copy of the rows."""
+    step, other = np.zeros(len(sp_)), np.zeros(len(sq_))
+    for v, d in ((sp_, step), (sq_, other)):
+        np.subtract(v[1:], v[:-1], out=d[1:])
+        np.abs(d, out=d)
+    np.maximum(step, other, out=step)
+    step[starts] = 0.0
+    return step
+
+
+def _sorted_unique(picks):
+    """``np.unique(picks)`` (ndarray of int, shape (K,)): without its sort where the picks come in
+    order already (nearest nodes of increasing targets do, chain after chain)."""
+    if not np.all(picks[1:] >= picks[:-1]):
+        return np.unique(picks)
+    first = np.ones(len(picks), dtype=bool)
+    np.not_equal(picks[1:], picks[:-1], out=first[1:])
+    return picks[first]
 
 
 def _report_disagreements(allp, order, back_p, back_q, sp, sq, dense_spacing, reports):

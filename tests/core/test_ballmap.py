@@ -559,6 +559,28 @@ def test_vertex_window_starts_are_the_windows_located_at_the_vertices(closed, re
     np.testing.assert_array_equal(check._vertex_window_starts(side), want)
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_thinning_steps_and_picks_are_the_plain_ones(seed):
+    # The larger steps are np.diff's (prepended, first rows zeroed), bit for bit, infinite
+    # positions too; the picks' unique values are np.unique's, in order or not.
+    from ballmorph_core.ballmap import thinning
+
+    rng = np.random.default_rng(seed)
+    sp_, sq_ = np.cumsum(rng.exponential(1.0, (2, 300)), axis=1) * rng.choice([1.0, -1.0], 2)[:, None]
+    sp_[rng.integers(0, 300, 3)] = np.inf
+    starts = np.unique(np.r_[0, rng.integers(0, 300, 7)])
+    with np.errstate(invalid="ignore"):
+        want = np.maximum(np.abs(np.diff(sp_, prepend=sp_[:1])), np.abs(np.diff(sq_, prepend=sq_[:1])))
+        want[starts] = 0.0
+        got = thinning._larger_steps(sp_, sq_, starts)
+    np.testing.assert_array_equal(got.view(np.int64), want.view(np.int64))
+    picks = np.sort(rng.integers(0, 50, 200))
+    for p in (picks, rng.permutation(picks), picks[:0], picks[:1]):
+        got = thinning._sorted_unique(p)
+        np.testing.assert_array_equal(got, np.unique(p))
+        assert got.dtype == np.unique(p).dtype
+
+
 def _wavy_sides(rng, count, shift):
     """Sides of a few open wavy strokes (gap above), shifted by ``shift``."""
     from ballmorph_core.ballmap.sides import Sides
