@@ -63,15 +63,14 @@ def _first_minima(values, counts, ends=None):
     return best
 
 
-def _smallest(x, n, dst, g, cnt, eps, ends=None):
-    """Smallest disk over each sample's run of target edges ``g`` (global indices, ``cnt`` per
-    sample, sample after sample; ``ends``, optional, is ``np.cumsum(cnt)``): radii and the index
-    into ``g`` of each sample's first best edge, with its contact's fraction ``u`` along that
-    edge. ``x``, ``n``: shape (2, K), coordinate by coordinate."""
+def _edge_disks(x, n, dst, g, cnt, eps):
+    """Tangent disks (radii, contacts' fractions ``u``) of each sample (``x``, ``n``: shape (2, K),
+    coordinate by coordinate) with each of its run of target edges ``g`` (global indices, ``cnt``
+    per sample, sample after sample), shape (len(g),)."""
     pts, edge, normals = dst.columns
     # The indices are in range: take's 'wrap' mode skips the bounds check.
     a = np.take(pts, g, axis=1, mode="wrap")
-    rr, uu = tangent_disks(
+    return tangent_disks(
         np.repeat(x, cnt, axis=1),
         np.repeat(n, cnt, axis=1),
         a,
@@ -79,6 +78,13 @@ def _smallest(x, n, dst, g, cnt, eps, ends=None):
         np.take(normals, g, axis=1, mode="wrap"),
         eps,
     )
+
+
+def _smallest(x, n, dst, g, cnt, eps, ends=None):
+    """Smallest disk over each sample's run of target edges (see :func:`_edge_disks`; ``ends``,
+    optional, is ``np.cumsum(cnt)``): radii and the index into ``g`` of each sample's first best
+    edge, with its contact's fraction ``u`` along that edge."""
+    rr, uu = _edge_disks(x, n, dst, g, cnt, eps)
     best = _first_minima(rr, cnt, ends)
     return rr[best], best, uu[best]
 
@@ -103,7 +109,8 @@ def _pruned(x, n, dst, first, last, guess, eps):
     lo, hi = dst.block_of(first), dst.block_of(last)
     near = np.clip(np.floor(guess).astype(np.int64)[None, :] + np.array([-1, 0, 1])[:, None], first, last)
     ring = np.ascontiguousarray(near.T).ravel()
-    r_guess, _, _ = _smallest(x, n, dst, ring, np.full(len(first), 3), eps)
+    # Only the smallest radius is wanted (not which edge): a minimum over rows of three.
+    r_guess = _edge_disks(x, n, dst, ring, 3, eps)[0].reshape(-1, 3).min(axis=1)
     # The rows' (sample, block) pairs, and the distance from each block's box to the centre.
     nb = hi - lo + 1
     owner = np.repeat(np.arange(len(first)), nb)
