@@ -258,17 +258,22 @@ def contacts(dst, chain, pos):
     normal : ndarray, shape (K, 2)
     """
     rg = dst.rg
-    n_e = np.maximum(rg.n_edges[chain], 1)
-    closed = rg.closed[chain]
+    # In range: take's 'wrap' mode skips the bounds check (the chains' values and the edges').
+    n_e, closed, first, length = (
+        np.take(v, chain, mode="wrap") for v in (rg.n_edges, rg.closed, rg.offsets, rg.length)
+    )
+    np.maximum(n_e, 1, out=n_e)
     e = np.clip(np.floor(pos).astype(np.int64), 0, np.where(closed, 2 * n_e, n_e) - 1)
     u = np.clip(pos - e, 0.0, 1.0)
-    lap = np.where(closed, e // n_e, 0)
-    g = rg.offsets[chain] + np.where(closed, e % n_e, e)
-    # In range: take's 'wrap' mode skips the bounds check.
+    if closed.any():
+        lap, g = np.where(closed, e // n_e, 0), first + np.where(closed, e % n_e, e)
+    else:
+        # Open curves only: no lap to unwrap.
+        lap, g = np.zeros_like(e), first + e
     (ax, ay), (ex, ey) = (np.take(v, g, axis=1, mode="wrap") for v in dst.columns[:2])
     ex *= u
     ey *= u
-    s = rg.s[g] + u * rg.length_of_edge[g] + lap * rg.length[chain]
+    s = np.take(rg.s, g, mode="wrap") + u * np.take(rg.length_of_edge, g, mode="wrap") + lap * length
     return as_rows(ax + ex, ay + ey), s, np.take(dst.enormals, g, axis=0, mode="wrap")
 
 
@@ -290,12 +295,15 @@ def refine(x, n, dst, chain, pos, r, eps):
         Arc length on the target, within one lap.
     """
     rg = dst.rg
-    n_v, closed = rg.n[chain], rg.closed[chain]
+    # In range: take's 'wrap' mode skips the bounds check (the chains' values and the vertices').
+    n_v, closed, first = (np.take(v, chain, mode="wrap") for v in (rg.n, rg.closed, rg.offsets))
     j = np.floor(pos + 0.5).astype(np.int64)
-    jl = np.where(closed, j % np.maximum(n_v, 1), np.minimum(np.maximum(j, 1), np.maximum(n_v - 2, 1)))
+    jl = np.minimum(np.maximum(j, 1), np.maximum(n_v - 2, 1))
+    if closed.any():
+        jl = np.where(closed, j % np.maximum(n_v, 1), jl)
     ok = np.isfinite(r) & (r > eps) & (closed | ((j >= 1) & (j <= n_v - 2)))
-    g0 = rg.offsets[chain] + jl
-    gm, gp = rg.prv[g0], rg.nxt[g0]
+    g0 = first + jl
+    gm, gp = (np.take(v, g0, mode="wrap") for v in (rg.prv, rg.nxt))
     ok &= (gm >= 0) & (gp >= 0)
     gm, gp = np.maximum(gm, 0), np.maximum(gp, 0)
     # Rows by take (several times faster than fancy indexing on (K, 2) arrays; in range).
@@ -320,7 +328,9 @@ def refine(x, n, dst, chain, pos, r, eps):
         r_safe = np.where(np.isfinite(r), r, 0.0)
         ok &= np.isfinite(r_new) & (r_new >= 0) & (np.abs(t) <= 0.5)
         ok &= np.abs(r_new - r_safe) <= 0.25 * r_safe + chord_length
-    s_new = rg.s[g0] + t * (rg.length_of_edge[gm] + rg.length_of_edge[g0])
+    s_new = np.take(rg.s, g0, mode="wrap") + t * (
+        np.take(rg.length_of_edge, gm, mode="wrap") + np.take(rg.length_of_edge, g0, mode="wrap")
+    )
     return ok, r_new, as_rows(qx, qy), s_new
 
 

@@ -620,6 +620,43 @@ def test_pruned_search_finds_what_the_whole_window_finds(seed):
             np.testing.assert_array_equal(g.view(np.int64), w.view(np.int64))
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_contacts_and_refinements_of_strokes_are_those_of_a_batch_with_a_loop(seed):
+    # Open strokes alone take the road without laps; with a loop in the batch (after them:
+    # the strokes' arrays are the same) the contacts and refinements of the strokes' samples
+    # are bit for bit the same.
+    from ballmorph_core.ballmap import lacing
+    from ballmorph_core.ballmap.sides import Sides
+
+    rng = np.random.default_rng(seed)
+    curves = [
+        np.c_[x, 0.05 * np.sin(rng.uniform(2, 9) * x)] + [0, 3 * c] for c, x in enumerate([np.linspace(0, 1, 50)] * 3)
+    ]
+    h = np.full(4, 0.01)
+    alone = Sides(curves, np.zeros(3, bool), np.ones(3), h[:3])
+    mixed = Sides(curves + [circle(0.5, 60, (5.0, 5.0))], np.r_[False, False, False, True], np.ones(4), h)
+    src = _wavy_sides(rng, 3, 0.05)
+    k = rng.integers(0, len(src.rg.pts), 300)
+    chain = src.rg.owner[k]
+    pos = rng.uniform(0, 1.0, 300) * alone.rg.n_edges[chain]
+    pos[::7] = np.floor(pos[::7])
+    r = rng.uniform(0.0, 0.3, 300)
+    x, n = src.rg.pts[k], src.vnormals[k]
+    loop = np.full(20, 3)
+    both = (np.r_[chain, loop], np.r_[pos, rng.uniform(0, 120, 20)])
+    for got, want in (
+        (lacing.contacts(alone, chain, pos), lacing.contacts(mixed, *both)),
+        (
+            lacing.refine(x, n, alone, chain, pos, r, 1e-9),
+            lacing.refine(np.r_[x, x[:20]], np.r_[n, n[:20]], mixed, *both, np.r_[r, r[:20]], 1e-9),
+        ),
+    ):
+        for g, w in zip(got, want):
+            np.testing.assert_array_equal(g, w[:300])
+            if g.dtype.kind == "f":
+                np.testing.assert_array_equal(g.view(np.int64), w[:300].view(np.int64))
+
+
 def test_edge_blocks_hold_their_edges():
     from ballmorph_core.ballmap.sides import EDGE_BLOCK
 
