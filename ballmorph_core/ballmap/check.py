@@ -201,7 +201,7 @@ def _depths(one_way, src, dst, spacing, eps, trees):
     """How deep each disk is entered, by which vertex (index into both curves' vertices), and
     whether that fails the check."""
     m, r, ok, chain = one_way.m, one_way.r, one_way.ok, one_way.chain
-    h = spacing[chain]
+    h = np.take(spacing, chain, mode="wrap")  # in range: 'wrap' skips the bounds check
     # A map of every source vertex in order (as lacing made it) has the source's own arc lengths.
     every_vertex = one_way.s_src is src.rg.s and chain is src.rg.owner
     at_src = _vertex_window_starts(src) if every_vertex else _window_starts(src, chain, one_way.s_src)

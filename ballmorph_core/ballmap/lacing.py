@@ -147,8 +147,9 @@ def _search(x, n, dst, chain, e_lo, e_hi, eps, guess=None):
     counts = e_hi - e_lo + 1
     r, pos = np.full(x.shape[1], np.inf), np.zeros(x.shape[1])
     # Without loops a sample's edges are one run of the target's: no lap to wrap round.
-    wraps = bool(rg.closed[chain].any())
-    base = rg.offsets[chain]
+    # In range: take's 'wrap' mode skips the bounds check.
+    wraps = bool(np.take(rg.closed, chain, mode="wrap").any())
+    base = np.take(rg.offsets, chain, mode="wrap")
     wide = np.zeros(len(counts), bool) if wraps or guess is None else counts > WIDE_WINDOW
     narrow = np.where(wide, 0, counts)
     for sl in budget_slices(narrow, CANDIDATE_BUDGET):
@@ -212,7 +213,7 @@ def _lace(src, dst, eps):
         if not len(chain):
             return r, pos
         mid = (lo + hi) // 2
-        laps = laps_of[chain]
+        laps = np.take(laps_of, chain, mode="wrap")
         e_lo = np.clip(np.floor(p_lo).astype(np.int64), 0, laps - 1)
         e_hi = np.clip(np.ceil(p_hi).astype(np.int64) - 1, e_lo, laps - 1)
         # The contact is expected in proportion between its bracket's (only a hint: see _search).
@@ -345,6 +346,8 @@ def refined(better, refinement, r, q, s_dst):
 
 def same_lap(s_new, s_ref, length, closed):
     """Loop positions moved onto the lap of reference (unwrapped) positions, shape (K,)."""
+    if not np.any(closed):
+        return s_new.copy()  # no loop: np.where's values, without the laps computed for none
     return np.where(closed, s_new + length * np.round((s_ref - s_new) / np.maximum(length, 1e-300)), s_new)
 
 
@@ -356,10 +359,12 @@ def _keep_order(better, s_new, s_dst, src, length, chain):
     """
     nxt = src.rg.nxt
     has_next, nxt_safe = nxt >= 0, np.maximum(nxt, 0)
-    wraps = has_next & (nxt_safe == src.rg.offsets[:-1][chain])
+    # In range: take's 'wrap' mode skips the bounds check.
+    wraps = has_next & (nxt_safe == np.take(src.rg.offsets, chain, mode="wrap"))
+    lap = np.where(wraps, length, 0.0)
     for _ in range(8):
         s_try = np.where(better, s_new, s_dst)
-        step = s_try[nxt_safe] + np.where(wraps, length, 0.0) - s_try
+        step = np.take(s_try, nxt_safe, mode="wrap") + lap - s_try
         back = np.flatnonzero(has_next & (step < 0))
         if len(back) == 0:
             break
@@ -397,8 +402,9 @@ def one_way(src, dst, eps):
     chain = src.rg.owner
     q, s_dst, n_edge = contacts(dst, chain, pos)
     better, r_new, q_new, s_new = refine(src.rg.pts, src.vnormals, dst, chain, pos, r, eps)
-    length = dst.rg.length[chain]
-    s_new = same_lap(s_new, s_dst, length, dst.rg.closed[chain])
+    # In range: take's 'wrap' mode skips the bounds check.
+    length, closed = (np.take(v, chain, mode="wrap") for v in (dst.rg.length, dst.rg.closed))
+    s_new = same_lap(s_new, s_dst, length, closed)
     better = _keep_order(better, s_new, s_dst, src, length, chain)
     r, q, s_dst = refined(better, (r_new, q_new, s_new), r, q, s_dst)
     return disk_map((src.rg.pts, src.vnormals, src.rg.s, chain), r, q, s_dst, n_edge, eps)

@@ -657,6 +657,18 @@ def test_contacts_and_refinements_of_strokes_are_those_of_a_batch_with_a_loop(se
                 np.testing.assert_array_equal(g.view(np.int64), w[:300].view(np.int64))
 
 
+def test_same_lap_without_loops_keeps_the_positions():
+    from ballmorph_core.ballmap.lacing import same_lap
+
+    rng = np.random.default_rng(1)
+    s_new, s_ref, length = rng.uniform(0, 10, (3, 50))
+    for closed in (np.zeros(50, bool), rng.random(50) < 0.5):
+        want = np.where(closed, s_new + length * np.round((s_ref - s_new) / length), s_new)
+        got = same_lap(s_new, s_ref, length, closed)
+        np.testing.assert_array_equal(got.view(np.int64), want.view(np.int64))
+        assert got is not s_new
+
+
 def test_edge_blocks_hold_their_edges():
     from ballmorph_core.ballmap.sides import EDGE_BLOCK
 
