@@ -86,9 +86,9 @@ def _local_depths(side, start, centres, radii):
     cx, cy = (np.ascontiguousarray(v) for v in centres.T)
     nearest = None
     for j in range(_WIDTH):
-        at = start + j
-        # In range: take's 'wrap' mode skips the bounds check.
-        dx, dy = np.take(x, at, mode="wrap"), np.take(y, at, mode="wrap")
+        # Place j of each window: ``x[start + j]``, read from the layout shifted by j (no sum of
+        # the indices); in range: take's 'wrap' mode skips the bounds check.
+        dx, dy = np.take(x[j:], start, mode="wrap"), np.take(y[j:], start, mode="wrap")
         dx -= cx
         dy -= cy
         d2 = np.square(dx, out=dx)
