@@ -269,8 +269,8 @@ def contacts(dst, chain, pos):
     if closed.any():
         lap, g = np.where(closed, e // n_e, 0), first + np.where(closed, e % n_e, e)
     else:
-        # Open curves only: no lap to unwrap.
-        lap, g = np.zeros_like(e), first + e
+        # Open curves only: no lap to unwrap (lap * length is then 0 * length, as row by row).
+        lap, g = 0, first + e
     (ax, ay), (ex, ey) = (np.take(v, g, axis=1, mode="wrap") for v in dst.columns[:2])
     ex *= u
     ey *= u

@@ -144,8 +144,10 @@ def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
 def _larger_steps(sp_, sq_, starts):
     """The larger of each row's two steps from the row before, 0 at the chains' first rows
     (``starts``), shape (K,): np.diff's differences, without its copy of the rows."""
-    step, other = np.zeros(len(sp_)), np.zeros(len(sq_))
+    # Kept buffers from np.empty (np.zeros' calloc maps fresh pages for large arrays).
+    step, other = np.empty(len(sp_)), np.empty(len(sq_))
     for v, d in ((sp_, step), (sq_, other)):
+        d[:1] = 0.0
         np.subtract(v[1:], v[:-1], out=d[1:])
         np.abs(d, out=d)
     np.maximum(step, other, out=step)
