@@ -310,7 +310,10 @@ def refine(x, n, dst, chain, pos, r, eps):
     # Rows by take (several times faster than fancy indexing on (K, 2) arrays; in range).
     a, b, c = (np.take(rg.pts, v, axis=0, mode="wrap") for v in (gm, g0, gp))
     centre, rad, round_enough = circumcircles(a, b, c)
-    (xx, xy), (nx, ny), (ax, ay), (bx, by), (cx, cy), (ox, oy) = (v.T for v in (x, n, a, b, c, centre))
+    # Columns read more than once copied contiguous (numpy runs arithmetic on strided columns
+    # element by element); the same values.
+    (ax, ay), (cx, cy) = a.T, c.T
+    (xx, xy), (nx, ny), (bx, by), (ox, oy) = (np.ascontiguousarray(v.T) for v in (x, n, b, centre))
     chord_x, chord_y = cx - ax, cy - ay
     chord2 = chord_x * chord_x + chord_y * chord_y
     chord_length = np.sqrt(chord2)
