@@ -49,6 +49,14 @@ def tangent_disks(x, n, a, b, N, eps):
     u : ndarray, shape (K,)
         The contact's position along the edge in [0, 1].
     """
+    # One errstate for the whole computation (entering one costs as much as a few passes over
+    # a level's candidates): the divisions by zero and NaN are all masked afterwards.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return _tangent_disks(x, n, a, b, N, eps)
+
+
+def _tangent_disks(x, n, a, b, N, eps):
+    """:func:`tangent_disks`, the floating-point errors it masks ignored by the caller."""
     # In place where it can be (every full-size temporary is a fresh allocation), each value
     # by the same operations in the same order as the plain expressions: bitwise the same.
     # Masked values are set by np.putmask (a third of the work of a boolean-mask assignment).
@@ -63,12 +71,13 @@ def tangent_disks(x, n, a, b, N, eps):
     den = nx * Nx
     den += ny * Ny
     np.subtract(1.0, den, out=den)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r_e /= den
-    np.putmask(r_e, ~(den > PARALLEL), np.inf)
-    reached = r_e >= -eps
+    r_e /= den
+    # Not ~(den > PARALLEL): where den is NaN, so is r_e, which the next test sets to inf too.
+    np.putmask(r_e, den <= PARALLEL, np.inf)
+    unreached = r_e >= -eps
+    np.logical_not(unreached, out=unreached)
     np.maximum(r_e, 0.0, out=r_e)
-    np.putmask(r_e, ~reached, np.inf)
+    np.putmask(r_e, unreached, np.inf)
     step = np.where(np.isfinite(r_e), r_e, 0.0)
     u = nx - Nx
     u *= step
@@ -81,9 +90,11 @@ def tangent_disks(x, n, a, b, N, eps):
     uy -= ay
     uy *= dy
     u += uy
-    with np.errstate(divide="ignore", invalid="ignore"):
-        u /= len2
-    np.putmask(r_e, ~((u >= -ON_EDGE) & (u <= 1 + ON_EDGE)), np.inf)
+    u /= len2
+    off_edge = u >= -ON_EDGE
+    off_edge &= u <= 1 + ON_EDGE
+    np.logical_not(off_edge, out=off_edge)
+    np.putmask(r_e, off_edge, np.inf)
     np.clip(u, 0.0, 1.0, out=u)
     np.putmask(u, np.isnan(u), 0.0)
     # Vertices (eq. 3): r = |v - x|^2 / (2 (v - x) . n); for a, v - x is -(x - a), exactly.
@@ -94,9 +105,9 @@ def tangent_disks(x, n, a, b, N, eps):
         den_v = ex * nx
         den_v += ey * ny
         den_v *= twice
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r_v = dist2 / den_v
-        np.putmask(r_v, ~(den_v > 0), np.inf)
+        r_v = dist2 / den_v
+        # Not ~(den_v > 0): where den_v is NaN, so is r_v, never less than best_r (as inf).
+        np.putmask(r_v, den_v <= 0, np.inf)
         np.putmask(r_v, dist2 <= eps * eps, 0.0)
         better = r_v < best_r
         np.putmask(best_r, better, r_v)

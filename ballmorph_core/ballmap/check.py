@@ -49,6 +49,32 @@ def _window_starts(side, chain, s):
     return edge + (_WIDTH - 1) * chain
 
 
+def _vertex_window_starts(side):
+    """:func:`_window_starts` of every vertex of ``side`` at its own arc length (all of them, in
+    order, each on its own curve), shape (N,).
+
+    Where the batch's shifted arc lengths (:meth:`~ballmorph_core.geometry.ragged.Ragged.global_s`)
+    increase strictly and lie in their curves' ranges, the search for a vertex's own arc length
+    ends on the vertex itself: its edge is the one it starts (an open curve's last vertex: its
+    last edge, where a position clipped to the length ends too). Otherwise the vertices are
+    located as any position.
+    """
+    rg = side.rg
+    g, _ = rg.global_s()
+    filled = np.flatnonzero(rg.n)
+    first, last = rg.offsets[filled], rg.offsets[filled + 1] - 1
+    # A loop's last vertex lies below its length; an open curve's last but one does.
+    closed, length = rg.closed[filled], rg.length[filled]
+    probe = rg.s[np.where(closed, last, np.maximum(last - 1, first))]
+    in_range = (rg.s[first] >= 0.0) & np.where(closed, probe < np.maximum(length, 1e-300), probe <= length)
+    if not (in_range.all() and np.all(g[1:] > g[:-1])):
+        return _window_starts(side, rg.owner, rg.s)
+    edge = np.arange(len(g))
+    ends = np.flatnonzero(rg.nxt < 0)
+    edge[ends[rg.n[rg.owner[ends]] > 1]] -= 1
+    return edge + (_WIDTH - 1) * rg.owner
+
+
 def _local_depths(side, start, centres, radii):
     """Deepest penetration of each disk by the vertices of its window (starting at ``start``,
     see :func:`_window_starts`) on one curve, shape (K,).
@@ -60,9 +86,9 @@ def _local_depths(side, start, centres, radii):
     cx, cy = (np.ascontiguousarray(v) for v in centres.T)
     nearest = None
     for j in range(_WIDTH):
-        at = start + j
-        # In range: take's 'wrap' mode skips the bounds check.
-        dx, dy = np.take(x, at, mode="wrap"), np.take(y, at, mode="wrap")
+        # Place j of each window: ``x[start + j]``, read from the layout shifted by j (no sum of
+        # the indices); in range: take's 'wrap' mode skips the bounds check.
+        dx, dy = np.take(x[j:], start, mode="wrap"), np.take(y[j:], start, mode="wrap")
         dx -= cx
         dy -= cy
         d2 = np.square(dx, out=dx)
@@ -175,8 +201,10 @@ def _depths(one_way, src, dst, spacing, eps, trees):
     """How deep each disk is entered, by which vertex (index into both curves' vertices), and
     whether that fails the check."""
     m, r, ok, chain = one_way.m, one_way.r, one_way.ok, one_way.chain
-    h = spacing[chain]
-    at_src = _window_starts(src, chain, one_way.s_src)
+    h = np.take(spacing, chain, mode="wrap")  # in range: 'wrap' skips the bounds check
+    # A map of every source vertex in order (as lacing made it) has the source's own arc lengths.
+    every_vertex = one_way.s_src is src.rg.s and chain is src.rg.owner
+    at_src = _vertex_window_starts(src) if every_vertex else _window_starts(src, chain, one_way.s_src)
     at_dst = _window_starts(dst, chain, one_way.s_dst)
     d_src = _local_depths(src, at_src, m, r)
     d_dst = _local_depths(dst, at_dst, m, r)

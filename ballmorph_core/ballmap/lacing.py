@@ -35,21 +35,26 @@ WIDE_WINDOW = 32
 SEARCH_SLACK = 1e-9
 
 
-def _first_minima(values, counts):
+def _first_minima(values, counts, ends=None):
     """Index of the first minimum of each group of consecutive ``values``, shape (G,).
 
-    ``counts`` (shape (G,)) sizes the groups; as :func:`~ballmorph_core.geometry.ragged.group_argmin`,
-    a group without entries (or without a minimum: NaN) gets 0.
+    ``counts`` (shape (G,)) sizes the groups, ``ends`` (optional) is their ``np.cumsum``; as
+    :func:`~ballmorph_core.geometry.ragged.group_argmin`, a group without entries (or without a
+    minimum: NaN) gets 0.
     """
-    ends = np.cumsum(counts)
+    ends = np.cumsum(counts) if ends is None else ends
     starts = ends - counts
     filled = counts > 0
-    best = np.zeros(len(counts), dtype=np.int64)
-    if not filled.any():
-        return best
-    first = starts[filled]
+    if filled.all():
+        # Every group has entries (the lacing's usual case): no group to mask out.
+        first, filled = starts, slice(None)
+    elif filled.any():
+        first = starts[filled]
+    else:
+        return np.zeros(len(counts), dtype=np.int64)
     mins = np.minimum.reduceat(values, first)
     hits = np.flatnonzero(values == np.repeat(mins, counts[filled]))
+    best = np.zeros(len(counts), dtype=np.int64)
     if not len(hits):
         return best
     # A group's first hit is the first at or after its start, if there is one before its end.
@@ -58,14 +63,14 @@ def _first_minima(values, counts):
     return best
 
 
-def _smallest(x, n, dst, g, cnt, eps):
-    """Smallest disk over each sample's run of target edges ``g`` (global indices, ``cnt`` per
-    sample, sample after sample): radii and the index into ``g`` of each sample's first best
-    edge, with its contact's fraction ``u`` along that edge."""
+def _edge_disks(x, n, dst, g, cnt, eps):
+    """Tangent disks (radii, contacts' fractions ``u``) of each sample (``x``, ``n``: shape (2, K),
+    coordinate by coordinate) with each of its run of target edges ``g`` (global indices, ``cnt``
+    per sample, sample after sample), shape (len(g),)."""
     pts, edge, normals = dst.columns
     # The indices are in range: take's 'wrap' mode skips the bounds check.
     a = np.take(pts, g, axis=1, mode="wrap")
-    rr, uu = tangent_disks(
+    return tangent_disks(
         np.repeat(x, cnt, axis=1),
         np.repeat(n, cnt, axis=1),
         a,
@@ -73,14 +78,23 @@ def _smallest(x, n, dst, g, cnt, eps):
         np.take(normals, g, axis=1, mode="wrap"),
         eps,
     )
-    best = _first_minima(rr, cnt)
+
+
+def _smallest(x, n, dst, g, cnt, eps, ends=None):
+    """Smallest disk over each sample's run of target edges (see :func:`_edge_disks`; ``ends``,
+    optional, is ``np.cumsum(cnt)``): radii and the index into ``g`` of each sample's first best
+    edge, with its contact's fraction ``u`` along that edge."""
+    rr, uu = _edge_disks(x, n, dst, g, cnt, eps)
+    best = _first_minima(rr, cnt, ends)
     return rr[best], best, uu[best]
 
 
-def _runs(starts, cnt):
-    """Concatenated ``arange(start, start + c)`` of every run, shape (sum(cnt),)."""
-    total = int(cnt.sum())
-    return np.arange(total) - np.repeat(np.cumsum(cnt) - cnt - starts, cnt)
+def _runs(starts, cnt, ends=None):
+    """Concatenated ``arange(start, start + c)`` of every run, shape (sum(cnt),); ``ends``
+    (optional) is ``np.cumsum(cnt)``."""
+    ends = np.cumsum(cnt) if ends is None else ends
+    total = int(ends[-1]) if len(ends) else 0
+    return np.arange(total) - np.repeat(ends - cnt - starts, cnt)
 
 
 def _pruned(x, n, dst, first, last, guess, eps):
@@ -95,7 +109,8 @@ def _pruned(x, n, dst, first, last, guess, eps):
     lo, hi = dst.block_of(first), dst.block_of(last)
     near = np.clip(np.floor(guess).astype(np.int64)[None, :] + np.array([-1, 0, 1])[:, None], first, last)
     ring = np.ascontiguousarray(near.T).ravel()
-    r_guess, _, _ = _smallest(x, n, dst, ring, np.full(len(first), 3), eps)
+    # Only the smallest radius is wanted (not which edge): a minimum over rows of three.
+    r_guess = _edge_disks(x, n, dst, ring, 3, eps)[0].reshape(-1, 3).min(axis=1)
     # The rows' (sample, block) pairs, and the distance from each block's box to the centre.
     nb = hi - lo + 1
     owner = np.repeat(np.arange(len(first)), nb)
@@ -122,31 +137,36 @@ def _pruned(x, n, dst, first, last, guess, eps):
 def _search(x, n, dst, chain, e_lo, e_hi, eps, guess=None):
     """Smallest disk at each sample over target edges ``e_lo..e_hi`` of its chain (laps unrolled).
 
+    ``x``, ``n`` (shape (2, K), coordinate by coordinate) are the samples and their normals.
     ``guess`` (edge units, optional) is where each contact is expected: samples with more than
     ``WIDE_WINDOW`` edges skip the blocks of edges that cannot hold their smallest disk
     (:func:`_pruned`; the same answer). Returns radii (inf where none) and contact positions in
     units of target edges (``e + u``).
     """
     rg = dst.rg
-    x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
     counts = e_hi - e_lo + 1
     r, pos = np.full(x.shape[1], np.inf), np.zeros(x.shape[1])
     # Without loops a sample's edges are one run of the target's: no lap to wrap round.
-    wraps = bool(rg.closed[chain].any())
-    base = rg.offsets[chain]
+    # In range: take's 'wrap' mode skips the bounds check.
+    wraps = bool(np.take(rg.closed, chain, mode="wrap").any())
+    base = np.take(rg.offsets, chain, mode="wrap")
     wide = np.zeros(len(counts), bool) if wraps or guess is None else counts > WIDE_WINDOW
-    for sl in budget_slices(np.where(wide, 0, counts), CANDIDATE_BUDGET):
-        cnt = np.where(wide[sl], 0, counts[sl])
-        if not cnt.any():
+    narrow = np.where(wide, 0, counts)
+    for sl in budget_slices(narrow, CANDIDATE_BUDGET):
+        cnt = narrow[sl]
+        ends = np.cumsum(cnt)
+        if not ends[-1]:
             continue
-        e_local = _runs(e_lo[sl], cnt)
         if wraps:
+            e_local = _runs(e_lo[sl], cnt, ends)
             c = np.repeat(chain[sl], cnt)
             g = rg.offsets[c] + np.where(rg.closed[c], e_local % np.maximum(rg.n_edges[c], 1), e_local)
         else:
-            g = e_local + np.repeat(base[sl], cnt)
-        rr, best, uu = _smallest(x[:, sl], n[:, sl], dst, g, cnt, eps)
-        r[sl], pos[sl] = rr, e_local[best] + uu
+            # One run of global edges per sample; its local edges are ``g - base``.
+            e_local = None
+            g = _runs(e_lo[sl] + base[sl], cnt, ends)
+        rr, best, uu = _smallest(x[:, sl], n[:, sl], dst, g, cnt, eps, ends)
+        r[sl], pos[sl] = rr, (g[best] - base[sl] if e_local is None else e_local[best]) + uu
     rows = np.flatnonzero(wide)
     for sl in budget_slices(counts[rows], CANDIDATE_BUDGET):
         k = rows[sl]
@@ -156,12 +176,14 @@ def _search(x, n, dst, chain, e_lo, e_hi, eps, guess=None):
 
 
 def full_search(x, n, dst, chain, eps):
-    """Smallest disk at each sample over all edges of its chain's target (no lacing window).
+    """Smallest disk at each sample (``x``, ``n``: shape (K, 2)) over all edges of its chain's
+    target (no lacing window).
 
     Returns radii (inf where none) and contact positions in target edge units.
     """
     n_e = dst.rg.n_edges[chain]
-    r, pos = _search(x, n, dst, chain, np.zeros(len(x), np.int64), n_e - 1, eps)
+    x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
+    r, pos = _search(x, n, dst, chain, np.zeros(len(chain), np.int64), n_e - 1, eps)
     return np.where(n_e > 0, r, np.inf), np.where(n_e > 0, pos, 0.0)
 
 
@@ -183,6 +205,7 @@ def _lace(src, dst, eps):
         r[lo[loops]], pos[lo[loops]] = rr, pp
         # A loop's chain closes on its first sample, one lap later.
         p_lo[loops], hi[loops], p_hi[loops] = pp, s_rg.offsets[1:][loops], pp + n_e[loops]
+    columns = (src.columns[0], np.ascontiguousarray(NX.T))
     chain = chains
     while True:
         keep = hi - lo > 1
@@ -190,13 +213,13 @@ def _lace(src, dst, eps):
         if not len(chain):
             return r, pos
         mid = (lo + hi) // 2
-        laps = laps_of[chain]
+        laps = np.take(laps_of, chain, mode="wrap")
         e_lo = np.clip(np.floor(p_lo).astype(np.int64), 0, laps - 1)
         e_hi = np.clip(np.ceil(p_hi).astype(np.int64) - 1, e_lo, laps - 1)
         # The contact is expected in proportion between its bracket's (only a hint: see _search).
         guess = p_lo + (p_hi - p_lo) * ((mid - lo) / (hi - lo))
-        # Rows by take (several times faster than fancy indexing on (K, 2) arrays; in range).
-        rr, pp = _search(*(np.take(v, mid, axis=0, mode="wrap") for v in (X, NX)), dst, chain, e_lo, e_hi, eps, guess)
+        # Columns by take (in range: 'wrap' skips the bounds check), as the search reads them.
+        rr, pp = _search(*(np.take(v, mid, axis=1, mode="wrap") for v in columns), dst, chain, e_lo, e_hi, eps, guess)
         # The window is whole edges, so the best contact may lie just outside the bracket: then
         # the true image does not advance monotonically (or sits on the bracket's end). Clipping
         # it would move the contact off its disk, so beyond round-off it counts as no disk found
@@ -236,17 +259,22 @@ def contacts(dst, chain, pos):
     normal : ndarray, shape (K, 2)
     """
     rg = dst.rg
-    n_e = np.maximum(rg.n_edges[chain], 1)
-    closed = rg.closed[chain]
+    # In range: take's 'wrap' mode skips the bounds check (the chains' values and the edges').
+    n_e, closed, first, length = (
+        np.take(v, chain, mode="wrap") for v in (rg.n_edges, rg.closed, rg.offsets, rg.length)
+    )
+    np.maximum(n_e, 1, out=n_e)
     e = np.clip(np.floor(pos).astype(np.int64), 0, np.where(closed, 2 * n_e, n_e) - 1)
     u = np.clip(pos - e, 0.0, 1.0)
-    lap = np.where(closed, e // n_e, 0)
-    g = rg.offsets[chain] + np.where(closed, e % n_e, e)
-    # In range: take's 'wrap' mode skips the bounds check.
+    if closed.any():
+        lap, g = np.where(closed, e // n_e, 0), first + np.where(closed, e % n_e, e)
+    else:
+        # Open curves only: no lap to unwrap (lap * length is then 0 * length, as row by row).
+        lap, g = 0, first + e
     (ax, ay), (ex, ey) = (np.take(v, g, axis=1, mode="wrap") for v in dst.columns[:2])
     ex *= u
     ey *= u
-    s = rg.s[g] + u * rg.length_of_edge[g] + lap * rg.length[chain]
+    s = np.take(rg.s, g, mode="wrap") + u * np.take(rg.length_of_edge, g, mode="wrap") + lap * length
     return as_rows(ax + ex, ay + ey), s, np.take(dst.enormals, g, axis=0, mode="wrap")
 
 
@@ -268,18 +296,24 @@ def refine(x, n, dst, chain, pos, r, eps):
         Arc length on the target, within one lap.
     """
     rg = dst.rg
-    n_v, closed = rg.n[chain], rg.closed[chain]
+    # In range: take's 'wrap' mode skips the bounds check (the chains' values and the vertices').
+    n_v, closed, first = (np.take(v, chain, mode="wrap") for v in (rg.n, rg.closed, rg.offsets))
     j = np.floor(pos + 0.5).astype(np.int64)
-    jl = np.where(closed, j % np.maximum(n_v, 1), np.minimum(np.maximum(j, 1), np.maximum(n_v - 2, 1)))
+    jl = np.minimum(np.maximum(j, 1), np.maximum(n_v - 2, 1))
+    if closed.any():
+        jl = np.where(closed, j % np.maximum(n_v, 1), jl)
     ok = np.isfinite(r) & (r > eps) & (closed | ((j >= 1) & (j <= n_v - 2)))
-    g0 = rg.offsets[chain] + jl
-    gm, gp = rg.prv[g0], rg.nxt[g0]
+    g0 = first + jl
+    gm, gp = (np.take(v, g0, mode="wrap") for v in (rg.prv, rg.nxt))
     ok &= (gm >= 0) & (gp >= 0)
     gm, gp = np.maximum(gm, 0), np.maximum(gp, 0)
     # Rows by take (several times faster than fancy indexing on (K, 2) arrays; in range).
     a, b, c = (np.take(rg.pts, v, axis=0, mode="wrap") for v in (gm, g0, gp))
     centre, rad, round_enough = circumcircles(a, b, c)
-    (xx, xy), (nx, ny), (ax, ay), (bx, by), (cx, cy), (ox, oy) = (v.T for v in (x, n, a, b, c, centre))
+    # Columns read more than once copied contiguous (numpy runs arithmetic on strided columns
+    # element by element); the same values.
+    (ax, ay), (cx, cy) = a.T, c.T
+    (xx, xy), (nx, ny), (bx, by), (ox, oy) = (np.ascontiguousarray(v.T) for v in (x, n, b, centre))
     chord_x, chord_y = cx - ax, cy - ay
     chord2 = chord_x * chord_x + chord_y * chord_y
     chord_length = np.sqrt(chord2)
@@ -298,7 +332,9 @@ def refine(x, n, dst, chain, pos, r, eps):
         r_safe = np.where(np.isfinite(r), r, 0.0)
         ok &= np.isfinite(r_new) & (r_new >= 0) & (np.abs(t) <= 0.5)
         ok &= np.abs(r_new - r_safe) <= 0.25 * r_safe + chord_length
-    s_new = rg.s[g0] + t * (rg.length_of_edge[gm] + rg.length_of_edge[g0])
+    s_new = np.take(rg.s, g0, mode="wrap") + t * (
+        np.take(rg.length_of_edge, gm, mode="wrap") + np.take(rg.length_of_edge, g0, mode="wrap")
+    )
     return ok, r_new, as_rows(qx, qy), s_new
 
 
@@ -313,6 +349,8 @@ def refined(better, refinement, r, q, s_dst):
 
 def same_lap(s_new, s_ref, length, closed):
     """Loop positions moved onto the lap of reference (unwrapped) positions, shape (K,)."""
+    if not np.any(closed):
+        return s_new.copy()  # no loop: np.where's values, without the laps computed for none
     return np.where(closed, s_new + length * np.round((s_ref - s_new) / np.maximum(length, 1e-300)), s_new)
 
 
@@ -324,10 +362,12 @@ def _keep_order(better, s_new, s_dst, src, length, chain):
     """
     nxt = src.rg.nxt
     has_next, nxt_safe = nxt >= 0, np.maximum(nxt, 0)
-    wraps = has_next & (nxt_safe == src.rg.offsets[:-1][chain])
+    # In range: take's 'wrap' mode skips the bounds check.
+    wraps = has_next & (nxt_safe == np.take(src.rg.offsets, chain, mode="wrap"))
+    lap = np.where(wraps, length, 0.0)
     for _ in range(8):
         s_try = np.where(better, s_new, s_dst)
-        step = s_try[nxt_safe] + np.where(wraps, length, 0.0) - s_try
+        step = np.take(s_try, nxt_safe, mode="wrap") + lap - s_try
         back = np.flatnonzero(has_next & (step < 0))
         if len(back) == 0:
             break
@@ -365,8 +405,9 @@ def one_way(src, dst, eps):
     chain = src.rg.owner
     q, s_dst, n_edge = contacts(dst, chain, pos)
     better, r_new, q_new, s_new = refine(src.rg.pts, src.vnormals, dst, chain, pos, r, eps)
-    length = dst.rg.length[chain]
-    s_new = same_lap(s_new, s_dst, length, dst.rg.closed[chain])
+    # In range: take's 'wrap' mode skips the bounds check.
+    length, closed = (np.take(v, chain, mode="wrap") for v in (dst.rg.length, dst.rg.closed))
+    s_new = same_lap(s_new, s_dst, length, closed)
     better = _keep_order(better, s_new, s_dst, src, length, chain)
     r, q, s_dst = refined(better, (r_new, q_new, s_new), r, q, s_dst)
     return disk_map((src.rg.pts, src.vnormals, src.rg.s, chain), r, q, s_dst, n_edge, eps)

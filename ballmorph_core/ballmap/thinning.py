@@ -93,7 +93,8 @@ def running_backsteps(s, chain, span):
     ndarray, shape (K,)
         0 where the sequence is monotone.
     """
-    return np.maximum.accumulate(s + chain * span) - chain * span - s
+    shift = chain * span
+    return np.maximum.accumulate(s + shift) - shift - s
 
 
 def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
@@ -120,23 +121,48 @@ def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
     """
     seg = _segments(chain, n_chains)
     starts, ends = seg[:-1], seg[1:] - 1
-    step = np.maximum(np.abs(np.diff(sp_, prepend=sp_[:1])), np.abs(np.diff(sq_, prepend=sq_[:1])))
-    step[starts] = 0.0
-    tau = np.cumsum(step)
-    tau -= tau[starts][chain]
+    tau = np.cumsum(_larger_steps(sp_, sq_, starts))
+    # Rows by take (in range: 'wrap' skips the bounds check; fancy indexing costs twice as much).
+    tau -= np.take(tau[starts], chain, mode="wrap")
     closing = np.maximum(len_p - (sp_[ends] - sp_[starts]), len_q - (sq_[ends] - sq_[starts]))
     total = tau[ends] + np.where(closed, closing, 0.0)
     count = np.maximum(np.round(total / spacing).astype(np.int64), np.where(closed, 3, 1))
     owner, local = ragged_arange(count + np.where(closed, 0, 1))
-    targets = local * (total / count)[owner]
+    targets = local * np.take(total / count, owner, mode="wrap")
     # The node nearest each multiple of the uniform step, within its chain.
     tbase = np.concatenate([[0.0], np.cumsum(total + 1.0)])[:-1]
-    g = tau + tbase[chain]
-    want = targets + tbase[owner]
-    hi = np.clip(np.searchsorted(g, want), starts[owner] + 1, np.maximum(ends[owner], starts[owner] + 1))
+    g = tau + np.take(tbase, chain, mode="wrap")
+    want = targets + np.take(tbase, owner, mode="wrap")
+    first, last = (np.take(v, owner, mode="wrap") for v in (starts, ends))
+    hi = np.clip(np.searchsorted(g, want), first + 1, np.maximum(last, first + 1))
     hi = np.minimum(hi, len(g) - 1)
-    lo = np.maximum(hi - 1, starts[owner])
-    return np.unique(np.where(want - g[lo] <= g[hi] - want, lo, hi))
+    lo = np.maximum(hi - 1, first)
+    g_lo, g_hi = (np.take(g, v, mode="wrap") for v in (lo, hi))
+    return _sorted_unique(np.where(want - g_lo <= g_hi - want, lo, hi))
+
+
+def _larger_steps(sp_, sq_, starts):
+    """The larger of each row's two steps from the row before, 0 at the chains' first rows
+    (``starts``), shape (K,): np.diff's differences, without its copy of the rows."""
+    # Kept buffers from np.empty (np.zeros' calloc maps fresh pages for large arrays).
+    step, other = np.empty(len(sp_)), np.empty(len(sq_))
+    for v, d in ((sp_, step), (sq_, other)):
+        d[:1] = 0.0
+        np.subtract(v[1:], v[:-1], out=d[1:])
+        np.abs(d, out=d)
+    np.maximum(step, other, out=step)
+    step[starts] = 0.0
+    return step
+
+
+def _sorted_unique(picks):
+    """``np.unique(picks)`` (ndarray of int, shape (K,)): without its sort where the picks come in
+    order already (nearest nodes of increasing targets do, chain after chain)."""
+    if not np.all(picks[1:] >= picks[:-1]):
+        return np.unique(picks)
+    first = np.ones(len(picks), dtype=bool)
+    np.not_equal(picks[1:], picks[:-1], out=first[1:])
+    return picks[first]
 
 
 def _report_disagreements(allp, order, back_p, back_q, sp, sq, dense_spacing, reports):
@@ -196,6 +222,9 @@ def symmetric_samples(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
     back_p = running_backsteps(s_p, chain, span)
     back_q = running_backsteps(s_q, chain, span)
     _report_disagreements(allp, order, back_p, back_q, sp, sq, dense_spacing, reports)
-    steady = np.flatnonzero((back_p <= tol.ROUNDOFF * len_p[chain]) & (back_q <= tol.ROUNDOFF * len_q[chain]))
-    keep = uniform_picks(s_p[steady], s_q[steady], chain[steady], len(sp.rg), len_p, len_q, sp.rg.closed, spacing)
+    # In range: take's 'wrap' mode skips the bounds check.
+    lp, lq = (np.take(v, chain, mode="wrap") for v in (len_p, len_q))
+    steady = np.flatnonzero((back_p <= tol.ROUNDOFF * lp) & (back_q <= tol.ROUNDOFF * lq))
+    sp_, sq_, chain_ = (np.take(v, steady) for v in (s_p, s_q, chain))
+    keep = uniform_picks(sp_, sq_, chain_, len(sp.rg), len_p, len_q, sp.rg.closed, spacing)
     return allp.take(order[steady[keep]])

@@ -473,8 +473,12 @@ def test_tangent_disks_are_bitwise_the_plain_expressions(seed):
         N /= np.linalg.norm(N, axis=0)
     N = np.nan_to_num(N)
     N[:, 3::29] = n[:, 3::29]
+    # NaN and infinite coordinates and normals: NaN denominators, infinite distances.
+    x[0, 11::31], n[1, 13::37], N[0, 15::41], b[1, 17::43] = np.nan, np.nan, np.nan, np.nan
+    x[1, 19::47], b[0, 21::53] = np.inf, -np.inf
     for eps in (1e-12, 1e-3):
-        got, want = tangent_disks(x, n, a, b, N, eps), _plain_tangent_disks(x, n, a, b, N, eps)
+        with np.errstate(all="ignore"):
+            got, want = tangent_disks(x, n, a, b, N, eps), _plain_tangent_disks(x, n, a, b, N, eps)
         for g, w in zip(got, want):
             np.testing.assert_array_equal(g.view(np.int64), w.view(np.int64))
 
@@ -493,7 +497,13 @@ def test_first_minima_of_groups_match_group_argmin(seed):
     values = rng.integers(0, 4, len(owner)).astype(float)
     values[rng.random(len(owner)) < 0.03] = np.nan
     values[-1] = np.nan
-    np.testing.assert_array_equal(_first_minima(values, counts), group_argmin(values, owner, len(counts)))
+    want = group_argmin(values, owner, len(counts))
+    np.testing.assert_array_equal(_first_minima(values, counts), want)
+    np.testing.assert_array_equal(_first_minima(values, counts, np.cumsum(counts)), want)
+    # Without the empty groups (the lacing's case: every group filled, none masked out).
+    filled = counts[counts > 0]
+    owner, _ = ragged_arange(filled)
+    np.testing.assert_array_equal(_first_minima(values, filled), group_argmin(values, owner, len(filled)))
 
 
 @pytest.mark.parametrize("closed", [False, True])
@@ -520,6 +530,55 @@ def test_local_depths_are_the_nearest_vertex_of_the_window_round_each_contact(cl
         d = np.linalg.norm(rg.pts[g] - centres[k], axis=1)
         assert witness[k] == g[np.argmin(d)]
         assert depth[k] == pytest.approx(radii[k] - d.min(), abs=1e-12)
+
+
+@pytest.mark.parametrize("closed", [False, True])
+@pytest.mark.parametrize("repeated", [False, True])
+def test_vertex_window_starts_are_the_windows_located_at_the_vertices(closed, repeated):
+    # Curves of every size (a dot, two points), as the window starts found by locating every
+    # vertex's own arc length; with repeated vertices (edges of no length, a curve of no
+    # length: arc lengths not strictly increasing) the vertices are located as such.
+    from types import SimpleNamespace
+
+    from ballmorph_core.geometry.ragged import Ragged
+
+    rng = np.random.default_rng(7)
+    curves = [rng.uniform(-1, 1, (k, 2)) for k in (5, 1, 2, 17, 3)]
+    if repeated:
+        curves[3][6] = curves[3][5]
+        curves.append(np.zeros((3, 2)) + 0.5)
+    side = SimpleNamespace(rg=Ragged.from_list(curves, closed))
+    rg = side.rg
+    if not closed:
+        # Summed edge by edge, a stroke's last arc length may overshoot its length (located
+        # at the length: still on the last edge).
+        last = rg.offsets[1:-1:2] - 1
+        rg.s[last] = np.nextafter(rg.length[: len(last) * 2 : 2], np.inf)
+    assert np.all(np.diff(rg.global_s()[0]) > 0) != repeated
+    want = check._window_starts(side, rg.owner, rg.s)
+    np.testing.assert_array_equal(check._vertex_window_starts(side), want)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_thinning_steps_and_picks_are_the_plain_ones(seed):
+    # The larger steps are np.diff's (prepended, first rows zeroed), bit for bit, infinite
+    # positions too; the picks' unique values are np.unique's, in order or not.
+    from ballmorph_core.ballmap import thinning
+
+    rng = np.random.default_rng(seed)
+    sp_, sq_ = np.cumsum(rng.exponential(1.0, (2, 300)), axis=1) * rng.choice([1.0, -1.0], 2)[:, None]
+    sp_[rng.integers(0, 300, 3)] = np.inf
+    starts = np.unique(np.r_[0, rng.integers(0, 300, 7)])
+    with np.errstate(invalid="ignore"):
+        want = np.maximum(np.abs(np.diff(sp_, prepend=sp_[:1])), np.abs(np.diff(sq_, prepend=sq_[:1])))
+        want[starts] = 0.0
+        got = thinning._larger_steps(sp_, sq_, starts)
+    np.testing.assert_array_equal(got.view(np.int64), want.view(np.int64))
+    picks = np.sort(rng.integers(0, 50, 200))
+    for p in (picks, rng.permutation(picks), picks[:0], picks[:1]):
+        got = thinning._sorted_unique(p)
+        np.testing.assert_array_equal(got, np.unique(p))
+        assert got.dtype == np.unique(p).dtype
 
 
 def _wavy_sides(rng, count, shift):
@@ -552,12 +611,62 @@ def test_pruned_search_finds_what_the_whole_window_finds(seed):
     e_lo = rng.integers(0, n_e // 2)
     e_hi = np.minimum(e_lo + rng.integers(0, n_e), n_e - 1)
     good = (k - rg.offsets[chain]) * n_e / np.maximum(rg.n[chain] - 1, 1)
+    x, n = np.ascontiguousarray(x.T), np.ascontiguousarray(n.T)
     for guess in (good, rng.uniform(0, n_e)):
         want = lacing._search(x, n, dst, chain, e_lo, e_hi, 1e-9)
         got = lacing._search(x, n, dst, chain, e_lo, e_hi, 1e-9, guess)
         assert (e_hi - e_lo + 1 > lacing.WIDE_WINDOW).sum() > 100
         for g, w in zip(got, want):
             np.testing.assert_array_equal(g.view(np.int64), w.view(np.int64))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_contacts_and_refinements_of_strokes_are_those_of_a_batch_with_a_loop(seed):
+    # Open strokes alone take the road without laps; with a loop in the batch (after them:
+    # the strokes' arrays are the same) the contacts and refinements of the strokes' samples
+    # are bit for bit the same.
+    from ballmorph_core.ballmap import lacing
+    from ballmorph_core.ballmap.sides import Sides
+
+    rng = np.random.default_rng(seed)
+    curves = [
+        np.c_[x, 0.05 * np.sin(rng.uniform(2, 9) * x)] + [0, 3 * c] for c, x in enumerate([np.linspace(0, 1, 50)] * 3)
+    ]
+    h = np.full(4, 0.01)
+    alone = Sides(curves, np.zeros(3, bool), np.ones(3), h[:3])
+    mixed = Sides(curves + [circle(0.5, 60, (5.0, 5.0))], np.r_[False, False, False, True], np.ones(4), h)
+    src = _wavy_sides(rng, 3, 0.05)
+    k = rng.integers(0, len(src.rg.pts), 300)
+    chain = src.rg.owner[k]
+    pos = rng.uniform(0, 1.0, 300) * alone.rg.n_edges[chain]
+    pos[::7] = np.floor(pos[::7])
+    r = rng.uniform(0.0, 0.3, 300)
+    x, n = src.rg.pts[k], src.vnormals[k]
+    loop = np.full(20, 3)
+    both = (np.r_[chain, loop], np.r_[pos, rng.uniform(0, 120, 20)])
+    for got, want in (
+        (lacing.contacts(alone, chain, pos), lacing.contacts(mixed, *both)),
+        (
+            lacing.refine(x, n, alone, chain, pos, r, 1e-9),
+            lacing.refine(np.r_[x, x[:20]], np.r_[n, n[:20]], mixed, *both, np.r_[r, r[:20]], 1e-9),
+        ),
+    ):
+        for g, w in zip(got, want):
+            np.testing.assert_array_equal(g, w[:300])
+            if g.dtype.kind == "f":
+                np.testing.assert_array_equal(g.view(np.int64), w[:300].view(np.int64))
+
+
+def test_same_lap_without_loops_keeps_the_positions():
+    from ballmorph_core.ballmap.lacing import same_lap
+
+    rng = np.random.default_rng(1)
+    s_new, s_ref, length = rng.uniform(0, 10, (3, 50))
+    for closed in (np.zeros(50, bool), rng.random(50) < 0.5):
+        want = np.where(closed, s_new + length * np.round((s_ref - s_new) / length), s_new)
+        got = same_lap(s_new, s_ref, length, closed)
+        np.testing.assert_array_equal(got.view(np.int64), want.view(np.int64))
+        assert got is not s_new
 
 
 def test_edge_blocks_hold_their_edges():
