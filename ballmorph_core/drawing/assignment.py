@@ -47,7 +47,7 @@ class _Duals:
         n_cols = len(self.v)
         remaining, shortest = np.full(n_cols, np.inf), np.full(n_cols, np.inf)
         path = np.full(n_cols, -1, np.int64)
-        scanned, unscanned, visited = np.zeros(n_cols, bool), np.ones(n_cols, bool), []
+        unscanned, visited = np.ones(n_cols, bool), []
         reduced, better = np.empty(n_cols), np.empty(n_cols, bool)
         free = self.row4col < 0
         i, min_val = int(cur), 0.0
@@ -66,10 +66,10 @@ class _Duals:
             # Prefer a free column among equals: it ends the search at once.
             free_ties = ties[free[ties]]
             j = int(free_ties[0]) if len(free_ties) else int(ties[0])
-            scanned[j], unscanned[j] = True, False
+            unscanned[j] = False
             shortest[j], remaining[j] = remaining[j], np.inf
             if free[j]:
-                return j, path, shortest, scanned, visited, min_val
+                return j, path, shortest, ~unscanned, visited, min_val
             i = int(self.row4col[j])
 
     def augment(self, cur):
