@@ -331,9 +331,8 @@ class FollowedQueries:
         # Only the kept slots, query after query (most queries keep a few of the width): slot s
         # of query i is flat position asked[i] width + s of the tables.
         count = np.take(self.count, asked, mode="wrap")
-        i = np.repeat(np.arange(len(tried)), count)
-        at = np.repeat(asked * self.width - (np.cumsum(count) - count), count)
-        at += np.arange(len(i))
+        i, slot = ragged_arange(count)
+        at = np.repeat(asked * self.width, count) + slot
         near = np.take(self.kept_d, at, mode="wrap")
         near = np.flatnonzero(near <= np.repeat(cut + np.take(moved, tried, mode="wrap") + 2.0 * slack, count))
         i, j = np.take(i, near, mode="wrap"), np.take(self.kept, np.take(at, near, mode="wrap"), mode="wrap")
