@@ -136,8 +136,9 @@ def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active
     n_a, n_b = len(a[0]), len(b[0])
     if n_a == 0 or n_b == 0:
         return
-    if n_a * n_b <= DIRECT_PAIRS:
-        # Every pair tested by the grid's own test: the same pairs, in the same order.
+    if n_a * n_b <= min(DIRECT_PAIRS, budget):
+        # Every pair tested by the grid's own test: the same pairs, in the same order, in one
+        # run within the budget.
         rows = np.arange(n_a) if active is None else np.flatnonzero(active)
         i, j = np.repeat(rows, n_b), np.tile(np.arange(n_b), len(rows))
         keep = box_overlap(a, b, i, j)
