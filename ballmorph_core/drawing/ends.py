@@ -355,7 +355,13 @@ def _even(start, stop, count):
     arithmetic (``i * step + start``, the last one ``stop``) without its checks, which cost ten
     times that: a drawing makes two for every overhang."""
     values = np.arange(count, dtype=np.float64)
-    values *= (stop - start) / (count - 1)
+    step = (stop - start) / (count - 1)
+    if step == 0.0:
+        # A span that underflows when divided (subnormal): numpy divides first, then scales.
+        values /= count - 1
+        values *= stop - start
+    else:
+        values *= step
     values += start
     values[-1] = stop
     return values
