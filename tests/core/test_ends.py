@@ -211,17 +211,23 @@ def _lying_partly_along(rng, n_pairs):
     return pairs
 
 
-def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch):
-    """Strokes lying partly along each other (turned, scaled, noisy): the fits with the gate
-    are the fits of the full sliding fit run on every loose pair, and most of them slide."""
-    pairs = _lying_partly_along(np.random.default_rng(11), 60)
-    P, Q = batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs])
+def _gated_ungated_end_to_end(monkeypatch, P, Q):
+    """The fits with the coarse gate, with the full sliding fit on every loose pair, and with
+    no sliding fit at all."""
     gated = fit_pairs(P, Q)
     with monkeypatch.context() as ungated:
         ungated.setattr(sliding, "SLIDE_MARGIN", np.inf)
         want = fit_pairs(P, Q)
         ungated.setattr(sliding, "SLIDE_FROM", np.inf)  # no sliding fit at all
-        end_to_end = fit_pairs(P, Q)
+        return gated, want, fit_pairs(P, Q)
+
+
+def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch):
+    """Strokes lying partly along each other (turned, scaled, noisy): the fits with the gate
+    are the fits of the full sliding fit run on every loose pair, and most of them slide."""
+    pairs = _lying_partly_along(np.random.default_rng(11), 60)
+    P, Q = batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs])
+    gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
     for name in ("A", "b", "residual"):
         np.testing.assert_array_equal(getattr(gated, name), getattr(want, name))
     slid = want.residual < end_to_end.residual
@@ -237,12 +243,7 @@ def test_the_coarse_gate_keeps_a_slide_whose_start_overlaps_by_a_few_samples(mon
     the pair and it was fitted end to end. A start that blind is judged again with every sample."""
     p, q = _lying_partly_along(np.random.default_rng(3), 212)[-1]
     P, Q = batch(p), batch(q)
-    gated = fit_pairs(P, Q)
-    with monkeypatch.context() as ungated:
-        ungated.setattr(sliding, "SLIDE_MARGIN", np.inf)
-        want = fit_pairs(P, Q)
-        ungated.setattr(sliding, "SLIDE_FROM", np.inf)  # no sliding fit at all
-        end_to_end = fit_pairs(P, Q)
+    gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
     assert want.residual[0] < sliding.SLIDE_GAIN * end_to_end.residual[0]  # the full fit slides
     np.testing.assert_array_equal(gated.residual, want.residual)
 
