@@ -355,11 +355,12 @@ def _even(start, stop, count):
     arithmetic (``i * step + start``, the last one ``stop``) without its checks, which cost ten
     times that: a drawing makes two for every overhang."""
     values = np.arange(count, dtype=np.float64)
-    step = (stop - start) / (count - 1)
+    span = stop - start
+    step = span / (count - 1)
     if step == 0.0:
         # A span that underflows when divided (subnormal): numpy divides first, then scales.
         values /= count - 1
-        values *= stop - start
+        values *= span
     else:
         values *= step
     values += start
