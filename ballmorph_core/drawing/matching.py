@@ -417,12 +417,16 @@ class _CostTable:
             # Every pair is a loop pair: its shape is its loop fit (or a dot's), its direction
             # its loops' orientations; the open reads' fits would never be read.
             e_f = e_r = np.zeros((key_a.count, key_b.count))
-            fwd = rev = np.ones((key_a.count, key_b.count), dtype=complex)
+            turn_f = turn_r = np.zeros((key_a.count, key_b.count))
         else:
             oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
             ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
             e_f, e_r, fwd, rev = _open_shapes(oa, ob)
-        self._fits, self._products = (e_f, e_r), (fwd, rev)
+            # Only the fits' turns are read: their angles (8 bytes a pair) rather than the
+            # complex products (16), which a drawing of thousands of strokes feels.
+            turn_f, turn_r = np.angle(fwd), np.angle(rev)
+            del fwd, rev
+        self._fits, self._turns = (e_f, e_r), (turn_f, turn_r)
         self._open = key_a.open, key_b.open
         self._signs = None  # the loops' areas' signs (0 for open strokes), when both keys have loops
         self._loop = None  # and the keys' loop flags then
@@ -463,9 +467,9 @@ class _CostTable:
         better fit, a turn away from the drawing's counting against it; then the drawn direction
         (always, next to a dot). Only the pairs formed are read (elementwise: the same values
         as reading every pair)."""
-        (e_f, e_r), (fwd, rev) = self._fits, self._products
+        (e_f, e_r), turns = self._fits, self._turns
         e_f, e_r = e_f[rows, cols], e_r[rows, cols]
-        away = [np.angle(np.exp(1j * (np.angle(t[rows, cols]) - turn))) / np.pi for t in (fwd, rev)]
+        away = [np.angle(np.exp(1j * (t[rows, cols] - turn))) / np.pi for t in turns]
         cost_f, cost_r = e_f + DIRECTION_TURN * away[0] ** 2, e_r + DIRECTION_TURN * away[1] ** 2
         reverse = cost_r < cost_f - EQUAL_FIT
         open_a, open_b = self._open
