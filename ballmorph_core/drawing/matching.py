@@ -315,13 +315,14 @@ def _open_shapes(a, b):
     Returns
     -------
     e_fwd, e_rev : ndarray, shape (S_a, S_b)
-    fwd, rev : ndarray of complex, shape (S_a, S_b)
-        The products ``<a_i, b_j>`` whose angles are the fits' turns.
+    turn_fwd, turn_rev : ndarray, shape (S_a, S_b)
+        The fits' turns, the angles of the products ``<a_i, b_j>`` (only the angles are
+        kept: 8 bytes a pair rather than 16, which a drawing of thousands of strokes feels).
     """
     norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
     fwd, rev = np.conj(a) @ b.T, np.conj(a) @ b[:, ::-1].T
     e = [np.clip(1.0 - np.abs(d) ** 2 / norms, 0.0, 1.0) for d in (fwd, rev)]
-    return e[0], e[1], fwd, rev
+    return e[0], e[1], np.angle(fwd), np.angle(rev)
 
 
 def _shared_ends(a, b, spread):
@@ -421,11 +422,7 @@ class _CostTable:
         else:
             oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
             ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
-            e_f, e_r, fwd, rev = _open_shapes(oa, ob)
-            # Only the fits' turns are read: their angles (8 bytes a pair) rather than the
-            # complex products (16), which a drawing of thousands of strokes feels.
-            turn_f, turn_r = np.angle(fwd), np.angle(rev)
-            del fwd, rev
+            e_f, e_r, turn_f, turn_r = _open_shapes(oa, ob)
         self._fits, self._turns = (e_f, e_r), (turn_f, turn_r)
         self._open = key_a.open, key_b.open
         self._signs = None  # the loops' areas' signs (0 for open strokes), when both keys have loops
