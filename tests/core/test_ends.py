@@ -163,15 +163,18 @@ def test_an_outline_started_elsewhere_passes_the_coarse_gate(monkeypatch):
 
 
 @pytest.mark.parametrize("move", [0.1, 3.0])
-def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monkeypatch, move):
+@pytest.mark.parametrize("n", [200, 10])
+def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monkeypatch, move, n):
     """A stroke redrawn with a wobble fits loosely end to end and sliding cannot help: the
     coarse fit says so, the full one never runs, and the fit is the one it would have left.
-    Moved far (3 lengths), the start from where P lies finds no overlap: that is no fit."""
-    s = np.linspace(0.0, 1.0, 200)
+    Moved far (3 lengths), the start from where P lies finds no overlap: that is no fit. Drawn
+    with 10 points, the stroke is judged against its own points (every fourth vertex of Q lies
+    too far from Q for a gate)."""
+    s = np.linspace(0.0, 1.0, n)
     P = np.c_[s, 0.2 * np.sin(np.pi * s)]
     Q = np.c_[1.05 * s + move, 0.2 * np.sin(np.pi * s) + 0.04 * np.sin(3 * np.pi * s + 0.5)]
     with monkeypatch.context() as ungated:
-        ungated.setattr(sliding, "SLIDE_MARGIN", np.inf)
+        _ungate(ungated)
         calls = _full_sliding_fits(ungated)
         want = fit_pairs(batch(P), batch(Q))
         assert calls == [1]  # loose: the full fit runs without the gate, and loses
@@ -211,12 +214,18 @@ def _lying_partly_along(rng, n_pairs):
     return pairs
 
 
+def _ungate(patch):
+    """Every loose pair through to the full sliding fit. (An infinite margin would not do: a
+    pair whose coarse fit finds no overlap has an infinite coarse residual, never below it.)"""
+    patch.setattr(sliding, "_worth_sliding", lambda xp, *args: np.ones(len(xp), bool))
+
+
 def _gated_ungated_end_to_end(monkeypatch, P, Q):
     """The fits with the coarse gate, with the full sliding fit on every loose pair, and with
     no sliding fit at all."""
     gated = fit_pairs(P, Q)
     with monkeypatch.context() as ungated:
-        ungated.setattr(sliding, "SLIDE_MARGIN", np.inf)
+        _ungate(ungated)
         want = fit_pairs(P, Q)
         ungated.setattr(sliding, "SLIDE_FROM", np.inf)  # no sliding fit at all
         return gated, want, fit_pairs(P, Q)
@@ -232,6 +241,32 @@ def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch)
         np.testing.assert_array_equal(getattr(gated, name), getattr(want, name))
     slid = want.residual < end_to_end.residual
     assert slid.sum() >= 40
+
+
+def _resampled(curve, n):
+    """``curve`` resampled to ``n`` points evenly along it, shape (n, 2)."""
+    s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(curve, axis=0).T))]
+    t = np.linspace(0.0, s[-1], n)
+    return np.c_[np.interp(t, s, curve[:, 0]), np.interp(t, s, curve[:, 1])]
+
+
+def test_the_coarse_gate_judges_strokes_of_few_points_against_their_own_points(monkeypatch):
+    """Pieces lying partly along each other, drawn with 5-40 points (hair, grass, hatching):
+    every fourth vertex of such a stroke keeps one or two, so far from it that the gate would
+    grant back its whole limit; it fits them against the stroke itself. The fits are those of
+    the full sliding fit on every loose pair (with every fourth vertex, 2 of 1,000 such pairs
+    did not slide: a 5- or 7-point Q's coarse curve lay too far from it for any overlap)."""
+    rng = np.random.default_rng(1)
+    pairs = [
+        (_resampled(p, rng.integers(5, 41)), _resampled(q, rng.integers(5, 41)))
+        for p, q in _lying_partly_along(rng, 200)
+    ]
+    P, Q = batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs])
+    gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
+    for name in ("A", "b", "residual"):
+        np.testing.assert_array_equal(getattr(gated, name), getattr(want, name))
+    slid = want.residual < end_to_end.residual
+    assert slid.sum() >= 100
 
 
 def test_the_coarse_gate_keeps_a_slide_whose_start_overlaps_by_a_few_samples(monkeypatch):
@@ -254,17 +289,21 @@ def _dense(curve, per_edge=8):
     return (curve[:-1] + f * np.diff(curve, axis=0)).reshape(-1, 2)
 
 
-@given(st.integers(0, 2**32 - 1), st.integers(2, 7))
+@given(st.integers(0, 2**32 - 1), st.integers(2, 7), st.sampled_from([np.inf, 0.0, 0.5, 1.5]))
 @settings(max_examples=30)
-def test_the_gates_coarse_curve_lies_within_its_stated_distance(seed, step):
+def test_the_gates_coarse_curve_lies_within_its_stated_distance(seed, step, most):
     """Every ``step``-th vertex of a wandering stroke (and its last): each curve lies within
-    the returned deviation of the other, and its kept vertices are the original ones."""
+    the returned deviation of the other, and its kept vertices are the original ones; a curve
+    that would lie farther than ``most`` keeps every vertex, at 0."""
     rng = np.random.default_rng(seed)
     curves = [np.cumsum(rng.normal(size=(n, 2)), axis=0) for n in rng.integers(2, 40, 3)]
-    coarse, deviation = sliding._coarse(Ragged.from_list(curves, [False] * 3), np.array([2, 0]), step)
+    coarse, deviation = sliding._coarse(Ragged.from_list(curves, [False] * 3), np.array([2, 0]), step, most)
+    _, free = sliding._coarse(Ragged.from_list(curves, [False] * 3), np.array([2, 0]), step)
+    np.testing.assert_array_equal(deviation, np.where(free > most, 0.0, free))
     for c, original in enumerate([curves[2], curves[0]]):
         mine = coarse.curve(c)
-        np.testing.assert_array_equal(mine, original[np.unique(np.r_[0 : len(original) : step, len(original) - 1])])
+        every = 1 if free[c] > most else step
+        np.testing.assert_array_equal(mine, original[np.unique(np.r_[0 : len(original) : every, len(original) - 1])])
         slack = 1e-9 * (1 + np.abs(original).max())
         assert distance_to_polyline(_dense(original), mine, False).max() <= deviation[c] + slack
         assert distance_to_polyline(_dense(mine), original, False).max() <= deviation[c] + slack
