@@ -12,7 +12,7 @@ from ..morphs.base import PathMorph
 from ..morphs.paths import LinearPaths
 from .carrier_choice import carrier_motions, note_shape_changes
 from .exact import exact_fit, may_be_exact
-from .polylines import corners, may_have_corners, polyline_morph
+from .polylines import corners_of, polyline_morph
 from .registration import Fits, motions, similarity_matrices
 
 __all__ = ["guarded", "own_points_road", "polyline_road"]
@@ -36,15 +36,8 @@ def polyline_road(plans, pairs, ready, carrier, drawing):
     straight, on the carrier. Returns the other ready pairs."""
     found, rest = [], []
     closed = [pairs[c].closed for c in ready]
-    maybe = may_have_corners([pairs[c].P for c in ready], closed) & may_have_corners(
-        [pairs[c].Q for c in ready], closed
-    )
-    for c, tried in zip(ready, maybe):
-        pair = pairs[c]
-        if not tried:
-            rest.append(c)
-            continue
-        ca, cb = corners(pair.P, pair.closed), corners(pair.Q, pair.closed)
+    of_p, of_q = corners_of([pairs[c].P for c in ready], closed), corners_of([pairs[c].Q for c in ready], closed)
+    for c, ca, cb in zip(ready, of_p, of_q):
         if ca is None or cb is None or len(ca.index) != len(cb.index):
             rest.append(c)
         else:

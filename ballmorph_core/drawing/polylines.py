@@ -16,11 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.ragged import Ragged
+from ..geometry.ragged import Ragged, ragged_arange
 from ..morphs.base import PathMorph
 from ..morphs.paths import LinearPaths
 
-__all__ = ["STRAIGHT", "RUN_OFF", "FEW", "Corners", "corners", "may_have_corners", "polyline_morph"]
+__all__ = ["STRAIGHT", "RUN_OFF", "FEW", "Corners", "corners", "corners_of", "polyline_morph"]
 
 #: A vertex turning by at most this (radians) lies on a straight edge (float32 keys: about 1e-7).
 STRAIGHT = 1e-4
@@ -29,9 +29,6 @@ STRAIGHT = 1e-4
 RUN_OFF = 1e-6
 #: A polyline has at most this many corners, or most of its vertices on straight runs.
 FEW = 12
-#: :func:`may_have_corners` counts corners at STRAIGHT give or take this fraction of it, so
-#: round-off never makes it drop a curve :func:`corners` would take.
-CORNER_MARGIN = 1e-6
 
 
 @dataclass
@@ -50,37 +47,54 @@ class Corners:
     u: np.ndarray
 
 
-def _turns(xy, closed):
-    """Turning angle at every vertex, shape (N,) (an open stroke's ends turn by pi)."""
-    prev = np.roll(xy, 1, axis=0) if closed else np.r_[xy[:1], xy[:-1]]
-    nxt = np.roll(xy, -1, axis=0) if closed else np.r_[xy[1:], xy[-1:]]
-    d0, d1 = xy - prev, nxt - xy
+def _straight(rg):
+    """Vertices turning by at most ``STRAIGHT``, shape (N,) of bool (an open stroke's ends turn).
+
+    ``|atan2(cross, dot)| <= STRAIGHT`` is ``dot > 0`` and ``|cross| <= tan(STRAIGHT) dot``:
+    plain products, so a vertex is judged alike whatever batch it comes in (vectorised arctan2
+    may round a lane of a batch differently from the same value alone).
+    """
+    idx = np.arange(len(rg.pts))
+    prev = np.take(rg.pts, np.where(rg.prv >= 0, rg.prv, idx), axis=0)
+    nxt = np.take(rg.pts, np.where(rg.nxt >= 0, rg.nxt, idx), axis=0)
+    d0, d1 = rg.pts - prev, nxt - rg.pts
     cross = d0[:, 0] * d1[:, 1] - d0[:, 1] * d1[:, 0]
-    turn = np.abs(np.arctan2(cross, np.einsum("ij,ij->i", d0, d1)))
-    if not closed:
-        turn[[0, -1]] = np.pi
-    return turn
+    dot = d0[:, 0] * d1[:, 0] + d0[:, 1] * d1[:, 1]
+    return (dot > 0) & (np.abs(cross) <= _TAN_STRAIGHT * dot)
 
 
-def _off_runs(xy, corner, closed):
-    """Largest distance of a vertex from the line through the corners around it (float)."""
-    n = len(xy)
-    idx = np.arange(n)
-    c = np.flatnonzero(corner)
-    if closed:  # unroll once so every vertex has a corner before and after it
-        idx = np.arange(c[0], c[0] + n + 1)
-    at = corner[idx % n]
-    before = np.maximum.accumulate(np.where(at, idx, idx[0]))
-    after = np.minimum.accumulate(np.where(at, idx, idx[-1])[::-1])[::-1]
-    a, b, p = xy[before % n], xy[after % n], xy[idx % n]
+_TAN_STRAIGHT = float(np.tan(STRAIGHT))
+
+
+def _off_runs(rg, corner):
+    """Largest distance of a vertex from the line through the corners around it, per curve,
+    shape (C,) (curves with a corner: an open curve's ends are; a loop's run on past its start)."""
+    idx = np.arange(len(rg.pts))
+    first, last = rg.offsets[:-1], rg.offsets[1:] - 1
+    lower, upper = np.repeat(first, rg.n), np.repeat(last, rg.n)
+    before = np.maximum.accumulate(np.where(corner, idx, -1))
+    after = np.minimum.accumulate(np.where(corner, idx, len(idx))[::-1])[::-1]
+    # A loop's vertices before its first corner lie after its last one, and the other way round.
+    c = np.r_[np.flatnonzero(corner), len(idx)]
+    first_corner = c[np.searchsorted(c, first)]
+    last_corner = c[np.maximum(np.searchsorted(c, last, side="right") - 1, 0)]
+    before = np.where(before < lower, np.repeat(last_corner, rg.n), before)
+    after = np.where(after > upper, np.repeat(first_corner, rg.n), after)
+    # A curve without corners (its runs are never asked for): every vertex on itself.
+    ok = (before >= lower) & (before <= upper) & (after >= lower) & (after <= upper)
+    before, after = np.where(ok, before, idx), np.where(ok, after, idx)
+    a, b, p = rg.pts[before], rg.pts[after], rg.pts
     d = b - a
     length = np.maximum(np.linalg.norm(d, axis=1), 1e-300)
     cross = d[:, 0] * (p - a)[:, 1] - d[:, 1] * (p - a)[:, 0]
-    return float(np.abs(cross / length).max(initial=0.0))
+    off = np.zeros(len(rg))
+    np.maximum.at(off, rg.owner, np.abs(cross / length))
+    return off
 
 
 def corners(xy, closed):
-    """The corners of a stroke if it is a polyline (see the module docstring), else None.
+    """The corners of a stroke if it is a polyline (see the module docstring), else None (one
+    stroke of :func:`corners_of`).
 
     Parameters
     ----------
@@ -92,61 +106,51 @@ def corners(xy, closed):
     -------
     Corners or None
     """
-    if len(xy) < 2 or np.any(np.linalg.norm(np.diff(xy, axis=0), axis=1) == 0):
-        return None
-    turn = _turns(xy, closed)
-    straight = turn <= STRAIGHT
-    corner = ~straight
-    count = int(corner.sum())
-    if count < (3 if closed else 2) or not (count <= FEW or count <= len(xy) // 3):
-        return None
-    if _off_runs(xy, corner, closed) > RUN_OFF * float(np.ptp(xy, axis=0).max()):
-        return None  # a dense curve turns too little at each vertex to show corners
-    edges = np.linalg.norm((np.roll(xy, -1, axis=0) if closed else xy[1:]) - xy[: len(xy) if closed else -1], axis=1)
-    s = np.r_[0.0, np.cumsum(edges)]
-    return Corners(np.flatnonzero(corner), s[: len(xy)] / s[-1])
+    return corners_of([xy], [closed])[0]
 
 
-def may_have_corners(curves, closed):
-    """Which curves :func:`corners` may find a polyline in, all at once: those whose count of
-    vertices turning by more than ``STRAIGHT`` (within ``CORNER_MARGIN`` either way) could pass
-    its corner-count test. The others are not polylines; only these need :func:`corners`.
+def corners_of(curves, closed):
+    """The corners of every stroke that is a polyline (see the module docstring), else None,
+    all strokes at once.
 
     Parameters
     ----------
     curves : list of ndarray, shape (N_i, 2)
-        Distinct consecutive points, at least two.
     closed : array_like of bool, shape (C,)
 
     Returns
     -------
-    ndarray of bool, shape (C,)
+    list of (Corners or None)
+        None also for a stroke of fewer than two points or with a repeated point.
     """
     rg = Ragged.from_list(curves, closed)
-    idx = np.arange(len(rg.pts))
-    prev = np.take(rg.pts, np.where(rg.prv >= 0, rg.prv, idx), axis=0)
-    nxt = np.take(rg.pts, np.where(rg.nxt >= 0, rg.nxt, idx), axis=0)
-    d0, d1 = rg.pts - prev, nxt - rg.pts
-    cross = d0[:, 0] * d1[:, 1] - d0[:, 1] * d1[:, 0]
-    turn = np.abs(np.arctan2(cross, np.einsum("ij,ij->i", d0, d1)))
-    end = (rg.prv < 0) | (rg.nxt < 0)  # an open stroke's ends are corners
-    most = np.bincount(rg.owner[end | (turn > STRAIGHT * (1.0 - CORNER_MARGIN))], minlength=len(rg))
-    least = np.bincount(rg.owner[end | (turn > STRAIGHT * (1.0 + CORNER_MARGIN))], minlength=len(rg))
-    return (most >= np.where(rg.closed, 3, 2)) & ((least <= FEW) | (least <= rg.n // 3))
+    out = [None] * len(rg)
+    if not len(rg.pts):
+        return out
+    corner = ~_straight(rg)
+    count = np.bincount(rg.owner[corner], minlength=len(rg))
+    repeated = np.bincount(rg.owner[(rg.length_of_edge == 0) & (rg.nxt >= 0)], minlength=len(rg)) > 0
+    some = (rg.n >= 2) & ~repeated & (count >= np.where(rg.closed, 3, 2)) & ((count <= FEW) | (count <= rg.n // 3))
+    if not some.any():
+        return out
+    lo, hi = np.full((len(rg), 2), np.inf), np.full((len(rg), 2), -np.inf)
+    np.minimum.at(lo, rg.owner, rg.pts)
+    np.maximum.at(hi, rg.owner, rg.pts)
+    size = (hi - lo).max(axis=1)
+    # A dense curve turns too little at each vertex to show corners.
+    some &= ~(_off_runs(rg, corner) > RUN_OFF * size)
+    for c in np.flatnonzero(some):
+        xy, ring = rg.curve(c), rg.closed[c]
+        edges = np.linalg.norm((np.roll(xy, -1, axis=0) if ring else xy[1:]) - xy[: len(xy) if ring else -1], axis=1)
+        s = np.r_[0.0, np.cumsum(edges)]
+        out[c] = Corners(np.flatnonzero(corner[rg.offsets[c] : rg.offsets[c + 1]]), s[: len(xy)] / s[-1])
+    return out
 
 
 def _edges(c, n, closed):
     """(first corner, next corner) vertex index of every edge, the next one past n for a loop."""
     nxt = np.r_[c[1:], c[0] + n] if closed else c[1:]
     return c[: len(nxt)], nxt
-
-
-def _along(xy, u, first, last, f, closed):
-    """Points and fractions at fractions ``f`` (M,) of the straight edge from vertex ``first`` to ``last``."""
-    n = len(xy)
-    a, b = xy[first % n], xy[last % n]
-    ua, ub = u[first % n] + (1.0 if first >= n else 0.0), u[last % n] + (1.0 if last >= n else 0.0)
-    return a + f[:, None] * (b - a), ua + f * (ub - ua)
 
 
 def polyline_morph(xy_a, ca, xy_b, cb, closed, motion_a):
@@ -179,13 +183,22 @@ def polyline_morph(xy_a, ca, xy_b, cb, closed, motion_a):
         idx_b = np.where(np.arange(ka) >= ka - shift, idx_b + len(xy_b), idx_b)  # unwrap past the start
     a0, a1 = _edges(ca.index, len(xy_a), closed)
     b0, b1 = _edges(np.asarray(idx_b), len(xy_b), closed)
-    p, q, u_p, u_q = [], [], [], []
-    for e in range(len(a0)):
-        count = max(a1[e] - a0[e], b1[e] - b0[e])  # points on the edge, its last corner excluded
-        last = e == len(a0) - 1 and not closed
-        f = np.arange(count + (1 if last else 0)) / count
-        pa, fa = _along(xy_a, ca.u, a0[e], a1[e], f, closed)
-        pb, fb = _along(xy_b, cb.u, b0[e], b1[e], f, closed)
-        p.append(pa), q.append(pb), u_p.append(fa), u_q.append(np.mod(fb, 1.0) if closed else fb)
-    p, q = np.concatenate(p), np.concatenate(q)
-    return PathMorph("polyline", closed, LinearPaths(motion_a(p), q), np.concatenate(u_p), np.concatenate(u_q))
+    # Points on each edge (its last corner excluded, but for an open stroke's last edge).
+    count = np.maximum(a1 - a0, b1 - b0)
+    extra = np.zeros(len(count), np.int64)
+    if not closed:
+        extra[-1] = 1
+    edge, k = ragged_arange(count + extra)
+    f = k / count[edge]
+    p, u_p = _along(xy_a, ca.u, a0[edge], a1[edge], f)
+    q, u_q = _along(xy_b, cb.u, b0[edge], b1[edge], f)
+    return PathMorph("polyline", closed, LinearPaths(motion_a(p), q), u_p, np.mod(u_q, 1.0) if closed else u_q)
+
+
+def _along(xy, u, first, last, f):
+    """Points and arc-length fractions at fractions ``f`` (M,) of the straight edges from vertex
+    ``first`` to ``last`` (shape (M,) each; a loop's past ``n`` run on into its next lap)."""
+    n = len(xy)
+    a, b = xy[first % n], xy[last % n]
+    ua, ub = u[first % n] + np.where(first >= n, 1.0, 0.0), u[last % n] + np.where(last >= n, 1.0, 0.0)
+    return a + f[:, None] * (b - a), ua + f * (ub - ua)

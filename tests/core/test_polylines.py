@@ -1,12 +1,14 @@
 """Polylines morph corner to corner with straight edges (drawing/polylines.py)."""
 
+import math
+
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapes import circle
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.polylines import corners, may_have_corners
+from ballmorph_core.drawing.polylines import FEW, RUN_OFF, STRAIGHT, corners, corners_of
 
 HOUSE = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.5, 1.5), (0.0, 1.0)])
 HOUSE_B = np.array([(0.0, 0.0), (1.0, 0.0), (1.05, 1.0), (0.6, 1.65), (0.0, 1.0)])
@@ -78,25 +80,60 @@ def test_polylines_with_other_corner_counts_take_the_ball_road():
     assert not result.pairs[0].method.startswith("polyline")
 
 
+def _one_by_one(xy, closed):
+    """The module docstring's rule, vertex by vertex: the corner indices of a polyline, or None."""
+    n = len(xy)
+    if n < 2 or any(np.array_equal(xy[i], xy[i + 1]) for i in range(n - 1)):
+        return None
+    found = []
+    for i in range(n):
+        if not closed and i in (0, n - 1):
+            found.append(i)
+            continue
+        d0, d1 = xy[i] - xy[i - 1], xy[(i + 1) % n] - xy[i]
+        if abs(math.atan2(d0[0] * d1[1] - d0[1] * d1[0], d0 @ d1)) > STRAIGHT:
+            found.append(i)
+    if len(found) < (3 if closed else 2) or not (len(found) <= FEW or len(found) <= n // 3):
+        return None
+    if off_straight(xy, closed, found) > RUN_OFF * np.ptp(xy, axis=0).max():
+        return None
+    return found
+
+
 @settings(max_examples=100, deadline=None)
-@given(seed=st.integers(0, 2**31 - 1), closed=st.booleans())
-def test_the_batched_corner_count_keeps_every_polyline(seed, closed):
+@given(seed=st.integers(0, 2**31 - 1))
+def test_corners_of_a_batch_are_each_strokes_own(seed):
+    """Polylines, bare corner points, coarse and dense curves, a repeated point, one point,
+    open and closed, in one batch: each stroke gets what the rule gives it alone (as
+    :func:`corners`), vertex by vertex."""
     rng = np.random.default_rng(seed)
-    curves = []
-    for _ in range(10):
-        k = int(rng.integers(3 if closed else 2, 16))
-        corner_pts = rng.normal(size=(k, 2))
-        if rng.random() < 0.5:  # a polyline: straight runs between the corners
+    curves, closed = [], rng.random(12) < 0.5
+    for ring in closed:
+        k = int(rng.integers(3 if ring else 2, 16))
+        corner_pts = rng.normal(size=(k, 2)) * 10.0 ** rng.uniform(-3, 3)
+        kind = rng.integers(5)
+        if kind == 0:  # a polyline: straight runs between the corners
             steps = rng.integers(1, 5, k)
-            ends = np.roll(corner_pts, -1, axis=0) if closed else np.r_[corner_pts[1:], corner_pts[-1:]]
+            ends = np.roll(corner_pts, -1, axis=0) if ring else np.r_[corner_pts[1:], corner_pts[-1:]]
             parts = [
                 a + np.linspace(0, 1, m, endpoint=False)[:, None] * (b - a) for a, b, m in zip(corner_pts, ends, steps)
             ]
-            xy = np.concatenate(parts if closed else parts[:-1] + [corner_pts[-1:]])
-        else:
+            xy = np.concatenate(parts if ring else parts[:-1] + [corner_pts[-1:]])
+        elif kind == 1:
             xy = corner_pts
+        elif kind == 2:  # a curve, coarse or dense
+            t = np.linspace(0, rng.uniform(1, 6), int(rng.integers(3, 80)))
+            xy = np.c_[np.cos(t), rng.uniform(0.3, 1) * np.sin(t)]
+        elif kind == 3:
+            xy = np.r_[corner_pts[:1], corner_pts]  # a repeated point
+        else:
+            xy = corner_pts[:1]
         curves.append(xy)
-    maybe = may_have_corners(curves, [closed] * len(curves))
-    for xy, kept in zip(curves, maybe):
-        if corners(xy, closed) is not None:
-            assert kept
+    batch = corners_of(curves, closed)
+    for xy, ring, got in zip(curves, closed, batch):
+        alone = corners(xy, ring)
+        want = _one_by_one(xy, ring)
+        assert (got is None) == (alone is None) == (want is None)
+        if got is not None:
+            assert got.index.tolist() == alone.index.tolist() == want
+            np.testing.assert_array_equal(got.u, alone.u)
