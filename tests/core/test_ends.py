@@ -231,18 +231,6 @@ def _gated_ungated_end_to_end(monkeypatch, P, Q):
         return gated, want, fit_pairs(P, Q)
 
 
-def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch):
-    """Strokes lying partly along each other (turned, scaled, noisy): the fits with the gate
-    are the fits of the full sliding fit run on every loose pair, and most of them slide."""
-    pairs = _lying_partly_along(np.random.default_rng(11), 60)
-    P, Q = batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs])
-    gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
-    for name in ("A", "b", "residual"):
-        np.testing.assert_array_equal(getattr(gated, name), getattr(want, name))
-    slid = want.residual < end_to_end.residual
-    assert slid.sum() >= 40
-
-
 def _resampled(curve, n):
     """``curve`` resampled to ``n`` points evenly along it, shape (n, 2)."""
     s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(curve, axis=0).T))]
@@ -250,23 +238,25 @@ def _resampled(curve, n):
     return np.c_[np.interp(t, s, curve[:, 0]), np.interp(t, s, curve[:, 1])]
 
 
-def test_the_coarse_gate_judges_strokes_of_few_points_against_their_own_points(monkeypatch):
-    """Pieces lying partly along each other, drawn with 5-40 points (hair, grass, hatching):
-    every fourth vertex of such a stroke keeps one or two, so far from it that the gate would
-    grant back its whole limit; it fits them against the stroke itself. The fits are those of
-    the full sliding fit on every loose pair (with every fourth vertex, 2 of 1,000 such pairs
-    did not slide: a 5- or 7-point Q's coarse curve lay too far from it for any overlap)."""
-    rng = np.random.default_rng(1)
-    pairs = [
-        (_resampled(p, rng.integers(5, 41)), _resampled(q, rng.integers(5, 41)))
-        for p, q in _lying_partly_along(rng, 200)
-    ]
+@pytest.mark.parametrize(("seed", "count", "few", "least"), [(11, 60, False, 40), (1, 200, True, 100)])
+def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch, seed, count, few, least):
+    """Strokes lying partly along each other (turned, scaled, noisy): the fits with the gate
+    are the fits of the full sliding fit run on every loose pair, and most of them slide.
+
+    Also drawn with 5-40 points (hair, grass, hatching): every fourth vertex of such a stroke
+    lies so far from it that the gate would grant back its whole limit, so it fits them
+    against the stroke itself (with every fourth vertex, 2 of 1,000 such pairs did not slide:
+    a 5- or 7-point Q's coarse curve lay too far from it for any overlap)."""
+    rng = np.random.default_rng(seed)
+    pairs = _lying_partly_along(rng, count)
+    if few:
+        pairs = [(_resampled(p, rng.integers(5, 41)), _resampled(q, rng.integers(5, 41))) for p, q in pairs]
     P, Q = batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs])
     gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
     for name in ("A", "b", "residual"):
         np.testing.assert_array_equal(getattr(gated, name), getattr(want, name))
     slid = want.residual < end_to_end.residual
-    assert slid.sum() >= 100
+    assert slid.sum() >= least
 
 
 def test_the_coarse_gate_keeps_a_slide_whose_start_overlaps_by_a_few_samples(monkeypatch):
