@@ -121,7 +121,8 @@ def corners_of(curves, closed):
     Returns
     -------
     list of (Corners or None)
-        None also for a stroke of fewer than two points or with a repeated point.
+        None also for a stroke of fewer than two points or with a repeated point (a loop's
+        last point repeating its first included: :func:`~ballmorph_core.geometry.polyline.as_curve` drops it).
     """
     rg = Ragged.from_list(curves, closed)
     out = [None] * len(rg)

@@ -37,6 +37,7 @@ def off_straight(xy, closed, corner_index):
 
 def test_polylines_and_curves_are_told_apart():
     assert corners(HOUSE, True).index.tolist() == [0, 1, 2, 3, 4]
+    assert corners(np.r_[HOUSE, HOUSE[:1]], True) is None  # a loop's closing point repeated (as_curve drops it)
     zigzag = edge_points(np.array([(0, 0), (1, 1), (2, 0), (3, 1)], float), 5, False)
     assert corners(zigzag, False).index.tolist() == [0, 5, 10, 15]
     octagon = circle(1.0, 8)
