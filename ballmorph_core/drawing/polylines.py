@@ -54,10 +54,9 @@ def _straight(rg):
     plain products, so a vertex is judged alike whatever batch it comes in (vectorised arctan2
     may round a lane of a batch differently from the same value alone).
     """
-    idx = np.arange(len(rg.pts))
-    prev = np.take(rg.pts, np.where(rg.prv >= 0, rg.prv, idx), axis=0)
-    nxt = np.take(rg.pts, np.where(rg.nxt >= 0, rg.nxt, idx), axis=0)
-    d0, d1 = rg.pts - prev, nxt - rg.pts
+    # The edges into and out of each vertex (zero past an open stroke's ends).
+    d1 = rg.edge
+    d0 = np.where((rg.prv >= 0)[:, None], np.take(rg.edge, np.maximum(rg.prv, 0), axis=0), 0.0)
     cross = d0[:, 0] * d1[:, 1] - d0[:, 1] * d1[:, 0]
     dot = d0[:, 0] * d1[:, 0] + d0[:, 1] * d1[:, 1]
     return (dot > 0) & (np.abs(cross) <= _TAN_STRAIGHT * dot)
@@ -141,10 +140,10 @@ def corners_of(curves, closed):
     # A dense curve turns too little at each vertex to show corners.
     some &= ~(_off_runs(rg, corner) > RUN_OFF * size)
     for c in np.flatnonzero(some):
-        xy, ring = rg.curve(c), rg.closed[c]
-        edges = np.linalg.norm((np.roll(xy, -1, axis=0) if ring else xy[1:]) - xy[: len(xy) if ring else -1], axis=1)
-        s = np.r_[0.0, np.cumsum(edges)]
-        out[c] = Corners(np.flatnonzero(corner[rg.offsets[c] : rg.offsets[c + 1]]), s[: len(xy)] / s[-1])
+        # Each stroke's own running sum (the batch's arc lengths are one sum, shifted per curve).
+        start = rg.offsets[c]
+        s = np.r_[0.0, np.cumsum(rg.length_of_edge[start : start + rg.n_edges[c]])]
+        out[c] = Corners(np.flatnonzero(corner[start : rg.offsets[c + 1]]), s[: rg.n[c]] / s[-1])
     return out
 
 
