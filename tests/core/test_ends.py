@@ -11,6 +11,7 @@ from ballmorph_core.drawing import ends, sliding
 from ballmorph_core.drawing.ends import overhang_morph, settle_ends
 from ballmorph_core.drawing.pipeline import PairMorph
 from ballmorph_core.drawing.registration import FIT_SAMPLES, fit_pairs
+from ballmorph_core.geometry.polyline import resample
 from ballmorph_core.geometry.projection import nearest_within
 from ballmorph_core.geometry.ragged import Ragged
 from ballmorph_core.geometry.similarity import as_complex
@@ -231,13 +232,6 @@ def _gated_ungated_end_to_end(monkeypatch, P, Q):
         return gated, want, fit_pairs(P, Q)
 
 
-def _resampled(curve, n):
-    """``curve`` resampled to ``n`` points evenly along it, shape (n, 2)."""
-    s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(curve, axis=0).T))]
-    t = np.linspace(0.0, s[-1], n)
-    return np.c_[np.interp(t, s, curve[:, 0]), np.interp(t, s, curve[:, 1])]
-
-
 @pytest.mark.parametrize(("seed", "count", "few", "least"), [(11, 60, False, 40), (1, 200, True, 100)])
 def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch, seed, count, few, least):
     """Strokes lying partly along each other (turned, scaled, noisy): the fits with the gate
@@ -250,7 +244,9 @@ def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch,
     rng = np.random.default_rng(seed)
     pairs = _lying_partly_along(rng, count)
     if few:
-        pairs = [(_resampled(p, rng.integers(5, 41)), _resampled(q, rng.integers(5, 41))) for p, q in pairs]
+        pairs = [
+            tuple(resample(c, False, count=int(rng.integers(5, 41)), smooth=False) for c in pair) for pair in pairs
+        ]
     P, Q = batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs])
     gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
     for name in ("A", "b", "residual"):
