@@ -316,10 +316,25 @@ class BallPaths(_Endpoints):
         return np.where(opposite, np.where(ccw_forward, np.pi, -np.pi), beta)
 
     def _speed(self, s):
-        """|B'(s)| of the Bezier curves, s of shape (K, ...)."""
-        a = (self.m - self.p)[:, None, :]
-        b = (self.q - 2 * self.m + self.p)[:, None, :]
-        return 2.0 * np.linalg.norm(a + s[..., None] * b, axis=-1)
+        """|B'(s)| = 2 |a + s b| of the Bezier curves (a = m - p, b = q - 2 m + p), for ``s`` of
+        shape (K,) or (K, n) (row k: path k), the same shape.
+
+        Coordinate by coordinate from columns made once: the values of
+        ``2 * np.linalg.norm(a + s b, axis=-1)`` bit for bit (s b + a, then x x + y y and the
+        root), without its (K, n, 2) temporaries and its reduction along rows two long (a
+        frame evaluates 16 of these: most of a parabolic redo).
+        """
+        ax, ay, bx, by = (c if s.ndim == 1 else c[:, None] for c in self._ab)
+        x = s * bx
+        x += ax
+        y = s * by
+        y += ay
+        x *= x
+        y *= y
+        x += y
+        np.sqrt(x, out=x)
+        x *= 2.0
+        return x
 
     def _init_parabola(self):
         # Arc length L(s): a table at ARC_TABLE_SAMPLES nodes, each interval integrated by
@@ -327,6 +342,8 @@ class BallPaths(_Endpoints):
         # table and the evaluation agree exactly); inverted by Newton steps from a linear guess.
         n = ARC_TABLE_SAMPLES
         k = len(self.p)
+        a, b = self.m - self.p, self.q - 2 * self.m + self.p
+        self._ab = tuple(np.ascontiguousarray(c) for c in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
         s = np.linspace(0.0, 1.0, n + 1)
         pieces = np.zeros((k, n))
         for x, w in _GAUSS3:
@@ -336,29 +353,45 @@ class BallPaths(_Endpoints):
         self._par_len = self._L[:, -1]
         table = np.divide(self._L, self._par_len[:, None], out=np.tile(s, (k, 1)), where=self._par_len[:, None] > 0)
         self._s_of_tau = _invert_rows(table, s) / n
+        # Frames read the table node by node (rows of the transpose), and L at each path's row.
+        self._tau_nodes = np.ascontiguousarray(self._s_of_tau.T)
+        self._row_start = np.arange(k) * (n + 1)
 
     def _arc_length(self, s):
         """L(s) per path for s of shape (K,): the tabulated length at the node below s plus the
         same Gauss-Legendre rule from there."""
         n = ARC_TABLE_SAMPLES
         j = np.clip(np.floor(s * n).astype(np.int64), 0, n - 1)
-        half = 0.5 * (s - j / n)
-        mid = j / n + half
-        total = np.zeros_like(s)
+        node = j / n
+        half = s - node
+        half *= 0.5
+        mid = node + half
+        total = None
         for x, w in _GAUSS3:
-            total += w * self._speed((mid + half * x)[:, None])[:, 0]
-        return np.take_along_axis(self._L, j[:, None], 1)[:, 0] + half * total
+            term = self._speed(mid + half * x)
+            term *= w
+            # The first term as it is: 0 + term is term (speeds are not negative).
+            total = term if total is None else np.add(total, term, out=total)
+        total *= half
+        # L[k, j[k]] (row k of the table, flat): j is within 0..n - 1, so 'wrap' skips the bounds check.
+        total += np.take(self._L, self._row_start + j, mode="wrap")
+        return total
 
     def _parabola_parameter(self, t):
         f = t * ARC_TABLE_SAMPLES
         j = min(int(f), ARC_TABLE_SAMPLES - 1)
         u = f - j
-        s = (1 - u) * self._s_of_tau[:, j] + u * self._s_of_tau[:, j + 1]
+        s = (1 - u) * self._tau_nodes[j] + u * self._tau_nodes[j + 1]
         target = t * self._par_len
         for _ in range(4):  # Newton on L(s) = target, from the table's guess
-            speed = self._speed(s[:, None])[:, 0]
-            step = np.divide(self._arc_length(s) - target, speed, out=np.zeros_like(s), where=speed > 0)
-            s = np.clip(s - step, 0.0, 1.0)
+            speed = self._speed(s)
+            step = self._arc_length(s)
+            step -= target
+            moving = speed > 0
+            np.divide(step, speed, out=step, where=moving)
+            np.copyto(step, 0.0, where=~moving)
+            s -= step
+            np.clip(s, 0.0, 1.0, out=s)
         return s
 
     def lengths(self):

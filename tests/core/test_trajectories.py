@@ -167,3 +167,45 @@ def test_path_lengths_of_rows_are_numpys_norms_bit_for_bit():
     with np.errstate(over="ignore"):
         np.testing.assert_array_equal(_norms(v), np.linalg.norm(v, axis=1))
         np.testing.assert_array_equal(_norms(v[::3]), np.linalg.norm(v[::3], axis=1))  # a strided view
+
+
+def test_parabolic_paths_are_the_plain_formulas_bit_for_bit():
+    """The parabolic paths' speeds, arc lengths and positions (column by column, in place)
+    against the plain expressions they stand for: |B'(s)| = 2 np.linalg.norm(a + s b), L(s) as
+    the table below s plus the Gauss-Legendre rule, four Newton steps from the table's guess.
+    Contacts of every kind: turning, collinear, not moving, p = m, tiny and huge."""
+    from ballmorph_core.morphs.paths import _GAUSS3, ARC_TABLE_SAMPLES
+
+    rng = np.random.default_rng(8)
+    p = rng.normal(size=(3000, 2)) * 10.0 ** rng.integers(-6, 6, (3000, 1))
+    m = p + rng.normal(size=(3000, 2)) * 10.0 ** rng.integers(-9, 1, (3000, 1)) * np.abs(p).max(axis=1, keepdims=True)
+    q = m + rng.normal(size=(3000, 2)) * np.linalg.norm(m - p, axis=1, keepdims=True)
+    m[:50] = 0.5 * (p[:50] + q[:50])  # collinear: a straight path
+    p[50:80] = m[50:80] = q[50:80]  # a contact that does not move
+    m[80:120] = p[80:120]  # the path leaves p along the chord
+    paths = BallPaths(p, m, q, "parabolic")
+    a, b = (m - p)[:, None, :], (q - 2 * m + p)[:, None, :]
+
+    def speed(s):
+        return 2.0 * np.linalg.norm(a + s[..., None] * b, axis=-1)
+
+    n = ARC_TABLE_SAMPLES
+    s = rng.uniform(size=(3000, n))
+    np.testing.assert_array_equal(paths._speed(s), speed(s))
+    np.testing.assert_array_equal(paths._speed(s[:, 3]), speed(s[:, 3:4])[:, 0])
+    for t in (0.0, 0.2, 0.5, 1 / 3, 0.99, 1.0):
+        f = t * n
+        j = min(int(f), n - 1)
+        u = (1 - (f - j)) * paths._s_of_tau[:, j] + (f - j) * paths._s_of_tau[:, j + 1]
+        for _ in range(4):
+            node = np.clip(np.floor(u * n).astype(np.int64), 0, n - 1)
+            half, total = 0.5 * (u - node / n), np.zeros_like(u)
+            for x, w in _GAUSS3:
+                total += w * speed((node / n + half + half * x)[:, None])[:, 0]
+            length = np.take_along_axis(paths._L, node[:, None], 1)[:, 0] + half * total
+            np.testing.assert_array_equal(paths._arc_length(u), length)
+            v = speed(u[:, None])[:, 0]
+            u = np.clip(u - np.divide(length - t * paths._par_len, v, out=np.zeros_like(u), where=v > 0), 0.0, 1.0)
+        np.testing.assert_array_equal(paths._parabola_parameter(t), u)
+        u = u[:, None]
+        np.testing.assert_array_equal(paths.at(t), (1 - u) ** 2 * p + 2 * u * (1 - u) * m + u**2 * q)
