@@ -114,14 +114,15 @@ def solve_assignment(cost):
     >>> rows.tolist(), cols.tolist()
     ([0, 1, 2], [1, 0, 2])
     """
-    c = np.array(cost, dtype=np.float64)
+    # Read only (no copy of a float array: the matching of thousands of strokes passes tables
+    # of tens of MiB); rows are read one by one, so a transposed table is made contiguous.
+    c = np.asarray(cost, dtype=np.float64)
     if c.ndim != 2:
         raise InvalidCurveError(f"cost: expected a 2-D array, got shape {c.shape}")
     if not np.all(np.isfinite(c)):
         raise InvalidCurveError("cost: every entry must be finite")
     transposed = c.shape[0] > c.shape[1]
-    if transposed:
-        c = c.T
+    c = np.ascontiguousarray(c.T if transposed else c)
     if c.shape[0] == 0:
         return np.zeros(0, np.int64), np.zeros(0, np.int64)
     duals = _Duals.row_reduced(c)

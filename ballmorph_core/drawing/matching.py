@@ -320,9 +320,20 @@ def _open_shapes(a, b):
         kept: 8 bytes a pair rather than 16, which a drawing of thousands of strokes feels).
     """
     norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
-    fwd, rev = np.conj(a) @ b.T, np.conj(a) @ b[:, ::-1].T
-    e = [np.clip(1.0 - np.abs(d) ** 2 / norms, 0.0, 1.0) for d in (fwd, rev)]
-    return e[0], e[1], np.angle(fwd), np.angle(rev)
+    conj_a, out = np.conj(a), []
+    for read in (b, b[:, ::-1]):
+        # One direction at a time, in place from |<a_i, b_j>| (the values of
+        # clip(1 - |d|^2 / norms, 0, 1)): the complex products are the largest arrays here.
+        d = conj_a @ read.T
+        e = np.abs(d)
+        np.square(e, out=e)
+        e /= norms
+        np.subtract(1.0, e, out=e)
+        np.clip(e, 0.0, 1.0, out=e)
+        out.append((e, np.angle(d)))
+        del d
+    (e_f, turn_f), (e_r, turn_r) = out
+    return e_f, e_r, turn_f, turn_r
 
 
 def _shared_ends(a, b, spread):
@@ -427,10 +438,12 @@ class _CostTable:
         self._open = key_a.open, key_b.open
         self._signs = None  # the loops' areas' signs (0 for open strokes), when both keys have loops
         self._loop = None  # and the keys' loop flags then
-        self.shape = np.sqrt(np.minimum(e_f, e_r))
+        self.shape = np.minimum(e_f, e_r)
+        np.sqrt(self.shape, out=self.shape)
         both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)
         one_dot = (self.ra[:, None] <= 0) != (self.rb[None, :] <= 0)
-        self.shape = np.where(both_dots, 0.0, np.where(one_dot, DOT_SHAPE, self.shape))
+        np.copyto(self.shape, DOT_SHAPE, where=one_dot)
+        np.copyto(self.shape, 0.0, where=both_dots)
         self._unfitted = np.zeros(self.shape.shape, dtype=bool)  # loop pairs not fitted yet
         la, lb = np.flatnonzero(key_a.loop), np.flatnonzero(key_b.loop)
         if la.size and lb.size:
@@ -509,13 +522,30 @@ class _CostTable:
         else:
             ra, rb, za, zb = self.ra[rows], self.rb[cols], moved[rows], self.cb[cols]
             shape, mixed, valid = self.shape[rows, cols], self.mixed[rows, cols], self.valid[rows, cols]
-        spread = np.maximum(scale * ra + rb, self.dot_spread)
-        place = np.abs(za - zb) / spread
-        ratio = np.maximum(rb, 1e-300) / np.maximum(scale * ra, 1e-300)
-        size = np.where((ra > 0) & (rb > 0), np.abs(np.log(ratio)) / np.log(4.0), 0.0)
-        c = W_SHAPE * shape + W_PLACE * place + W_SCALE * size + MATCH_CYCLIC_PENALTY * mixed
-        c = c + W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
-        return np.where(valid, c, np.inf)
+        # The terms of the module notes, each full-size result worked on in place (the same
+        # operations in the same order as the plain formula: a drawing of thousands of strokes
+        # holds three (S_a, S_b) arrays here instead of a dozen).
+        near = scale * ra
+        spread = np.add(near, rb)
+        np.maximum(spread, self.dot_spread, out=spread)
+        place = np.abs(za - zb)
+        place /= spread
+        size = np.divide(np.maximum(rb, 1e-300), np.maximum(near, 1e-300), out=spread)  # the ratio
+        np.log(size, out=size)
+        np.abs(size, out=size)
+        size /= np.log(4.0)
+        np.copyto(size, 0.0, where=~((ra > 0) & (rb > 0)))
+        c = np.multiply(shape, W_SHAPE)
+        place *= W_PLACE
+        c += place
+        size *= W_SCALE
+        c += size
+        # + MATCH_CYCLIC_PENALTY * mixed: the others add 0.0, which leaves these sums of terms
+        # that are not negative as they are.
+        np.add(c, MATCH_CYCLIC_PENALTY, out=c, where=mixed)
+        c += W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
+        np.copyto(c, np.inf, where=~valid)
+        return c
 
     def fit_motion(self, rows, cols):
         """Least-squares similarity of the paired centroids (weighted by size): ``(a, b)`` complex."""

@@ -253,7 +253,9 @@ def _matrix(data, low, high):
 @given(st.data())
 def test_solver_agrees_with_brute_force(data):
     cost = _matrix(data, -50, 50)  # integer draws make many ties
+    given_cost = cost.copy()
     rows, cols = solve_assignment(cost)
+    assert np.array_equal(cost, given_cost)  # read, never written (the solver keeps no copy)
     k = min(cost.shape)
     assert len(rows) == len(set(rows.tolist())) == len(set(cols.tolist())) == k
     assert np.all(np.diff(rows) > 0)
@@ -460,6 +462,36 @@ def test_costs_and_directions_of_some_pairs_are_those_of_the_whole_table(seed):
     assert np.array_equal(np.minimum(table.costs(*motion), 9.0).ravel(), np.minimum(every, 9.0))
     every = table.directions(0.4, rows, cols)
     assert np.array_equal(table.directions(0.4, rows[pick], cols[pick]), every[pick])
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_table_costs_and_open_shapes_are_the_plain_formulas_bit_for_bit(seed):
+    """The cost table works its (S_a, S_b) terms in place (drawings of thousands of strokes):
+    the values are those of the module notes' formula written out, and the open strokes' fits
+    those of the complex products read both ways; dots, loops and a turned, scaled motion."""
+    keys = _random_keys(seed)
+    table = _table(keys)
+    table.prior_turn = np.exp(0.3j)
+    a, b = 0.8 * np.exp(0.5j), 0.2 - 0.4j
+    got = table.costs(a, b)
+    scale = max(abs(a), 1e-300)
+    ra, rb, za, zb = table.ra[:, None], table.rb[None, :], (a * table.ca + b)[:, None], table.cb[None, :]
+    place = np.abs(za - zb) / np.maximum(scale * ra + rb, table.dot_spread)
+    ratio = np.maximum(rb, 1e-300) / np.maximum(scale * ra, 1e-300)
+    size = np.where((ra > 0) & (rb > 0), np.abs(np.log(ratio)) / np.log(4.0), 0.0)
+    want = matching.W_SHAPE * table.shape + matching.W_PLACE * place + matching.W_SCALE * size
+    want = want + matching.MATCH_CYCLIC_PENALTY * table.mixed
+    want = np.where(table.valid, want + matching.W_TURN * abs(np.angle(a * np.exp(-0.3j))) / np.pi, np.inf)
+    assert np.array_equal(got, want)
+    rng = np.random.default_rng(seed)
+    oa, ob = (rng.normal(size=(n, 16)) + 1j * rng.normal(size=(n, 16)) for n in (7, 5))
+    oa[0] = 0.0  # a dot: no fit
+    oa, ob = oa - oa.mean(axis=1)[:, None], ob - ob.mean(axis=1)[:, None]
+    norms = np.maximum(np.sum(np.abs(oa) ** 2, axis=1)[:, None] * np.sum(np.abs(ob) ** 2, axis=1)[None, :], 1e-300)
+    e_f, e_r, turn_f, turn_r = matching._open_shapes(oa, ob)
+    for d, e, turn in zip((np.conj(oa) @ ob.T, np.conj(oa) @ ob[:, ::-1].T), (e_f, e_r), (turn_f, turn_r)):
+        assert np.array_equal(e, np.clip(1.0 - np.abs(d) ** 2 / norms, 0.0, 1.0))
+        assert np.array_equal(turn, np.angle(d))
 
 
 @given(st.integers(0, 2**32 - 1))
