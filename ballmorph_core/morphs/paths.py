@@ -147,16 +147,26 @@ def _invert_rows(table, levels):
     k, s = table.shape
     # One global searchsorted: shift row i by 2i so the flattened table stays sorted.
     shift = 2.0 * np.arange(k)[:, None]
-    flat = (table + shift).ravel()
-    want = (levels[None, :] + shift).ravel()
-    idx = np.searchsorted(flat, want, side="right") - 1
-    idx = np.clip(idx - (np.repeat(np.arange(k), len(levels)) * s), 0, s - 2)
-    idx = idx.reshape(k, len(levels))
+    flat = table + shift
+    want = levels[None, :] + shift
+    idx = np.searchsorted(flat.ravel(), want.ravel(), side="right").reshape(k, len(levels))
+    del flat, want
+    # In place from here (the same values: a parabolic plan's table of 200,000 paths is 27 MB
+    # an array, and this made a dozen of them).
+    idx -= 1
+    idx -= (np.arange(k) * s)[:, None]
+    np.clip(idx, 0, s - 2, out=idx)
     lo = np.take_along_axis(table, idx, axis=1)
-    hi = np.take_along_axis(table, idx + 1, axis=1)
-    span = hi - lo
-    frac = np.divide(levels[None, :] - lo, span, out=np.zeros_like(lo), where=span > 0)
-    return idx + np.clip(frac, 0.0, 1.0)
+    idx += 1
+    span = np.take_along_axis(table, idx, axis=1)
+    idx -= 1
+    span -= lo
+    frac = np.subtract(levels[None, :], lo, out=lo)
+    rising = span > 0
+    np.divide(frac, span, out=frac, where=rising)
+    np.copyto(frac, 0.0, where=~rising)
+    np.clip(frac, 0.0, 1.0, out=frac)
+    return idx + frac
 
 
 class _Polylines:
@@ -347,14 +357,18 @@ class BallPaths(_Endpoints):
         s = np.linspace(0.0, 1.0, n + 1)
         pieces = np.zeros((k, n))
         for x, w in _GAUSS3:
-            pieces += w * self._speed(np.broadcast_to(s[:-1] + (1 + x) / (2 * n), (k, n)))
+            speed = self._speed(np.broadcast_to(s[:-1] + (1 + x) / (2 * n), (k, n)))
+            speed *= w
+            pieces += speed
         pieces /= 2 * n
         self._L = np.concatenate([np.zeros((k, 1)), np.cumsum(pieces, axis=1)], axis=1)
-        self._par_len = self._L[:, -1]
+        del pieces
+        self._par_len = self._L[:, -1].copy()
         table = np.divide(self._L, self._par_len[:, None], out=np.tile(s, (k, 1)), where=self._par_len[:, None] > 0)
-        self._s_of_tau = _invert_rows(table, s) / n
-        # Frames read the table node by node (rows of the transpose), and L at each path's row.
-        self._tau_nodes = np.ascontiguousarray(self._s_of_tau.T)
+        # The Bezier parameter at each node of arc-length fraction, node by node (a frame reads
+        # two nodes of every path: rows, not strided columns), shape (n + 1, K).
+        self._tau_nodes = np.ascontiguousarray((_invert_rows(table, s) / n).T)
+        # Where each path's row of L starts in the flat table.
         self._row_start = np.arange(k) * (n + 1)
 
     def _arc_length(self, s):

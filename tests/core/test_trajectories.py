@@ -196,7 +196,7 @@ def test_parabolic_paths_are_the_plain_formulas_bit_for_bit():
     for t in (0.0, 0.2, 0.5, 1 / 3, 0.99, 1.0):
         f = t * n
         j = min(int(f), n - 1)
-        u = (1 - (f - j)) * paths._s_of_tau[:, j] + (f - j) * paths._s_of_tau[:, j + 1]
+        u = (1 - (f - j)) * paths._tau_nodes[j] + (f - j) * paths._tau_nodes[j + 1]
         for _ in range(4):
             node = np.clip(np.floor(u * n).astype(np.int64), 0, n - 1)
             half, total = 0.5 * (u - node / n), np.zeros_like(u)
@@ -209,3 +209,24 @@ def test_parabolic_paths_are_the_plain_formulas_bit_for_bit():
         np.testing.assert_array_equal(paths._parabola_parameter(t), u)
         u = u[:, None]
         np.testing.assert_array_equal(paths.at(t), (1 - u) ** 2 * p + 2 * u * (1 - u) * m + u**2 * q)
+
+
+@pytest.mark.parametrize("shape", [(1, 2, 1), (7, 3, 5), (500, 17, 17), (300, 40, 1)])
+def test_inverted_tables_reach_their_levels(shape):
+    """``_invert_rows`` (parabolic arc-length tables, sampled paths' frames): the table read at
+    the fractional index it gives is the level, on rows rising with flat stretches (a path
+    that stops) and rows that never rise (every level at the start or the end)."""
+    from ballmorph_core.morphs.paths import _invert_rows
+
+    k, s, j = shape
+    rng = np.random.default_rng(k)
+    rise = rng.exponential(size=(k, s - 1)) * (rng.random((k, s - 1)) < 0.7)
+    cum = np.concatenate([np.zeros((k, 1)), np.cumsum(rise, axis=1)], axis=1)
+    total = cum[:, -1:]
+    table = np.divide(cum, total, out=np.zeros_like(cum), where=total > 0)
+    table[total[:, 0] == 0, -1] = 1.0  # a row that rises only at its end
+    levels = np.linspace(0.0, 1.0, j) if j > 1 else np.array([0.37])
+    f = _invert_rows(table, levels)
+    assert f.shape == (k, j) and np.all((f >= 0) & (f <= s - 1))
+    for row, fractions in zip(table, f):
+        np.testing.assert_allclose(np.interp(fractions, np.arange(s), row), levels, atol=1e-12)
