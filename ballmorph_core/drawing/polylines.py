@@ -133,10 +133,8 @@ def corners_of(curves, closed):
     some = (rg.n >= 2) & ~repeated & (count >= np.where(rg.closed, 3, 2)) & ((count <= FEW) | (count <= rg.n // 3))
     if not some.any():
         return out
-    lo, hi = np.full((len(rg), 2), np.inf), np.full((len(rg), 2), -np.inf)
-    np.minimum.at(lo, rg.owner, rg.pts)
-    np.maximum.at(hi, rg.owner, rg.pts)
-    size = (hi - lo).max(axis=1)
+    box = rg.boxes()
+    size = np.maximum(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1])
     # A dense curve turns too little at each vertex to show corners.
     some &= ~(_off_runs(rg, corner) > RUN_OFF * size)
     for c in np.flatnonzero(some):

@@ -288,9 +288,17 @@ class Ragged:
         return Ragged(pts, offsets, self.closed)
 
     def boxes(self):
-        """Bounding box ``(xmin, ymin, xmax, ymax)`` of every curve, shape (C, 4) (curves have points)."""
-        starts = self.offsets[:-1]
-        return np.concatenate([np.minimum.reduceat(self.pts, starts), np.maximum.reduceat(self.pts, starts)], axis=1)
+        """Bounding box ``(xmin, ymin, xmax, ymax)`` of every curve, shape (C, 4) (NaN for a
+        curve without points)."""
+        filled = self.n > 0
+        out = np.full((len(self.n), 4), np.nan)
+        if filled.any():
+            # The filled curves' starts: each one's run of points ends where the next one starts.
+            starts = self.offsets[:-1][filled]
+            out[filled] = np.concatenate(
+                [np.minimum.reduceat(self.pts, starts), np.maximum.reduceat(self.pts, starts)], axis=1
+            )
+        return out
 
     def centroids(self):
         """Arc-length centroid of every curve (the vertex mean for a dot), shape (C, 2)."""

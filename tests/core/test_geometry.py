@@ -85,6 +85,16 @@ def test_global_arc_lengths_are_made_once_and_shifted_per_curve():
     np.testing.assert_array_equal(g2, [0.0, 5.0, 5.5, 6.5, 7.5])
 
 
+def test_ragged_boxes_of_curves_with_and_without_points():
+    """Each curve's box from its own points; a curve without any (first, between, last) gets NaN."""
+    a, b = np.array([[0.0, 1.0], [2.0, -1.0], [1.0, 3.0]]), np.array([[5.0, 5.0]])
+    empty = np.zeros((0, 2))
+    boxes = Ragged.from_list([empty, a, empty, empty, b, empty], False).boxes()
+    assert np.isnan(boxes[[0, 2, 3, 5]]).all()
+    np.testing.assert_array_equal(boxes[[1, 4]], [[0.0, -1.0, 2.0, 3.0], [5.0, 5.0, 5.0, 5.0]])
+    assert Ragged.from_list([empty], False).boxes().shape == (1, 4)
+
+
 def test_ragged_measures_each_curve_as_the_single_curve_functions_do():
     a, b = circle(1.0, 40), _wobbly(30, 1, closed=False)
     rg = Ragged.from_list([a, b], [True, False])

@@ -45,6 +45,9 @@ def test_polylines_and_curves_are_told_apart():
     assert corners(circle(1.0, 30), True) is None  # every vertex turns a little: a curve
     t = np.linspace(0, 1, 50)
     assert corners(np.c_[t, 0.2 * np.sin(3 * t)], False) is None  # a hand-drawn curve
+    # A stroke without points in a batch is no polyline, and leaves the others as they are.
+    first, house, last = corners_of([np.zeros((0, 2)), HOUSE, np.zeros((0, 2))], [False, True, False])
+    assert first is None and last is None and house.index.tolist() == [0, 1, 2, 3, 4]
 
 
 def test_a_polyline_morph_keeps_edges_straight_and_corners_sharp():
