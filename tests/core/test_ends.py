@@ -218,7 +218,7 @@ def _lying_partly_along(rng, n_pairs):
 def _ungate(patch):
     """Every loose pair through to the full sliding fit. (An infinite margin would not do: a
     pair whose coarse fit finds no overlap has an infinite coarse residual, never below it.)"""
-    patch.setattr(sliding, "_worth_sliding", lambda xp, *args: np.ones(len(xp), bool))
+    patch.setattr(sliding, "_worth_sliding", lambda xp, *args: np.ones((2, len(xp)), bool))
 
 
 def _gated_ungated_end_to_end(monkeypatch, P, Q):
@@ -267,6 +267,54 @@ def test_the_coarse_gate_keeps_a_slide_whose_start_overlaps_by_a_few_samples(mon
     gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
     assert want.residual[0] < sliding.SLIDE_GAIN * end_to_end.residual[0]  # the full fit slides
     np.testing.assert_array_equal(gated.residual, want.residual)
+
+
+def test_the_full_sliding_fit_runs_only_from_the_starts_the_gate_lets_through(monkeypatch):
+    """An outline started elsewhere and moved three sizes away: from where P lies no sample
+    finds Q (the gate judges that start again with every sample, and it still fails), so the
+    full fit runs from the end-to-end fit alone, and fits as it does from both starts."""
+    runs = []
+    real = sliding._fits
+
+    def spy(xp, Q, index, search, starts, size, overlap=sliding.SLIDE_OVERLAP, run=None):
+        if xp.shape[1] == FIT_SAMPLES and overlap == sliding.SLIDE_OVERLAP:
+            runs.append(run)
+        return real(xp, Q, index, search, starts, size, overlap, run)
+
+    oval = [1.0, 0.8]
+    P, Q = batch(arc(0, 330, 110) * oval), batch(arc(100, 430, 110) * oval + [3.0, 0.0])
+    with monkeypatch.context() as ungated:
+        _ungate(ungated)
+        want = fit_pairs(P, Q)
+    monkeypatch.setattr(sliding, "_fits", spy)
+    fits = fit_pairs(P, Q)
+    assert len(runs) == 1 and runs[0].tolist() == [[False], [True]]
+    for name in ("A", "b", "residual"):
+        np.testing.assert_array_equal(getattr(fits, name), getattr(want, name))
+    assert want.residual[0] < 0.05  # it slides
+
+
+def test_sliding_fits_from_some_starts_are_those_from_every_start():
+    """Fitting only some (start, pair) cells fits each as the full batch does, and leaves the
+    others at their start, with an infinite residual (no fit), not blind."""
+    rng = np.random.default_rng(5)
+    pairs = _lying_partly_along(rng, 8)
+    Q = batch(*[q for _, q in pairs])
+    index = np.arange(8)
+    xp = as_complex(np.stack([resample(c, False, count=FIT_SAMPLES, smooth=False) for c, _ in pairs]))
+    size = np.array([np.ptp(q, axis=0).max() for _, q in pairs])
+    a, b = rng.normal(size=8) * 0.05 + 1 + 0j, np.zeros(8, complex)
+    search = sliding.NearestEdges(Q.take(index))
+    starts = sliding._starts(a, b)
+    every = sliding._fits(xp, Q, index, search, starts, size)
+    run = rng.random((2, 8)) < 0.5
+    some = sliding._fits(xp, Q, index, search, starts, size, run=run)
+    for full, part in zip(every, some):
+        np.testing.assert_allclose(part[run], full[run], rtol=1e-12, atol=1e-12)
+    np.testing.assert_array_equal(some[0][~run], np.stack([s for s, _ in starts])[~run])
+    np.testing.assert_array_equal(some[1][~run], np.stack([s for _, s in starts])[~run])
+    assert np.isinf(some[2][~run]).all() and not some[3][~run].any()
+    assert np.isfinite(every[2]).sum() >= 8  # most cells fit: the comparison means something
 
 
 def _dense(curve, per_edge=8):
