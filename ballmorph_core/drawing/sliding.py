@@ -282,8 +282,9 @@ def _worth_sliding(xp, Q, index, size, a, b, residual):
     """The starts (see :func:`_starts`) of loose pairs whose coarse sliding fit (every
     ``SLIDE_COARSE``-th sample against every ``SLIDE_COARSE``-th vertex of Q, or Q itself: see
     ``SLIDE_COARSE_SHARE``) comes within ``SLIDE_MARGIN`` of being accepted, shape (2, L) of
-    bool (arguments as for :func:`slide`). The full fit runs only from those: a start whose
-    coarse fit misses the margin would not be accepted, so it could only win by losing.
+    bool (arguments as for :func:`slide`). The full fit runs only from those: by the gate's own
+    premise the full fit would not accept a start the gate turns down, and a pair's best fit
+    counts only if accepted, so leaving that start out changes no pair's outcome.
 
     A start from which fewer than two of the coarse samples weigh cannot move: where P only just
     reaches Q from there (an overlap a few samples long), a quarter of the samples misses what
