@@ -297,17 +297,18 @@ def _worth_sliding(xp, Q, index, size, a, b, residual):
     coarse_q, deviation = _coarse(Q, index, SLIDE_COARSE, SLIDE_COARSE_SHARE * limit)
     starts = _starts(a, b)
 
-    def fits(rows, step, which):
+    def fits(rows, step, run=None):
         search = NearestEdges(coarse_q.take(rows))
-        chosen = [(start_a[rows], start_b[rows]) for start_a, start_b in (starts[s] for s in which)]
-        _, _, fit, blind = _fits(xp[rows, ::step], coarse_q, rows, search, chosen, size[rows], SLIDE_GATE_OVERLAP)
+        chosen = [(start_a[rows], start_b[rows]) for start_a, start_b in starts]
+        _, _, fit, blind = _fits(xp[rows, ::step], coarse_q, rows, search, chosen, size[rows], SLIDE_GATE_OVERLAP, run)
         return fit - deviation[rows] < limit[rows], blind
 
-    worth, blind = fits(np.arange(len(xp)), SLIDE_COARSE, range(len(starts)))
-    for s in range(len(starts)):
-        again = np.flatnonzero(blind[s] & ~worth[s])
-        if len(again):
-            worth[s, again] = fits(again, 1, [s])[0][0]
+    worth, blind = fits(np.arange(len(xp)), SLIDE_COARSE)
+    again = blind & ~worth
+    rows = np.flatnonzero(again.any(axis=0))
+    if len(rows):
+        # Every blind start that failed, judged again in one batch (the others are not run).
+        worth[:, rows] |= fits(rows, 1, again[:, rows])[0]
     return worth
 
 
