@@ -579,6 +579,16 @@ def _padded_total(pair_costs, n_a, n_b):
     return float(np.sum(pair_costs)) + 0.5 * MATCH_MAX_COST * unmatched
 
 
+def _least_total(costs):
+    """No matching at this motion totals less (float) than this (``costs`` the table, shape
+    (S_a, S_b)): a pair's cost is split half to each of its strokes and an unmatched stroke
+    pays MATCH_MAX_COST / 2, so each stroke pays at least half its cheapest pair, or that.
+    (The table bounds the exact costs from below, and so does this the exact total.)"""
+    clipped = np.minimum(costs, MATCH_MAX_COST)
+    rows, cols = clipped.min(axis=1, initial=MATCH_MAX_COST), clipped.min(axis=0, initial=MATCH_MAX_COST)
+    return 0.5 * (float(rows.sum()) + float(cols.sum()))
+
+
 def _guesses(table, key_a, key_b, motion=None):
     """Starting guesses of the keys' overall motion (complex ``a, b``), ``motion`` first."""
     guesses = [(1.0 + 0j, 0j)] if motion is None else [motion, (1.0 + 0j, 0j)]
@@ -602,13 +612,19 @@ def _best_assignment(table, key_a, key_b, motion=None):
     """
     best, tried = None, []
     for motion in _guesses(table, key_a, key_b, motion):  # noqa: B020 (the guess starts the list)
-        for _ in range(MATCH_MOTION_ITERATIONS):
+        for step in range(MATCH_MOTION_ITERATIONS):
             # A motion already evaluated (the previous pairs refit to the same motion, or another
             # guess led here) would give the same assignment: this guess has converged.
             if any(abs(motion[0] - a) + abs(motion[1] - b) <= MATCH_ROUNDOFF for a, b in tried):
                 break
             tried.append(motion)
             costs = table.costs(*motion)
+            # The guess's last motion only counts if it beats the best so far (no refit follows
+            # it), and its table may say it cannot: then its solve, the costly part where
+            # strokes look alike, is left out. (Earlier in a chain it may not be: a chain that
+            # starts far behind often ends ahead, e.g. from a turned drawing.)
+            if step == MATCH_MOTION_ITERATIONS - 1 and best is not None and _least_total(costs) >= best[0]:
+                break
             rows, cols = _assign_within(costs)
             if key_a.valid.sum() == 1 and key_b.valid.sum() == 1:  # alone in both keys: always a pair
                 rows, cols = np.flatnonzero(key_a.valid), np.flatnonzero(key_b.valid)

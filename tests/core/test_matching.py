@@ -14,6 +14,7 @@ from ballmorph_core.drawing.assignment import solve_assignment
 from ballmorph_core.drawing.matching import (
     _assign_within,
     _backwards,
+    _least_total,
     _loop_shapes,
     _padded_total,
     match_strokes,
@@ -278,6 +279,51 @@ def test_thresholded_assignment_agrees_with_brute_force(data):
             continue
         best = min(best, _padded_total([cost[i, j] for i, j in enumerate(choice) if j is not None], r, c))
     assert got == pytest.approx(best, abs=1e-9)
+    # The bound the matching skips a last solve by: never above the best matching.
+    assert _least_total(cost) <= best + 1e-12
+
+
+def test_least_total_is_reached_where_strokes_pick_each_other():
+    # Every stroke's cheapest pair is its own diagonal one (or none under the limit): the
+    # bound is that matching's total, the unmatched strokes paying half the limit each.
+    limit = matching.MATCH_MAX_COST
+    cost = np.array([[0.2, 0.9, 5.0], [0.7, 0.4, 3.0], [9.0, 2.0, 1.6], [2.0, 2.0, 2.0]])
+    assert _least_total(cost) == pytest.approx(_padded_total([0.2, 0.4], 4, 3))
+    assert _least_total(np.zeros((0, 3))) == pytest.approx(1.5 * limit)
+
+
+def reordered_hatching(n, seed):
+    """``n`` short hatch lines on a grid, redrawn a little moved and listed in another order."""
+    rng = np.random.default_rng(seed)
+    side = int(np.ceil(np.sqrt(n)))
+    along = [np.linspace(0.0, 1.0, int(rng.integers(2, 6)))[:, None] * [0.2, 0.1] for _ in range(n)]
+    a = [np.array([k % side, k // side]) * 0.3 + line for k, line in enumerate(along)]
+    perm = rng.permutation(n)
+    b = [a[p] + [0.02, 0.01] + rng.normal(0.0, 0.003, a[p].shape) for p in perm]
+    return a, b, perm
+
+
+def test_a_guess_s_last_solve_is_skipped_only_where_it_cannot_win(monkeypatch):
+    # The drawing order fitted to reordered look-alike strokes crowds key A together: its
+    # guess's tables are far behind the best matching, and the last of them is not solved.
+    a, b, perm = reordered_hatching(60, 4)
+    flags = [False] * 60
+    solves = []
+
+    def counted(cost):
+        solves.append(cost.shape)
+        return solve_assignment(cost)
+
+    monkeypatch.setattr(matching, "solve_assignment", counted)
+    m = match_strokes(a, b, flags, flags)
+    skipped = len(solves)
+    assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
+    solves.clear()
+    monkeypatch.setattr(matching, "_least_total", lambda cost: -np.inf)
+    unbounded = match_strokes(a, b, flags, flags)
+    assert skipped < len(solves)
+    assert (unbounded.pairs, unbounded.costs, unbounded.method) == (m.pairs, m.costs, m.method)
+    np.testing.assert_array_equal(unbounded.motion, m.motion)
 
 
 @pytest.mark.parametrize("seed", range(4))
