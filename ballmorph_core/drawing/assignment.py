@@ -14,6 +14,9 @@ from ..errors import InvalidCurveError
 
 __all__ = ["solve_assignment"]
 
+# Rows of distances the searches first make room for (see _Duals.rows).
+_ROWS_FIRST = 64
+
 
 @dataclass
 class _Duals:
@@ -24,6 +27,9 @@ class _Duals:
     v: np.ndarray
     row4col: np.ndarray
     col4row: np.ndarray
+    #: Row k: the distances of the k-th row a search visits (kept from search to search, so
+    #: its memory is reused; doubled when a search goes deeper, never beyond the table's size).
+    rows: np.ndarray
 
     @classmethod
     def row_reduced(cls, c):
@@ -31,61 +37,83 @@ class _Duals:
         its cheapest column has zero reduced cost, so that partial assignment already satisfies
         complementary slackness."""
         n_rows, n_cols = c.shape
-        duals = cls(c, c.min(axis=1), np.zeros(n_cols), np.full(n_cols, -1, np.int64), np.full(n_rows, -1, np.int64))
+        duals = cls(
+            c,
+            c.min(axis=1),
+            np.zeros(n_cols),
+            np.full(n_cols, -1, np.int64),
+            np.full(n_rows, -1, np.int64),
+            np.empty((min(_ROWS_FIRST, n_rows), n_cols)),
+        )
         taken, first_row = np.unique(np.argmin(c, axis=1), return_index=True)
         duals.row4col[taken] = first_row
         duals.col4row[first_row] = taken
         return duals
 
     def shortest_path(self, cur):
-        """Dijkstra from row ``cur`` to a free column: (end column, predecessors, distances,
-        scanned columns, visited rows, path length); the distances are final where scanned.
+        """Dijkstra from row ``cur`` to a free column: (end column, visited rows, their distance
+        rows, distances, scanned columns, path length); the distances are final where scanned.
 
-        One step is a few passes over the columns, in place: the distances of the columns not
-        scanned yet (``remaining``, inf once scanned) are kept as they change, and a scanned
-        column's distance is set aside as it is scanned (it never changes after)."""
+        One step is a few passes over the columns, in place: the least distance of each column
+        not scanned yet (``remaining``) is kept as the rows are visited. A scanned column's
+        distance is set aside, and its potential taken as -inf for the rest of the search, so
+        the later rows' distances to it come out inf and it never is the least again. Which
+        row reached a column first at its distance (its predecessor) is read off the visited
+        rows' distances only for the columns of the path (:func:`_predecessor`)."""
         n_cols = len(self.v)
         remaining, shortest = np.full(n_cols, np.inf), np.full(n_cols, np.inf)
-        path = np.full(n_cols, -1, np.int64)
+        v = self.v.copy()
         unscanned, visited = np.ones(n_cols, bool), []
-        reduced, better = np.empty(n_cols), np.empty(n_cols, bool)
+        rows = self.rows
         free = self.row4col < 0
+        # The free columns in order: the first of them at the least distance is the one an
+        # exact tie with a taken column goes to (a gather, not a pass over every column).
+        free_cols = np.flatnonzero(free)
         i, min_val = int(cur), 0.0
         while True:
+            if len(visited) == len(rows):
+                rows = self.rows = np.concatenate([rows, np.empty((min(len(rows), len(self.u) - len(rows)), n_cols))])
+            reduced = rows[len(visited)]
             visited.append(i)
             # min_val + c_i - u_i - v, in that order (the same rounding as written out).
             np.add(self.c[i], min_val, out=reduced)
             reduced -= self.u[i]
-            reduced -= self.v
-            np.less(reduced, remaining, out=better)
-            better &= unscanned
-            np.copyto(path, i, where=better)
-            np.copyto(remaining, reduced, where=better)
-            min_val = remaining.min()
-            ties = np.flatnonzero(remaining == min_val)
-            # Prefer a free column among equals: it ends the search at once.
-            free_ties = ties[free[ties]]
-            j = int(free_ties[0]) if len(free_ties) else int(ties[0])
+            reduced -= v
+            np.minimum(remaining, reduced, out=remaining)
+            j = int(remaining.argmin())
+            min_val = remaining[j]
+            if not free[j]:
+                # Prefer a free column among equals: it ends the search at once.
+                k = int(free_cols[remaining[free_cols].argmin()])
+                if remaining[k] == min_val:
+                    j = k
             unscanned[j] = False
-            shortest[j], remaining[j] = remaining[j], np.inf
+            shortest[j], remaining[j], v[j] = min_val, np.inf, -np.inf
             if free[j]:
-                return j, path, shortest, ~unscanned, visited, min_val
+                return j, visited, rows[: len(visited)], shortest, ~unscanned, min_val
             i = int(self.row4col[j])
 
     def augment(self, cur):
         """Assign row ``cur``: update the potentials so reduced costs stay >= 0 and the new path is
         tight, then flip the assignment along the path."""
-        j, path, shortest, scanned, visited, min_val = self.shortest_path(cur)
+        j, visited, rows, shortest, scanned, min_val = self.shortest_path(cur)
         self.u[cur] += min_val
         others = np.asarray(visited[1:], np.int64)
         self.u[others] += min_val - shortest[self.col4row[others]]
         self.v[scanned] -= min_val - shortest[scanned]
         while True:
-            i = int(path[j])
+            i = _predecessor(visited, rows, j)
             self.row4col[j] = i
             self.col4row[i], j = j, int(self.col4row[i])
             if i == cur:
                 return
+
+
+def _predecessor(visited, rows, j):
+    """The first of the ``visited`` rows (int) whose distance to column ``j`` (``rows``, shape
+    (V, C)) is the least: the row a search step reached ``j`` from (a later row at the same
+    distance does not replace it; those visited after ``j`` was scanned have inf there)."""
+    return visited[int(rows[:, j].argmin())]
 
 
 def solve_assignment(cost):

@@ -549,3 +549,17 @@ def test_loop_fits_of_some_pairs_are_those_of_every_pair(seed):
     every = _loop_shapes(a, b, sign_a, sign_b)
     i, j = rng.integers(0, la, 5), rng.integers(0, lb, 5)
     assert np.array_equal(matching._LoopFits(a, b, sign_a, sign_b).residuals(i, j), every[i, j])
+
+
+@pytest.mark.parametrize("shape", [(150, 150), (90, 200), (200, 90)])
+def test_every_row_wanting_one_column_is_solved_by_the_rearrangement_inequality(shape):
+    # cost = -a_i b_j with a, b increasing: every row's cheapest column is the last one, so
+    # the searches go deeper than their first rows of room (the distances of every row they
+    # visit are kept), and the optimum pairs the largest a with the largest b: the last rows
+    # with the last columns, in order.
+    r, c = shape
+    a, b = np.arange(1.0, r + 1), np.arange(1.0, c + 1)
+    rows, cols = solve_assignment(-np.outer(a, b))
+    k = min(r, c)
+    np.testing.assert_array_equal(rows, np.arange(r - k, r))
+    np.testing.assert_array_equal(cols, np.arange(c - k, c))
