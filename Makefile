@@ -26,7 +26,7 @@ evaluate:
 scenes:
 	$$(tools/bootstrap.sh 5.0.1) tools/scenes_report.py
 
-# Both benchmark tools: tools/benchmark.py (inside bpy) runs tools/bench_ballmap.py (plain CPython)
+# The benchmark tools: tools/benchmark.py (inside bpy) runs tools/bench_ballmap.py and bench_matching.py (plain CPython)
 # itself and writes docs/benchmark.md; 10-12 minutes on two shared cores.
 bench:
 	timeout 3600 $$(tools/bootstrap.sh 5.0.1) tools/benchmark.py --write docs/benchmark.md

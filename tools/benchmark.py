@@ -27,9 +27,10 @@ matching / ball-map / frames evaluation / assembly, write-back), and measures th
 run of every operator on the largest drawing (and the goal sizes), each in a fresh bpy process
 (the growth of the process's peak resident set, see :func:`_reset_peak`).
 
-The ball-map scaling (tools/bench_ballmap.py) and the scribble (one stroke of random points whose
-long edges all cross, issue 14's superlinear case) run in plain CPython subprocesses and their
-tables are embedded. ``--write`` writes the markdown report (docs/benchmark.md for ``make bench``).
+The ball-map scaling (tools/bench_ballmap.py), the matching scaling on reordered look-alike
+strokes (tools/bench_matching.py) and the scribble (one stroke of random points whose long edges
+all cross, issue 14's superlinear case) run in plain CPython subprocesses and their tables are
+embedded. ``--write`` writes the markdown report (docs/benchmark.md for ``make bench``).
 """
 
 import argparse
@@ -57,6 +58,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import bench_ballmap  # noqa: E402  (tools/ on the path first; it imports no bpy)
+import bench_matching  # noqa: E402  (the same)
 
 addon_utils = importlib.import_module("addon_utils")
 
@@ -745,15 +747,21 @@ def scribble_times():
     return times
 
 
-def ballmap_scaling():
-    """bench_ballmap.py's rows, run in a plain CPython subprocess (no bpy imported)."""
-    script = os.path.join(ROOT, "tools", "bench_ballmap.py")
+def plain_rows(tool):
+    """The rows of ``tool`` (bench_ballmap.py or bench_matching.py), run with ``--json`` in a
+    plain CPython subprocess (no bpy imported)."""
+    script = os.path.join(ROOT, "tools", tool)
     out = subprocess.run([sys.executable, script, "--json"], capture_output=True, text=True, check=True).stdout
     return json.loads(out)
 
 
-def goals(cases, ballmap_rows, methods, scribble):
+def goals(cases, ballmap_rows, methods, scribble, matching_rows=()):
     """(goal text, measured text, verdict) rows."""
+    return [*_time_goals(cases), *_growth_goals(ballmap_rows, matching_rows, scribble), *_memory_goals(cases)]
+
+
+def _time_goals(cases):
+    """The cold and redo ratios against the built-in at the goal sizes."""
     rows = []
     by_key = {(c.kind, c.size): c for c in cases}
     for size, limit in GOAL_RATIOS.items():
@@ -778,6 +786,12 @@ def goals(cases, ballmap_rows, methods, scribble):
                         ratio <= REDO_GOAL,
                     )
                 )
+    return rows
+
+
+def _growth_goals(ballmap_rows, matching_rows, scribble):
+    """The plain-CPython goals: the ball-map's and the matching's growth, the scribble's time."""
+    rows = []
     for which in bench_ballmap.SPACINGS:
         growth = bench_ballmap.goal(ballmap_rows, which) if ballmap_rows else None
         if growth is not None:
@@ -788,6 +802,15 @@ def goals(cases, ballmap_rows, methods, scribble):
                     growth <= bench_ballmap.GROWTH_GOAL,
                 )
             )
+    growth = bench_matching.goal(matching_rows) if matching_rows else None
+    if growth is not None:
+        rows.append(
+            (
+                f"match_strokes time(1000) / time(500) reordered hatch lines <= {bench_matching.GROWTH_GOAL}",
+                f"{growth:.2f}",
+                growth <= bench_matching.GROWTH_GOAL,
+            )
+        )
     points, limit = SCRIBBLE_GOAL
     if points in scribble:
         rows.append(
@@ -797,6 +820,13 @@ def goals(cases, ballmap_rows, methods, scribble):
                 scribble[points] < limit,
             )
         )
+    return rows
+
+
+def _memory_goals(cases):
+    """Peak memory against the built-in on the largest drawing."""
+    rows = []
+    by_key = {(c.kind, c.size): c for c in cases}
     largest = max((c.size for c in cases), default=None, key=lambda s: s[0] * s[1] * s[2])
     for kind in KINDS:
         case = by_key.get((kind, largest))
@@ -888,7 +918,7 @@ def _kind_section(kind, rows, methods, short):
     return lines
 
 
-def report(cases, methods, ballmap_rows, scribble, info, wall, argv):
+def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows=()):
     short = {"CIRCULAR_BALL": "circular", "LINEAR_BALL": "linear", "PARABOLIC_BALL": "parabolic"}
     lines = [
         "# Benchmark: Ball-morph In-between against Blender's Interpolate Sequence",
@@ -912,7 +942,7 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv):
         "| goal | measured | verdict |",
         "|---|---|---|",
     ]
-    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble):
+    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble, matching_rows):
         lines.append(f"| {goal} | {measured} | {'pass' if ok else '**FAIL**'} |")
     for kind in KINDS:
         rows = [c for c in cases if c.kind == kind]
@@ -955,6 +985,15 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv):
             bench_ballmap.description(),
             "",
             bench_ballmap.markdown(ballmap_rows),
+        ]
+    if matching_rows:
+        lines += [
+            "",
+            "## Matching look-alike strokes (plain CPython, `tools/bench_matching.py`)",
+            "",
+            bench_matching.description(),
+            "",
+            bench_matching.markdown(matching_rows),
         ]
     lines += ["", method_notes(cases)]
     return "\n".join(lines) + "\n"
@@ -1062,7 +1101,9 @@ def _parser():
     parser.add_argument(
         "--memory-sizes", type=parse_sizes, help="drawings to probe memory on (default: the largest and the goal sizes)"
     )
-    parser.add_argument("--no-ballmap", action="store_true", help="skip the ball-map scaling and scribble tables")
+    parser.add_argument(
+        "--no-ballmap", action="store_true", help="skip the ball-map and matching scaling and the scribble tables"
+    )
     parser.add_argument("--write", metavar="PATH", help="write the markdown report there (else print it)")
     parser.add_argument("--probe", nargs=3, metavar=("KIND", "SIZE", "OP"), help=argparse.SUPPRESS)
     return parser
@@ -1124,10 +1165,11 @@ def main(argv=None):
         if case.size in memory_sizes:
             case.memory = memory_of(case, [BUILTIN, *methods])
             say(f"memory {case.kind} {case.label}: " + "  ".join(f"{op} {v:.1f} MiB" for op, v in case.memory.items()))
-    ballmap_rows = [] if args.no_ballmap else ballmap_scaling()
+    ballmap_rows = [] if args.no_ballmap else plain_rows("bench_ballmap.py")
+    matching_rows = [] if args.no_ballmap else plain_rows("bench_matching.py")
     scribble = {} if args.no_ballmap else scribble_times()
     info["load_end"] = _read("/proc/loadavg").split()[:3]
-    text = report(cases, methods, ballmap_rows, scribble, info, time.perf_counter() - started, argv)
+    text = report(cases, methods, ballmap_rows, scribble, info, time.perf_counter() - started, argv, matching_rows)
     if args.write:
         with open(args.write, "w") as f:
             f.write(text)

@@ -1,6 +1,8 @@
 """Stroke matching between two keys: index pairing, optimal assignment, reversal, unmatched."""
 
 import itertools
+import os
+import sys
 import time
 
 import numpy as np
@@ -22,6 +24,10 @@ from ballmorph_core.drawing.matching import (
 from ballmorph_core.errors import InvalidCurveError
 from ballmorph_core.geometry.polyline import resample, reverse, signed_area
 from ballmorph_core.geometry.ragged import Ragged
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
+
+import bench_matching  # (tools/ on the path first)
 
 
 def face():
@@ -292,21 +298,10 @@ def test_least_total_is_reached_where_strokes_pick_each_other():
     assert _least_total(np.zeros((0, 3))) == pytest.approx(1.5 * limit)
 
 
-def reordered_hatching(n, seed):
-    """``n`` short hatch lines on a grid, redrawn a little moved and listed in another order."""
-    rng = np.random.default_rng(seed)
-    side = int(np.ceil(np.sqrt(n)))
-    along = [np.linspace(0.0, 1.0, int(rng.integers(2, 6)))[:, None] * [0.2, 0.1] for _ in range(n)]
-    a = [np.array([k % side, k // side]) * 0.3 + line for k, line in enumerate(along)]
-    perm = rng.permutation(n)
-    b = [a[p] + [0.02, 0.01] + rng.normal(0.0, 0.003, a[p].shape) for p in perm]
-    return a, b, perm
-
-
 def test_a_guess_s_last_solve_is_skipped_only_where_it_cannot_win(monkeypatch):
     # The drawing order fitted to reordered look-alike strokes crowds key A together: its
     # guess's tables are far behind the best matching, and the last of them is not solved.
-    a, b, perm = reordered_hatching(60, 4)
+    a, b, perm = bench_matching.reordered_hatching(60, 4)
     flags = [False] * 60
     solves = []
 
@@ -563,3 +558,13 @@ def test_every_row_wanting_one_column_is_solved_by_the_rearrangement_inequality(
     k = min(r, c)
     np.testing.assert_array_equal(rows, np.arange(r - k, r))
     np.testing.assert_array_equal(cols, np.arange(c - k, c))
+
+
+def test_the_matching_benchmark_times_right_matchings_and_rejects_bad_sizes(capsys):
+    assert bench_matching.main(["--sizes", "20,40", "--markdown"]) == 0
+    table = capsys.readouterr().out
+    assert "| 20 |" in table and "| 40 |" in table and "x |" in table
+    for bad in ("ten", "0", ""):
+        with pytest.raises(SystemExit):
+            bench_matching.main(["--sizes", bad])
+        assert "--sizes" in capsys.readouterr().err

@@ -1,0 +1,135 @@
+"""How stroke matching's run time grows with the stroke count on look-alike strokes (issue 14:
+no input superlinear), in plain CPython.
+
+Times ``match_strokes`` on short hatch lines (2-5 points) on a grid, redrawn a little moved and
+listed in another order: the case where the optimal assignment does the most work. Every stroke
+looks like every other, and the drawing order fitted to a shuffled key crowds key A together,
+so the assignment from that guess is a table of near-ties. The cost table itself is
+quadratic in the stroke count (every pair is priced); the goal asks the whole matching to grow
+no faster than the ball-map's own bar when the count doubles.
+
+Usage (``make bench`` runs it through tools/benchmark.py, which embeds the table in
+docs/benchmark.md)::
+
+    $(tools/bootstrap.sh 5.0.1) tools/bench_matching.py [--sizes 250,500,1000] [--markdown | --json]
+"""
+
+import argparse
+import json
+import os
+import statistics
+import sys
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, ROOT)
+
+from ballmorph_core.drawing.matching import match_strokes  # noqa: E402  (after the path set-up)
+
+SIZES = (250, 500, 1000)
+#: The goal: time(1000) / time(500) at most this (the ball-map's bar, bench_ballmap.GROWTH_GOAL).
+GROWTH_GOAL = 2.5
+# Repeats: at least MIN_RUNS, then until BUDGET seconds are spent, at most MAX_RUNS.
+MIN_RUNS, MAX_RUNS, BUDGET = 2, 9, 2.0
+
+
+def reordered_hatching(n, seed=1):
+    """``n`` short hatch lines on a grid (0.3 apart, 0.22 long), redrawn moved by (0.02, 0.01)
+    with 0.003 of noise and listed in a random order.
+
+    Returns
+    -------
+    a, b : list of ndarray, shape (m_i, 2)
+        The keys' strokes, 2-5 points each.
+    perm : ndarray of int, shape (n,)
+        Stroke ``j`` of key B is stroke ``perm[j]`` of key A redrawn.
+    """
+    rng = np.random.default_rng(seed)
+    side = int(np.ceil(np.sqrt(n)))
+    along = [np.linspace(0.0, 1.0, int(rng.integers(2, 6)))[:, None] * [0.2, 0.1] for _ in range(n)]
+    a = [np.array([k % side, k // side]) * 0.3 + line for k, line in enumerate(along)]
+    perm = rng.permutation(n)
+    b = [a[p] + [0.02, 0.01] + rng.normal(0.0, 0.003, a[p].shape) for p in perm]
+    return a, b, perm
+
+
+def time_matching(n):
+    """Median seconds of one ``match_strokes`` of ``n`` reordered hatch lines, and the run count.
+
+    Raises
+    ------
+    AssertionError
+        If the matching does not pair every line with its redrawn self (a wrong answer is not
+        timed).
+    """
+    a, b, perm = reordered_hatching(n)
+    flags = [False] * n
+    times = []
+    while len(times) < MIN_RUNS or (sum(times) < BUDGET and len(times) < MAX_RUNS):
+        start = time.perf_counter()
+        m = match_strokes(a, b, flags, flags)
+        times.append(time.perf_counter() - start)
+    assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm)), f"{n} lines mismatched"
+    return statistics.median(times), len(times)
+
+
+def run(sizes=SIZES):
+    """Rows ``{n, seconds, runs, growth}``, one per stroke count."""
+    rows, previous = [], None
+    for n in sizes:
+        seconds, runs = time_matching(n)
+        rows.append({"n": n, "seconds": seconds, "runs": runs, "growth": seconds / previous if previous else None})
+        previous = seconds
+    return rows
+
+
+def description():
+    """What is timed (this module's docstring without its title and usage), for reports."""
+    return __doc__.split("\n\n", 1)[1].split("\n\nUsage")[0].strip()
+
+
+def goal(rows, small=500, large=1000):
+    """time(large) / time(small), or None if either count was not run."""
+    t = {r["n"]: r["seconds"] for r in rows}
+    return t[large] / t[small] if small in t and large in t else None
+
+
+def markdown(rows):
+    """The results as a markdown table plus the goal line."""
+    lines = ["| hatch lines | median time | runs | growth vs previous size |", "|---:|---:|---:|---:|"]
+    for r in rows:
+        growth = f"{r['growth']:.2f}x" if r["growth"] else ""
+        lines.append(f"| {r['n']} | {r['seconds'] * 1e3:.0f} ms | {r['runs']} | {growth} |")
+    ratio = goal(rows)
+    if ratio is not None:
+        verdict = "pass" if ratio <= GROWTH_GOAL else "FAIL"
+        lines += ["", f"- time(1000) / time(500) = **{ratio:.2f}x** (goal <= {GROWTH_GOAL}x: {verdict})"]
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--sizes", default=",".join(map(str, SIZES)), help="stroke counts, comma-separated")
+    parser.add_argument("--markdown", action="store_true", help="print only the markdown table")
+    parser.add_argument("--json", action="store_true", help="print the rows as JSON (tools/benchmark.py reads them)")
+    args = parser.parse_args(argv)
+    try:
+        sizes = [int(s) for s in args.sizes.split(",") if s]
+    except ValueError:
+        parser.error(f"--sizes: expected comma-separated stroke counts, got {args.sizes!r}")
+    if not sizes or min(sizes) < 1:
+        parser.error(f"--sizes: expected positive stroke counts, got {args.sizes!r}")
+    rows = run(sizes)
+    if args.json:
+        print(json.dumps(rows))
+        return 0
+    if not args.markdown:
+        print(f"match_strokes of reordered hatch lines, numpy {np.__version__}, Python {sys.version.split()[0]}")
+    print(markdown(rows))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
