@@ -584,8 +584,9 @@ def _least_total(costs):
     (S_a, S_b)): a pair's cost is split half to each of its strokes and an unmatched stroke
     pays MATCH_MAX_COST / 2, so each stroke pays at least half its cheapest pair, or that.
     (The table bounds the exact costs from below, and so does this the exact total.)"""
-    clipped = np.minimum(costs, MATCH_MAX_COST)
-    rows, cols = clipped.min(axis=1, initial=MATCH_MAX_COST), clipped.min(axis=0, initial=MATCH_MAX_COST)
+    # The least of each row and column, then clipped: the same values as the least of the
+    # clipped table, without a copy of the (S_a, S_b) table.
+    rows, cols = costs.min(axis=1, initial=MATCH_MAX_COST), costs.min(axis=0, initial=MATCH_MAX_COST)
     return 0.5 * (float(rows.sum()) + float(cols.sum()))
 
 
