@@ -25,7 +25,16 @@ from .sides import Sides
 from .thinning import symmetric_samples
 from .topology import PairSetup, orient_pair
 
-__all__ = ["Correspondence", "MapBatch", "map_batch", "ball_map", "ball_maps", "DenseMaps", "dense_maps"]
+__all__ = [
+    "Correspondence",
+    "MapBatch",
+    "map_batch",
+    "ball_map",
+    "ball_maps",
+    "DenseMaps",
+    "dense_maps",
+    "dense_map_batch",
+]
 
 
 #: Fields of a Correspondence that trade places when it is read from Q to P.
@@ -257,15 +266,43 @@ def dense_maps(P, Q, closed, spacing, setup=None):
     Unlike :func:`ball_map` this never raises for incompatibility: ``report`` and the ``bad``
     masks say where the disks fail.
     """
-    setup = orient_pair(P, Q, closed) if setup is None else setup
-    eps = tol.COINCIDENT * scale_of(P, Q)
-    h = np.array([spacing])
-    _, sp, sq, reports = _both_sides([setup], h)
+    return dense_map_batch([orient_pair(P, Q, closed) if setup is None else setup], [spacing])[0]
+
+
+def dense_map_batch(setups, spacing):
+    """:func:`dense_maps` of many oriented pairs at once (list of DenseMaps), at ``spacing``
+    (array_like, shape (C,)); each pair's maps are the rows of its own chain. The batch's
+    length tolerance is its smallest pair's (as :func:`map_batch`'s); each DenseMaps keeps its
+    own pair's for what is done with it afterwards."""
+    if not setups:
+        return []
+    h = np.asarray(spacing, dtype=np.float64)
+    own = np.array([tol.COINCIDENT * scale_of(s.P, s.Q) for s in setups])
+    eps = float(own.min())
+    _, sp, sq, reports = _both_sides(setups, h)
     fwd, bwd = one_way(sp, sq, eps), one_way(sq, sp, eps)
     maps = ((fwd, sp, sq, "P"), (bwd, sq, sp, "Q"))
     _count_samples(maps, reports)
     check_maps(maps, h, eps, reports)
-    return DenseMaps(setup, sp.view(0), sq.view(0), fwd, bwd, spacing, eps, reports[0])
+    # Each map's rows come chain after chain (one_way keeps its sources' order); each pair's
+    # own maps are chain 0, as when mapped alone.
+    bounds = [np.searchsorted(m.chain, np.arange(len(setups) + 1)) for m in (fwd, bwd)]
+
+    def alone(m, lo, hi):
+        return replace(m.take(slice(lo, hi)), chain=np.zeros(hi - lo, m.chain.dtype))
+
+    return [
+        DenseMaps(
+            setup,
+            sp.view(c),
+            sq.view(c),
+            *(alone(m, b[c], b[c + 1]) for m, b in zip((fwd, bwd), bounds)),
+            float(h[c]),
+            float(own[c]),
+            reports[c],
+        )
+        for c, setup in enumerate(setups)
+    ]
 
 
 def ball_map(P, Q, closed=False, spacing=None, sampling="symmetric", check=True):

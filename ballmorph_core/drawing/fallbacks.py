@@ -14,10 +14,12 @@ import numpy as np
 
 from ..errors import BallMorphError, IncompatibleCurvesError
 from ..geometry.intersections import is_simple
+from ..geometry.polyline import as_curve
 from ..morphs import make_morph
 from ..morphs.aligned import METHOD as ALIGNED_METHOD
-from ..morphs.aligned import aligned_morph, aligned_morphs
+from ..morphs.aligned import aligned_morphs
 from ..morphs.base import PathMorph
+from ..morphs.composite import build_composites
 from ..morphs.linear import sample_counts, uniform_correspondences
 from ..morphs.paths import LinearPaths
 
@@ -27,6 +29,7 @@ __all__ = [
     "BALL_METHODS",
     "short",
     "chain_fallback",
+    "chain_fallbacks",
     "linear_fallback",
     "aligned_fallbacks",
     "arc_length_morphs",
@@ -79,19 +82,68 @@ def chain_fallback(P, Q, closed, kind, spacing, where, reason):
     morph : Morph
     note : str
     """
+    return chain_fallbacks([(P, Q, closed, spacing, where, reason)], kind)[0]
+
+
+def chain_fallbacks(chains, kind):
+    """:func:`chain_fallback` of many chains: their composite ball-morphs built together
+    (:func:`composite_morphs`), and those not followed aligned together.
+
+    Parameters
+    ----------
+    chains : list of (ndarray, ndarray, bool, float, str, str)
+        Each chain's ``P, Q, closed, spacing, where, reason`` (see :func:`chain_fallback`).
+    kind : str
+
+    Returns
+    -------
+    list of (Morph, str)
+        Each chain's morph and note.
+    """
+    built = composite_morphs([(P, Q, closed, spacing) for P, Q, closed, spacing, _, _ in chains], kind)
+    out, failed = [None] * len(chains), []
+    for k, ((P, Q, closed, _, where, reason), morph) in enumerate(zip(chains, built)):
+        why = str(morph) if isinstance(morph, BallMorphError) else _not_followed(morph, P, Q, closed)
+        if why is None:
+            out[k] = morph, f"{where}: not b-compatible, composite ball-morph used ({short(reason)})"
+        else:
+            failed.append((k, why))
+    curves = [chains[k][:3] for k, _ in failed]
+    for (k, why), morph in zip(failed, aligned_morphs(curves, [chains[k][3] for k, _ in failed])):
+        out[k] = morph, f"{chains[k][4]}: {ALIGNED_METHOD} used ({short(why)})"
+    return out
+
+
+def composite_morphs(pairs, kind):
+    """``make_morph(P, Q, 'composite-ball', closed=closed, spacing=spacing, kind=kind)`` of
+    every pair ``(P, Q, closed, spacing)``, built together: list of Morph or the BallMorphError
+    each raises (see :func:`~..morphs.composite.build_composites`)."""
+    out, valid, where = [None] * len(pairs), [], []
+    for k, (P, Q, closed, spacing) in enumerate(pairs):
+        try:
+            valid.append((as_curve(P, "P", closed), as_curve(Q, "Q", closed), closed, spacing, "symmetric"))
+        except BallMorphError as exc:
+            out[k] = exc
+            continue
+        where.append(k)
+    for k, morph in zip(where, build_composites(valid, kind)):
+        out[k] = morph
+    return out
+
+
+def _not_followed(morph, P, Q, closed):
+    """Why a composite ball-morph is not followed (str), or None: its in-betweens (at
+    ``CHECK_TIMES``) stray outside the chains' box, or cross themselves where neither chain does."""
     try:
-        morph = make_morph(P, Q, "composite-ball", closed=closed, spacing=spacing, kind=kind)
         frames = morph.frames(CHECK_TIMES)
         out = _outside(frames, P, Q)
         if out > STRAY_REACH:
-            reason = f"composite ball-morph: its in-betweens leave the chains' box by {out:.2f} of its diagonal"
-        elif is_simple(P, closed) and is_simple(Q, closed) and not all(is_simple(f, closed) for f in frames):
-            reason = "composite ball-morph: its in-betweens cross themselves where neither chain does"
-        else:
-            return morph, f"{where}: not b-compatible, composite ball-morph used ({short(reason)})"
+            return f"composite ball-morph: its in-betweens leave the chains' box by {out:.2f} of its diagonal"
+        if is_simple(P, closed) and is_simple(Q, closed) and not all(is_simple(f, closed) for f in frames):
+            return "composite ball-morph: its in-betweens cross themselves where neither chain does"
     except BallMorphError as exc:
-        reason = str(exc)
-    return aligned_morph(P, Q, closed, spacing), f"{where}: {ALIGNED_METHOD} used ({short(reason)})"
+        return str(exc)
+    return None
 
 
 def _outside(frames, P, Q):

@@ -54,7 +54,7 @@ from .fallbacks import (
     BALL_METHODS,
     aligned_fallbacks,
     arc_length_morphs,
-    chain_fallback,
+    chain_fallbacks,
     comparison_morph,
     linear_fallback,
     point_motion,
@@ -355,15 +355,20 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
     """
     counts = np.bincount(chains.pair, minlength=len(index))
     good = np.array([r is not None and not r.violations for r in maps.reports], dtype=bool)
-    for k in np.flatnonzero(~good & ~chains.static):
+    failing = np.flatnonzero(~good & ~chains.static)
+    orders = failing - np.searchsorted(chains.pair, chains.pair[failing])
+    wanted = []
+    for k, order in zip(failing, orders):
         c, setup = chains.pair[k], chains.setups[k]
-        order = k - np.searchsorted(chains.pair, c)
         where = f"lens {order + 1}/{counts[c]}" if events.count[c] else ("loops" if setup.closed else "stroke")
-        morph, note = chain_fallback(
-            setup.P, setup.Q, setup.closed, kind, spacing[c], where, maps.reports[k].describe()
-        )
+        wanted.append((setup.P, setup.Q, setup.closed, spacing[c], where, maps.reports[k].describe()))
+    # Every failing chain's composite ball-morph at once: one at a time, each paid a dozen
+    # small ball-maps' fixed costs.
+    for k, order, (morph, note) in zip(failing, orders, chain_fallbacks(wanted, kind)):
+        c = chains.pair[k]
         plans.notes[index[c]].append(note)
-        _add_piece(plans, ends, index, c, morph, setup.closed, order, (chains.range_p[k], chains.range_q[k]))
+        closed = chains.setups[k].closed
+        _add_piece(plans, ends, index, c, morph, closed, order, (chains.range_p[k], chains.range_q[k]))
     return good
 
 

@@ -22,31 +22,30 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import tolerances as tol
-from ..ballmap.correspondence import dense_maps
+from ..ballmap.correspondence import dense_map_batch
 from ..ballmap.thinning import running_backsteps, uniform_picks
 from ..ballmap.topology import orient_pair
 from ..errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from ..geometry.polyline import curve_length, resolve_spacing, reversal_order, subcurve
-from .ball import input_fractions
+from .ball import ball_morphs, input_fractions
 from .base import PathMorph, build, register, registered
 from .blending import blend, bridges
 from .paths import SampledPaths
 
-__all__ = ["build_composite"]
+__all__ = ["build_composite", "build_composites"]
 
 #: Points per stage on each sampled trajectory.
 _STAGE_POINTS = 24
 
 
-def _extension(A, B, kind, spacing, from_b):
-    """Morph a stretch into its arc (or back), with the paper's fallbacks (Morph)."""
-    for method, sampling in ((f"{kind}-ball", "symmetric"), ("closest-projection", "q" if from_b else "p")):
-        if method not in registered():
-            continue
+def _extension_fallback(A, B, kind, spacing, from_b):
+    """The paper's fallbacks of an extension stage whose ball-morph failed (Morph): the
+    closest-projection morph if it is a homeomorphism, else linear interpolation."""
+    if "closest-projection" in registered():
         try:
-            return build(A, B, method, False, spacing, sampling)
+            return build(A, B, "closest-projection", False, spacing, "q" if from_b else "p")
         except BallMorphError:
-            continue
+            pass
     try:
         return build(A, B, "linear-interpolation", False, spacing, "symmetric")
     except InvalidCurveError as exc:  # a stretch or arc collapsed to a point
@@ -102,23 +101,34 @@ class _Blended:
     stages: list = None
 
 
-def _blended(side, items, closed, kind, spacing, to_arc):
-    out = _Blended(side, items, *blend(side.pts, closed, side.length, items))
-    out.stages = []
+def _stretches_and_arcs(side, items, closed, to_arc):
+    """Each bridge's extension pair: ``(a, b)``, stretch -> arc (``to_arc``) or arc -> stretch."""
+    pairs = []
     for br in items:
         stretch = subcurve(side.pts, closed, br.s0, br.s1)
-        a, b = (stretch, br.arc) if to_arc else (br.arc, stretch)
-        morph = _extension(a, b, kind, spacing, from_b=not to_arc)
+        pairs.append((stretch, br.arc) if to_arc else (br.arc, stretch))
+    return pairs
+
+
+def _blended(side, items, closed, kind, spacing, to_arc, pairs, morphs):
+    """One curve blended (:func:`~.blending.blend`) with its extension stages, from the
+    extension ``pairs`` and their ball-morphs (or errors) ``morphs``."""
+    out = _Blended(side, items, *blend(side.pts, closed, side.length, items))
+    out.stages = []
+    for br, (a, b), morph in zip(items, pairs, morphs):
+        if isinstance(morph, BallMorphError):
+            morph = _extension_fallback(a, b, kind, spacing, from_b=not to_arc)
         out.stages.append((_Stage(morph, curve_length(a, False), curve_length(b, False), False), br))
     return out
 
 
-def _central(bp, bq, closed, method, spacing):
-    """``M0`` between the blended curves; only violations away from the arcs are real."""
-    try:
-        m0 = build(bp.curve, bq.curve, method, closed, spacing, "symmetric", check=False)
-    except IncompatibleCurvesError as exc:
-        raise IncompatibleCurvesError(f"composite ball-morph: blended curves are not morphable ({exc})") from None
+def _central(bp, bq, closed, spacing, m0):
+    """``M0`` between the blended curves (its ball-morph, or the error building it raised);
+    only violations away from the arcs are real."""
+    if isinstance(m0, IncompatibleCurvesError):
+        raise IncompatibleCurvesError(f"composite ball-morph: blended curves are not morphable ({m0})") from None
+    if isinstance(m0, BallMorphError):
+        raise m0
     # The bridging arcs are focal for M0 (every disk tangent to an arc is the bridging disk
     # itself, touching both lips): the check flags them, as it should for a generic pair.
     slack = 2 * spacing
@@ -196,18 +206,118 @@ def _thinned(full, s_p, s_q, sp, sq, closed, spacing):
 def build_composite(P, Q, closed, spacing, sampling, kind="circular"):
     """Composite ball-morph (see the module docstring). ``kind`` is the path of every stage's
     ball-morph ('circular', 'linear', 'parabolic', 'hat', 'tangent')."""
-    setup = orient_pair(P, Q, closed)
-    spacing = resolve_spacing(P, Q, closed, spacing)
+    (morph,) = build_composites([(P, Q, closed, spacing, sampling)], kind)
+    if isinstance(morph, BallMorphError):
+        raise morph
+    return morph
+
+
+class _Pair:
+    """One pair of :func:`build_composites` on its way: what its stages made so far."""
+
+    def __init__(self, k, P, Q, closed, spacing, sampling, setup):
+        self.k, self.P, self.Q, self.closed, self.spacing, self.sampling = k, P, Q, closed, spacing, sampling
+        self.setup, self.maps, self.blended = setup, None, {}
+
+
+class _Results:
+    """Each pair's result of :func:`build_composites`: its morph or its first error."""
+
+    def __init__(self, n):
+        self.out = [None] * n
+
+    def attempt(self, pair, step, *args):
+        """``step(*args)`` for ``pair``; should it raise, its error is the pair's result (and None returned)."""
+        try:
+            return step(*args)
+        except BallMorphError as exc:
+            self.out[pair.k] = exc
+            return None
+
+    def settle(self, pair, step, *args):
+        """The pair's result: ``step(*args)``, or the error it raises."""
+        morph = self.attempt(pair, step, *args)
+        if morph is not None:
+            self.out[pair.k] = morph
+
+
+def build_composites(pairs, kind="circular"):
+    """Composite ball-morphs of many pairs at once, stage by stage: every small ball-map of a
+    stage (the dense maps, the extension stages of each side, the central morphs) in one batch.
+
+    Parameters
+    ----------
+    pairs : list of (ndarray, ndarray, bool, float or None, str)
+        Each pair's validated P (N, 2) and Q (M, 2), whether they are loops, its spacing and
+        its sampling (for a pair the plain ball-morph follows).
+    kind : str
+        The path of every stage's ball-morph ('circular', ...).
+
+    Returns
+    -------
+    list of Morph or BallMorphError
+        Per pair, its composite ball-morph, or the error :func:`build_composite` raises for it
+        alone (each pair's stages run in the same order, so its first failure is the same).
+    """
     method = f"{kind}-ball"
-    if setup.coincident:
-        return build(P, Q, method, closed, spacing, sampling)
-    maps = dense_maps(setup.P, setup.Q, closed, spacing / 2.0, setup)
-    if not maps.report.violations:
-        return build(P, Q, method, closed, spacing, sampling)
-    sp, sq = maps.side_p, maps.side_q
-    bp = _blended(sp, bridges(maps, "P"), closed, kind, spacing, to_arc=True)
-    bq = _blended(sq, bridges(maps, "Q"), closed, kind, spacing, to_arc=False)
-    central = _central(bp, bq, closed, method, spacing)
+    results, live = _Results(len(pairs)), []
+    for k, (P, Q, closed, spacing, sampling) in enumerate(pairs):
+        pair = _Pair(k, P, Q, closed, None, sampling, None)
+        pair.setup = results.attempt(pair, orient_pair, P, Q, closed)
+        pair.spacing = pair.setup and results.attempt(pair, resolve_spacing, P, Q, closed, spacing)
+        if pair.spacing is None:
+            continue
+        if pair.setup.coincident:
+            results.settle(pair, build, P, Q, method, closed, pair.spacing, sampling)
+        else:
+            live.append(pair)
+    for pair, maps in zip(live, dense_map_batch([p.setup for p in live], [p.spacing / 2.0 for p in live])):
+        pair.maps = maps
+        if not maps.report.violations:
+            results.settle(pair, build, pair.P, pair.Q, method, pair.closed, pair.spacing, pair.sampling)
+    live = [p for p in live if p.maps.report.violations]
+    # Relative blending, P's side and then Q's (the order a pair alone takes them in).
+    for side in ("P", "Q"):
+        live = _blend_side(results, live, side, kind)
+    centrals = ball_morphs(
+        [(p.blended["P"].curve, p.blended["Q"].curve, p.closed, p.spacing) for p in live], kind, check=False
+    )
+    for pair, m0 in zip(live, centrals):
+        results.settle(pair, _assembled, pair, m0)
+    return results.out
+
+
+def _blend_side(results, live, side, kind):
+    """Bridge and blend curve ``side`` ('P' or 'Q') of every pair in ``live``, every extension
+    stage's ball-morph in one batch; returns the pairs that got through."""
+    to_arc = side == "P"
+    work = []
+    for pair in live:
+        items = results.attempt(pair, bridges, pair.maps, side)
+        if items is not None:
+            work.append((pair, items, _stretches_and_arcs(_side(pair, side), items, pair.closed, to_arc)))
+    morphs = iter(ball_morphs([(a, b, False, p.spacing) for p, _, pieces in work for a, b in pieces], kind))
+    done = []
+    for pair, items, pieces in work:
+        mine = [next(morphs) for _ in pieces]
+        args = (_side(pair, side), items, pair.closed, kind, pair.spacing, to_arc, pieces, mine)
+        pair.blended[side] = results.attempt(pair, _blended, *args)
+        if pair.blended[side] is not None:
+            done.append(pair)
+    return done
+
+
+def _side(pair, side):
+    """The pair's dense curve ``side`` ('P' or 'Q')."""
+    return pair.maps.side_p if side == "P" else pair.maps.side_q
+
+
+def _assembled(pair, m0):
+    """A pair's composite ball-morph from its blended curves and central morph ``m0`` (PathMorph)."""
+    closed, spacing, setup = pair.closed, pair.spacing, pair.setup
+    bp, bq = pair.blended["P"], pair.blended["Q"]
+    sp, sq = pair.maps.side_p, pair.maps.side_q
+    central = _central(bp, bq, closed, spacing, m0)
     full, s_p, s_q = _thinned(*_chained(central, bp, bq, closed), sp, sq, closed, spacing)
     u_p = input_fractions(s_p, sp.pts, closed, setup.reversed_p)
     u_q = input_fractions(s_q, sq.pts, closed, setup.reversed_q)

@@ -1,0 +1,192 @@
+"""The composite ball-morph built for many chains at once (morphs/composite.build_composites),
+the stage ball-morphs and dense maps it batches (morphs/ball.ball_morphs,
+ballmap/correspondence.dense_map_batch), and the fallback step that hands it every failing chain
+of a plan (drawing/fallbacks.chain_fallbacks).
+
+A batch gives each pair what it gets alone: the same errors, word for word, and the same
+morphs up to the round-off of the batch's layout (its curves' arc lengths are one running sum).
+"""
+
+import numpy as np
+import pytest
+from shapes import circle
+
+import ballmorph_core as bm
+from ballmorph_core.ballmap.correspondence import dense_map_batch, dense_maps
+from ballmorph_core.ballmap.topology import orient_pair
+from ballmorph_core.drawing import fallbacks, pipeline
+from ballmorph_core.drawing.strokes import StrokeSet
+from ballmorph_core.errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
+from ballmorph_core.morphs import composite
+from ballmorph_core.morphs.ball import ball_morphs
+from ballmorph_core.morphs.composite import build_composite, build_composites
+
+#: Morphs of one pair built in a batch and alone agree to this (their arc lengths are summed
+#: along the batch, not along the pair alone).
+ROUNDOFF = 1e-12
+TIMES = (0.0, 0.3, 0.5, 1.0)
+
+
+def _notched(depth=0.6, at=0.3, n=300):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    notch = 1.0 - depth * np.maximum(0, 1 - np.abs(np.angle(np.exp(1j * (t - at)))) / 0.12)
+    return np.c_[notch * np.cos(t), notch * np.sin(t)]
+
+
+def _pear(n=300):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 1.6 + 0.25 * np.cos(t - np.pi / 2) + 0.1 * np.cos(2 * t)
+    return np.c_[0.9 * r * np.cos(t), 1.2 * r * np.sin(t)]
+
+
+def _arch(height, n=60):
+    x = np.linspace(0.0, 1.0, n)
+    return np.c_[x, height * np.sin(np.pi * x)]
+
+
+def _alone_or_error(build):
+    try:
+        return build()
+    except BallMorphError as exc:
+        return exc
+
+
+def _assert_same(batched, alone):
+    """The same error (type and words), or morphs whose frames agree to round-off."""
+    if isinstance(alone, BallMorphError):
+        assert type(batched) is type(alone) and str(batched) == str(alone)
+        return
+    assert not isinstance(batched, BallMorphError), batched
+    assert len(batched) == len(alone)
+    np.testing.assert_allclose(batched.frames(TIMES), alone.frames(TIMES), atol=ROUNDOFF, rtol=0)
+    np.testing.assert_allclose(batched.u_p, alone.u_p, atol=ROUNDOFF, rtol=0)
+    np.testing.assert_allclose(batched.u_q, alone.u_q, atol=ROUNDOFF, rtol=0)
+
+
+def test_ball_morphs_give_each_pair_its_own_morph_or_error():
+    wavy = _arch(0.3) + np.c_[np.zeros(60), 0.05 * np.sin(9 * np.pi * np.linspace(0, 1, 60))]
+    pairs = [
+        (_arch(0.2), _arch(0.5), False, None),  # compatible strokes sharing both ends
+        (circle(1.0, 80), circle(2.0, 90), True, 0.05),  # nested loops
+        (_arch(0.2), _arch(0.5) + [0.0, 0.1], False, None),  # no shared endpoints
+        (_notched(), _pear(), True, None),  # not b-compatible
+        (_arch(0.2), wavy, False, None),  # the wavy one crosses the arch: another configuration
+        (np.full((5, 2), np.nan), _arch(0.5, 5), False, None),  # malformed
+    ]
+    for check in (True, False):
+        batched = ball_morphs(pairs, "parabolic", check=check)
+        for (P, Q, closed, h), got in zip(pairs, batched):
+            want = _alone_or_error(
+                lambda P=P, Q=Q, closed=closed, h=h, check=check: bm.make_morph(
+                    P, Q, "parabolic-ball", closed, h, check=check
+                )
+            )
+            _assert_same(got, want)
+    kinds = [type(m) for m in ball_morphs(pairs, "circular")]
+    assert kinds[2:] == [IncompatibleCurvesError, IncompatibleCurvesError, IncompatibleCurvesError, InvalidCurveError]
+    assert ball_morphs([], "circular") == []
+
+
+def test_dense_map_batch_gives_each_pair_its_maps_alone():
+    curves = [(_notched(), _pear(), True), (_arch(0.2), _arch(0.5), False), (_notched(0.5, 2.0), 1.5 * circle(), True)]
+    setups = [orient_pair(P, Q, closed) for P, Q, closed in curves]
+    batch = dense_map_batch(setups, [0.02, 0.01, 0.03])
+    for setup, h, got in zip(setups, [0.02, 0.01, 0.03], batch):
+        want = dense_maps(setup.P, setup.Q, setup.closed, h, setup)
+        assert got.setup is setup and got.spacing == want.spacing and got.eps == want.eps
+        assert got.report.describe() == want.report.describe()
+        for side in ("side_p", "side_q"):
+            np.testing.assert_allclose(getattr(got, side).pts, getattr(want, side).pts, atol=ROUNDOFF, rtol=0)
+        for name in ("fwd", "bwd"):
+            mine, theirs = getattr(got, name), getattr(want, name)
+            np.testing.assert_array_equal(mine.bad, theirs.bad)
+            np.testing.assert_array_equal(mine.chain, theirs.chain)  # its own chain 0, as alone
+            np.testing.assert_allclose(mine.r, theirs.r, atol=ROUNDOFF, rtol=0)
+            # Where a disk touches a nearly straight stretch is ill-conditioned (its radius is
+            # not): round-off may slide a contact by a little.
+            np.testing.assert_allclose(mine.s_dst, theirs.s_dst, atol=1e-6, rtol=0)
+    assert sum(bool(m.report.violations) for m in batch) == 2  # the notched pairs fail
+    assert dense_map_batch([], []) == []
+
+
+def test_composites_built_together_are_those_built_alone():
+    pairs = [
+        (_notched(), _pear(), True, None, "symmetric"),  # a notch bridged by one disk
+        (circle(1.0, 100), 2 * circle(1.0, 100), True, None, "symmetric"),  # compatible: the ball-morph
+        (_notched(0.5, 2.0), 1.5 * circle(1.0, 300), True, 0.03, "symmetric"),  # another notch, own spacing
+        (_arch(0.2), _arch(0.5) + [0.0, 0.1], False, None, "symmetric"),  # no shared endpoints
+        (circle(1.0, 100), circle(1.0, 100) + [3.0, 0.0], True, None, "symmetric"),  # loops side by side
+    ]
+    batched = build_composites(pairs, "circular")
+    for (P, Q, closed, h, sampling), got in zip(pairs, batched):
+        want = _alone_or_error(lambda P=P, Q=Q, c=closed, h=h, s=sampling: build_composite(P, Q, c, h, s))
+        _assert_same(got, want)
+    assert len(batched[0].stages["bridges_p"]) == 1 and not isinstance(batched[2], BallMorphError)
+    assert [isinstance(m, IncompatibleCurvesError) for m in batched[3:]] == [True, True]
+
+
+def test_one_batch_builds_every_stage_ball_morph_of_a_side(monkeypatch):
+    """Two notched pairs: their dense maps in one batch, each side's extension stages in one
+    batch, their central morphs in one: four ball-morph batches in all, not one per stage."""
+    calls = []
+    real = composite.ball_morphs
+    monkeypatch.setattr(
+        composite, "ball_morphs", lambda pairs, *a, **k: calls.append(len(pairs)) or real(pairs, *a, **k)
+    )
+    maps = []
+    real_dense = composite.dense_map_batch
+    monkeypatch.setattr(composite, "dense_map_batch", lambda s, h: maps.append(len(s)) or real_dense(s, h))
+    pairs = [
+        (_notched(), _pear(), True, None, "symmetric"),
+        (_notched(0.5, 2.0), 1.5 * circle(1.0, 300), True, None, "symmetric"),
+    ]
+    assert not any(isinstance(m, BallMorphError) for m in build_composites(pairs, "circular"))
+    assert maps == [2]
+    assert len(calls) == 3 and calls[-1] == 2  # P's stages, Q's stages (none here), both centrals
+
+
+def _jagged(n, seed, points=60):
+    """Wavy strokes redrawn with a tremor that crosses the first drawing again and again."""
+    rng = np.random.default_rng(seed)
+    keys = ([], [])
+    for k in range(n):
+        s = np.linspace(0, 1, points)
+        base = np.c_[0.6 * s, 0.15 * np.sin(np.pi * s * rng.uniform(0.5, 2))] + [1.0 * k, 0.0]
+        for key, shift in zip(keys, ([0.0, 0.0], [0.01, 0.005])):
+            stroke = base + shift + rng.normal(0, 0.01, base.shape)
+            key.append(np.c_[stroke[:, 0], np.zeros(points), stroke[:, 1]])
+    return StrokeSet.from_strokes(keys[0]), StrokeSet.from_strokes(keys[1])
+
+
+def test_the_fallback_step_builds_every_failing_chain_together_as_it_would_alone(monkeypatch):
+    """A plan hands all its failing chains (of every pair) to one chain_fallbacks call, and each
+    chain gets what chain_fallback gives it alone: the same note and morph."""
+    seen = []
+    real = fallbacks.chain_fallbacks
+
+    def spy(chains, kind):
+        seen.append(chains)
+        return real(chains, kind)
+
+    monkeypatch.setattr(pipeline, "chain_fallbacks", spy)
+    key_a, key_b = _jagged(4, seed=0)
+    plan = bm.plan_inbetween(key_a, key_b)
+    assert len(seen) == 1 and len(seen[0]) >= 4, "expected several failing chains in one call"
+    outcomes = real(seen[0], "circular")
+    composites = [m for m, note in outcomes if "composite ball-morph used" in note]
+    assert composites and len(composites) < len(outcomes)  # some chains followed, some aligned
+    for chain, (morph, note) in zip(seen[0], outcomes):
+        alone_morph, alone_note = fallbacks.chain_fallback(*chain[:3], "circular", *chain[3:])
+        assert note == alone_note
+        _assert_same(morph, alone_morph)
+    assert len(plan.evaluate([0.5]).frames[0]) == 4
+
+
+@pytest.mark.parametrize("bad", [np.zeros((0, 2)), np.full((4, 2), np.inf)])
+def test_a_malformed_chain_falls_back_alone(bad):
+    """A chain whose curve cannot be read gets its own error; the batch's other chain still
+    gets its composite ball-morph."""
+    good = (_notched(), _pear(), True, None)
+    out = fallbacks.composite_morphs([(bad, _pear(), True, None), good], "circular")
+    assert isinstance(out[0], InvalidCurveError)
+    assert not isinstance(out[1], BallMorphError) and out[1].method == "composite-ball"
