@@ -39,7 +39,7 @@ def tangent_disks(x, n, a, b, N, eps):
         contiguous rows make every step one pass over plain arrays).
     a, b, N : ndarray, shape (2, K)
         One edge per sample and its unit gap normal, likewise.
-    eps : float
+    eps : float or ndarray, shape (K,)
         Length tolerance (a vertex this close to ``x`` is touched by a zero disk).
 
     Returns
@@ -116,11 +116,13 @@ def _tangent_disks(x, n, a, b, N, eps):
 
 
 def _smallest_in_windows(x, n, edges, windows, eps):
-    """Smallest tangent disk at each sample over its own window of ``edges`` (a, b, N): radii and contacts."""
+    """Smallest tangent disk at each sample over its own window of ``edges`` (a, b, N): radii
+    and contacts (``eps`` a float, or one per sample)."""
     a, b, N = edges
     counts = np.array([len(w) for w in windows])
     owner, _ = ragged_arange(counts)
     e = np.concatenate(windows)
+    eps = eps if np.ndim(eps) == 0 else eps[owner]
     rr, uu = tangent_disks(x[owner].T, n[owner].T, a[e].T, b[e].T, N[e].T, eps)
     best = group_argmin(rr, owner, len(x))
     return rr[best], a[e[best]] + uu[best][:, None] * (b[e[best]] - a[e[best]])
@@ -142,7 +144,9 @@ def disk_between(ends, edges, windows, eps, iterations=40):
         ``(a, b, N)``: edges ``a -> b`` of the other curve with their gap normals.
     windows : tuple of list of ndarray of int
         ``(window_a, window_b)``: edge indices per row.
-    eps : float
+    eps : float or ndarray, shape (J,)
+        Length tolerance (per row: rows of several pairs, each with its own, are each
+        bisected as alone).
     iterations : int
 
     Returns
@@ -161,7 +165,8 @@ def disk_between(ends, edges, windows, eps, iterations=40):
         x = x0[rows] + lam[:, None] * step_x[rows]
         n = n0[rows] + lam[:, None] * step_n[rows]
         n /= np.linalg.norm(n, axis=1, keepdims=True)
-        return x, n, [_smallest_in_windows(x, n, edges, [w[i] for i in rows], eps) for w in windows]
+        row_eps = eps if np.ndim(eps) == 0 else eps[rows]
+        return x, n, [_smallest_in_windows(x, n, edges, [w[i] for i in rows], row_eps) for w in windows]
 
     every = np.arange(len(x0))
     done = 0

@@ -18,7 +18,7 @@ from ..errors import IncompatibleCurvesError
 from ..geometry.polyline import curve_length, subcurve
 from ..geometry.projection import distances_to_polyline
 
-__all__ = ["Bridge", "bridges", "blend"]
+__all__ = ["Bridge", "bridges", "bridges_of", "blend"]
 
 #: Incompatible stretches separated by at most this many good dense samples are bridged as one
 #: (a notch's walls and lips are one feature).
@@ -111,8 +111,30 @@ def _lip_windows(lip_a, lip_b, n_edges, closed):
     return wa[(wa >= 0) & (wa < n_edges)], wb[(wb >= 0) & (wb < n_edges)]
 
 
-def _bridge(maps, side, first, last):
-    """The Bridge over the stretch of samples ``first..last`` of curve ``side``."""
+@dataclass
+class _Stretch:
+    """An incompatible stretch of one curve, ready for its bridging disk (see :func:`_bridge`)."""
+
+    maps: object
+    own: object
+    other: object
+    closed: bool
+    s_a: float
+    ends: tuple
+    windows: tuple
+    edges: tuple
+
+
+def _stretch(maps, side, first, last):
+    """The stretch of samples ``first..last`` of curve ``side`` (_Stretch): its lips, the two
+    samples of the other curve between which its bridging disk touches, and the lips' windows.
+
+    Raises
+    ------
+    IncompatibleCurvesError
+        If the stretch reaches a stroke's shared endpoint or no sample of the other curve maps
+        past it.
+    """
     closed = maps.setup.closed
     own, other = (maps.side_p, maps.side_q) if side == "P" else (maps.side_q, maps.side_p)
     other_map = maps.bwd if side == "P" else maps.fwd  # disks tangent to the other curve
@@ -128,18 +150,30 @@ def _bridge(maps, side, first, last):
     i, j = _jumping_samples(other_map.s_dst, s_a, s_b, own, closed, side)
     a_e = own.pts[:n_edges]
     b_e = np.roll(own.pts, -1, axis=0)[:n_edges] if closed else own.pts[1:]
-    wa, wb = _lip_windows(lip_a, lip_b, n_edges, closed)
     src, nrm_src = other_map.src, other_map.n_src
     ends = (src[i : i + 1], nrm_src[i : i + 1], src[j : j + 1], nrm_src[j : j + 1])
-    x, nrm, r, qa, qb = disk_between(ends, (a_e, b_e, own.enormals), ([wa], [wb]), maps.eps)
+    windows = _lip_windows(lip_a, lip_b, n_edges, closed)
+    return _Stretch(maps, own, other, closed, s_a, ends, windows, (a_e, b_e, own.enormals))
+
+
+def _bridge(stretch, side, x, nrm, r, qa, qb):
+    """The Bridge over a stretch from its bridging disk (tangent point ``x``, normal ``nrm``,
+    radius ``r``, contacts ``qa``, ``qb`` on the lips; each one row of :func:`disk_between`).
+
+    Raises
+    ------
+    IncompatibleCurvesError
+        If no disk bridges it.
+    """
+    own, other, maps = stretch.own, stretch.other, stretch.maps
     # A bridging disk larger than both curves together bridges nothing drawable.
-    if not np.isfinite(r[0]) or r[0] <= 0 or r[0] > own.length + other.length:
-        raise IncompatibleCurvesError(f"composite ball-morph: no disk bridges {side} near s={s_a:.4g}")
-    _, s_lips = distances_to_polyline(np.stack([qa[0], qb[0]]), own.pts, closed, 2 * maps.spacing)
+    if not np.isfinite(r) or r <= 0 or r > own.length + other.length:
+        raise IncompatibleCurvesError(f"composite ball-morph: no disk bridges {side} near s={stretch.s_a:.4g}")
+    _, s_lips = distances_to_polyline(np.stack([qa, qb]), own.pts, stretch.closed, 2 * maps.spacing)
     s0, s1 = float(s_lips[0]), float(s_lips[1])
-    if closed and s1 < s0:
+    if stretch.closed and s1 < s0:
         s1 += own.length
-    return Bridge(s0, s1, _arc(x[0] + r[0] * nrm[0], r[0], qa[0], qb[0], x[0], maps.spacing))
+    return Bridge(s0, s1, _arc(x + r * nrm, r, qa, qb, x, maps.spacing))
 
 
 def bridges(maps, side):
@@ -156,8 +190,64 @@ def bridges(maps, side):
     IncompatibleCurvesError
         If a stretch reaches a stroke's shared endpoint or no bridging disk is found.
     """
-    own_map = maps.fwd if side == "P" else maps.bwd  # disks tangent to this curve
-    return [_bridge(maps, side, first, last) for first, last in _stretches(own_map.bad, maps.setup.closed)]
+    (out,) = bridges_of([maps], side)
+    if isinstance(out, IncompatibleCurvesError):
+        raise out
+    return out
+
+
+def bridges_of(all_maps, side):
+    """:func:`bridges` of many pairs at once, every bridging disk in one bisection.
+
+    Parameters
+    ----------
+    all_maps : list of DenseMaps
+    side : {'P', 'Q'}
+
+    Returns
+    -------
+    list of (list of Bridge) or IncompatibleCurvesError
+        Per pair, its bridges or the error :func:`bridges` raises for it (its first failing
+        stretch's, in order along the curve). Each row of the bisection is its own stretch's,
+        with its pair's tolerance: the same disks as alone.
+    """
+    out, stretches = [None] * len(all_maps), []
+    first_error = {}
+    for c, maps in enumerate(all_maps):
+        own_map = maps.fwd if side == "P" else maps.bwd  # disks tangent to this curve
+        for first, last in _stretches(own_map.bad, maps.setup.closed):
+            try:
+                stretches.append((c, _stretch(maps, side, first, last)))
+            except IncompatibleCurvesError as exc:
+                first_error[c] = exc  # the stretches before it may fail first, on their disks
+                break
+    disks = _disks([st for _, st in stretches])
+    found = {c: [] for c in range(len(all_maps))}
+    for (c, st), disk in zip(stretches, disks):
+        if c in found:
+            try:
+                found[c].append(_bridge(st, side, *disk))
+            except IncompatibleCurvesError as exc:
+                first_error[c] = exc
+                del found[c]
+    for c in range(len(all_maps)):
+        out[c] = first_error[c] if c in first_error else found[c]
+    return out
+
+
+def _disks(stretches):
+    """Every stretch's bridging disk by one :func:`disk_between` (rows of their curves' edges
+    laid one after the other): ``(x, nrm, r, qa, qb)`` per stretch, each one row."""
+    if not stretches:
+        return []
+    counts = np.array([len(st.edges[0]) for st in stretches])
+    base = np.cumsum(counts) - counts
+    edges = tuple(np.concatenate([st.edges[k] for st in stretches]) for k in range(3))
+    ends = tuple(np.concatenate([st.ends[k] for st in stretches]) for k in range(4))
+    windows = tuple([st.windows[k] + b for st, b in zip(stretches, base)] for k in range(2))
+    eps = np.array([st.maps.eps for st in stretches])
+    x, nrm, r, qa, qb = disk_between(ends, edges, windows, eps)
+    return list(zip(x, nrm, r, qa, qb))
 
 
 def _blend_order(items, closed, length):

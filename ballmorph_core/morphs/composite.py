@@ -29,7 +29,7 @@ from ..errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from ..geometry.polyline import curve_length, resolve_spacing, reversal_order, subcurve
 from .ball import ball_morphs, input_fractions
 from .base import PathMorph, build, register, registered
-from .blending import blend, bridges
+from .blending import blend, bridges_of
 from .paths import SampledPaths
 
 __all__ = ["build_composite", "build_composites"]
@@ -292,9 +292,10 @@ def _blend_side(results, live, side, kind):
     stage's ball-morph in one batch; returns the pairs that got through."""
     to_arc = side == "P"
     work = []
-    for pair in live:
-        items = results.attempt(pair, bridges, pair.maps, side)
-        if items is not None:
+    for pair, items in zip(live, bridges_of([p.maps for p in live], side)):
+        if isinstance(items, BallMorphError):
+            results.out[pair.k] = items
+        else:
             work.append((pair, items, _stretches_and_arcs(_side(pair, side), items, pair.closed, to_arc)))
     morphs = iter(ball_morphs([(a, b, False, p.spacing) for p, _, pieces in work for a, b in pieces], kind))
     done = []

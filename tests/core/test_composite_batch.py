@@ -12,12 +12,13 @@ import pytest
 from shapes import circle
 
 import ballmorph_core as bm
+from ballmorph_core.ballmap import candidates
 from ballmorph_core.ballmap.correspondence import dense_map_batch, dense_maps
 from ballmorph_core.ballmap.topology import orient_pair
 from ballmorph_core.drawing import fallbacks, pipeline
 from ballmorph_core.drawing.strokes import StrokeSet
 from ballmorph_core.errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
-from ballmorph_core.morphs import composite
+from ballmorph_core.morphs import blending, composite
 from ballmorph_core.morphs.ball import ball_morphs
 from ballmorph_core.morphs.composite import build_composite, build_composites
 
@@ -190,3 +191,79 @@ def test_a_malformed_chain_falls_back_alone(bad):
     out = fallbacks.composite_morphs([(bad, _pear(), True, None), good], "circular")
     assert isinstance(out[0], InvalidCurveError)
     assert not isinstance(out[1], BallMorphError) and out[1].method == "composite-ball"
+
+
+def _notched_maps():
+    """Dense maps of two notched circles against a pear and a circle, and of one with two notches."""
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    bump = lambda at: np.maximum(0, 1 - np.abs(np.angle(np.exp(1j * (t - at)))) / 0.12)  # noqa: E731
+    two = (1.0 - 0.6 * bump(0.3) - 0.5 * bump(2.5))[:, None] * np.c_[np.cos(t), np.sin(t)]
+    curves = [(_notched(), _pear()), (_notched(0.5, 2.0), 1.5 * circle(1.0, 300)), (two, _pear())]
+    setups = [orient_pair(P, Q, True) for P, Q in curves]
+    return [dense_maps(s.P, s.Q, True, 0.01, s) for s in setups]
+
+
+def test_bridges_of_many_pairs_are_each_pairs_bridges_alone():
+    maps = _notched_maps()
+    together = blending.bridges_of(maps + maps[:1], "P")
+    for one, got in zip(maps + maps[:1], together):
+        alone = blending.bridges(one, "P")
+        assert len(got) == len(alone) >= 1
+        for a, b in zip(got, alone):
+            assert (a.s0, a.s1) == (b.s0, b.s1)
+            np.testing.assert_array_equal(a.arc, b.arc)
+    assert sum(len(b) for b in together) > len(together)  # some pair has several stretches
+
+
+def test_a_pair_gets_its_first_failing_stretchs_error(monkeypatch):
+    """Stretches fail before their disk (no sample past them) or after it (no disk bridges
+    them): a pair gets the error of the first failing one along the curve, whichever kind, and
+    the other pairs their bridges."""
+    maps = _notched_maps()
+    several = next(k for k, m in enumerate(maps) if len(blending.bridges(m, "P")) > 1)
+    real_stretch, real_bridge = blending._stretch, blending._bridge
+    seen = {}
+
+    def stretch(m, side, first, last):
+        k = seen.setdefault(id(m), [0])
+        k[0] += 1
+        if m is maps[several] and k[0] == 2:
+            raise IncompatibleCurvesError("second stretch: no sample past it")
+        return real_stretch(m, side, first, last)
+
+    monkeypatch.setattr(blending, "_stretch", stretch)
+    got = blending.bridges_of(maps, "P")
+    assert str(got[several]) == "second stretch: no sample past it"
+    assert all(isinstance(g, list) for k, g in enumerate(got) if k != several)
+
+    def bridge(st, side, *disk):
+        if st.maps is maps[several]:
+            raise IncompatibleCurvesError(f"no disk at {st.s_a:.6f}")
+        return real_bridge(st, side, *disk)
+
+    seen.clear()
+    monkeypatch.setattr(blending, "_bridge", bridge)
+    got = blending.bridges_of(maps, "P")
+    first = real_stretch(maps[several], "P", *blending._stretches(maps[several].fwd.bad, True)[0])
+    assert str(got[several]) == f"no disk at {first.s_a:.6f}"  # the first stretch's, before the second's
+
+
+def test_disk_between_with_a_tolerance_per_row_bisects_each_row_as_alone():
+    rng = np.random.default_rng(2)
+    t = np.linspace(0, np.pi, 40)
+    curve = np.c_[np.cos(t), 0.3 + np.sin(t) + 0.02 * rng.normal(size=40)]
+    a, b = curve[:-1], curve[1:]
+    d = b - a
+    N = np.c_[d[:, 1], -d[:, 0]] / np.hypot(*d.T)[:, None]
+    x0 = np.c_[rng.uniform(-0.5, 0.0, 3), np.zeros(3)]
+    x1 = x0 + [0.4, 0.0]
+    up = np.tile([0.0, 1.0], (3, 1))
+    windows = ([np.arange(2, 12), np.arange(5, 15), np.arange(0, 10)], [np.arange(25, 35)] * 3)
+    eps = np.array([1e-9, 1e-3, 1e-1])
+    together = candidates.disk_between((x0, up, x1, up), (a, b, N), windows, eps)
+    for row in range(3):
+        one = candidates.disk_between(
+            (x0[[row]], up[[row]], x1[[row]], up[[row]]), (a, b, N), ([windows[0][row]], [windows[1][row]]), eps[row]
+        )
+        for mine, alone in zip(together, one):
+            np.testing.assert_array_equal(mine[row], alone[0])
