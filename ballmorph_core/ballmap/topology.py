@@ -12,15 +12,18 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..errors import IncompatibleCurvesError
-from ..geometry.intersections import Crossings, crossings, is_simple
+from ..geometry.intersections import Crossings, batch_crossings, simple_curves
 from ..geometry.polyline import as_curve, orient_clockwise, points_in_loop, scale_of, signed_area
+from ..geometry.ragged import Ragged
 from ..geometry.spatial import PointTree
 
 __all__ = [
     "CONFIGURATIONS",
     "classify",
+    "classify_pairs",
     "PairSetup",
     "orient_pair",
+    "orient_pairs",
     "shared_endpoints",
     "crossing_order_agrees",
 ]
@@ -51,15 +54,27 @@ def shared_endpoints(P, Q):
     return "reversed" if rev else "none"
 
 
-def _interior_crossings(P, Q, closed):
-    """Crossings, minus a stroke pair's shared endpoints."""
-    cx = crossings(P, closed, Q, closed)
-    if closed or len(cx) == 0:
-        return cx
-    eps = tol.SHARED_ENDPOINT * scale_of(P, Q)
-    at_end = (np.linalg.norm(cx.points - P[0], axis=1) <= eps) | (np.linalg.norm(cx.points - P[-1], axis=1) <= eps)
-    keep = ~at_end
-    return Crossings(*(values[keep] for values in (cx.pair, cx.points, cx.s_a, cx.s_b, cx.edge_a, cx.edge_b)))
+def _interior_crossings(pairs):
+    """Crossings of each pair ``(P, Q, closed)``, minus a stroke pair's shared endpoints, every
+    pair searched in one batch (list of Crossings, each its pair's alone: ``pair`` 0)."""
+    if not pairs:
+        return []
+    closed = [c for _, _, c in pairs]
+    A = Ragged.from_list([P for P, _, _ in pairs], closed)
+    B = Ragged.from_list([Q for _, Q, _ in pairs], closed)
+    found = batch_crossings(A, B, np.array([scale_of(P, Q) for P, Q, _ in pairs]))
+    bounds = np.searchsorted(found.pair, np.arange(len(pairs) + 1))
+    out = []
+    for k, (P, Q, loop) in enumerate(pairs):
+        keep = np.arange(bounds[k], bounds[k + 1])
+        if not loop and len(keep):
+            eps = tol.SHARED_ENDPOINT * scale_of(P, Q)
+            points = found.points[keep]
+            at_end = (np.linalg.norm(points - P[0], axis=1) <= eps) | (np.linalg.norm(points - P[-1], axis=1) <= eps)
+            keep = keep[~at_end]
+        fields = (found.points, found.s_a, found.s_b, found.edge_a, found.edge_b)
+        out.append(Crossings(np.zeros(len(keep), np.int64), *(values[keep] for values in fields)))
+    return out
 
 
 def crossing_order_agrees(cx, closed):
@@ -111,25 +126,41 @@ def classify(P, Q, closed=False):
     """
     P = as_curve(P, "P", closed)
     Q = as_curve(Q, "Q", closed)
-    if not (is_simple(P, closed) and is_simple(Q, closed)):
-        return "invalid"
-    if closed:
-        P, Q = orient_clockwise(P), orient_clockwise(Q)
-        cx = _interior_crossings(P, Q, True)
-        if len(cx) == 0:
+    return classify_pairs([(P, Q, closed)])[0]
+
+
+def classify_pairs(pairs):
+    """:func:`classify` of many validated pairs ``(P, Q, closed)`` at once (list of str): the
+    curves' self-crossings, and then the pairs' crossings, each searched in one batch."""
+    out = [None] * len(pairs)
+    curves = [c for P, Q, _ in pairs for c in (P, Q)]
+    simple = simple_curves(curves, np.repeat([c for _, _, c in pairs], 2)).reshape(-1, 2).all(axis=1)
+    ready = []
+    for k, ((P, Q, closed), ok) in enumerate(zip(pairs, simple)):
+        if not ok:
+            out[k] = "invalid"
+        elif closed:
+            ready.append((k, orient_clockwise(P), orient_clockwise(Q), True))
+        else:
+            how = shared_endpoints(P, Q)
+            if how == "none":
+                out[k] = "invalid"
+            else:
+                ready.append((k, P, Q[::-1] if how == "reversed" else Q, False))
+    gaps = []  # strokes meeting only at their ends: whether P then Q backwards is simple
+    for (k, P, Q, closed), cx in zip(ready, _interior_crossings([r[1:] for r in ready])):
+        if len(cx) and closed:
+            out[k] = "crossing-loops" if crossing_order_agrees(cx, True) else "invalid"
+        elif len(cx):
+            out[k] = "crossing-strokes" if crossing_order_agrees(cx, False) else "invalid"
+        elif closed:
             nested = points_in_loop(P[:1], Q)[0] or points_in_loop(Q[:1], P)[0]
-            return "disjoint-loops" if nested else "invalid"
-        return "crossing-loops" if crossing_order_agrees(cx, True) else "invalid"
-    how = shared_endpoints(P, Q)
-    if how == "none":
-        return "invalid"
-    if how == "reversed":
-        Q = Q[::-1]
-    cx = _interior_crossings(P, Q, False)
-    if len(cx) == 0:
-        loop = np.concatenate([P, Q[-2:0:-1]])
-        return "quasi-disjoint-strokes" if is_simple(loop, True) else "invalid"
-    return "crossing-strokes" if crossing_order_agrees(cx, False) else "invalid"
+            out[k] = "disjoint-loops" if nested else "invalid"
+        else:
+            gaps.append((k, np.concatenate([P, Q[-2:0:-1]])))
+    for (k, _), ok in zip(gaps, simple_curves([loop for _, loop in gaps], np.ones(len(gaps), bool))):
+        out[k] = "quasi-disjoint-strokes" if ok else "invalid"
+    return out
 
 
 @dataclass
@@ -193,38 +224,69 @@ def orient_pair(P, Q, closed):
     IncompatibleCurvesError
         If the pair is in another configuration; the message names it and what to do.
     """
+    (setup,) = orient_pairs([(P, Q, closed)])
+    if isinstance(setup, IncompatibleCurvesError):
+        raise setup
+    return setup
+
+
+def orient_pairs(pairs):
+    """:func:`orient_pair` of many validated pairs ``(P, Q, closed)`` at once, classified
+    together (:func:`classify_pairs`).
+
+    Returns
+    -------
+    list of PairSetup or IncompatibleCurvesError
+        Per pair, its setup or the error :func:`orient_pair` raises for it.
+    """
+    out, asked = [None] * len(pairs), []
+    for k, (P, Q, closed) in enumerate(pairs):
+        if closed:
+            Pc, Qc = orient_clockwise(P), orient_clockwise(Q)
+            rp, rq = signed_area(P) > 0, signed_area(Q) > 0
+            if _coincident(Pc, Qc, True):
+                out[k] = PairSetup(Pc, Qc, True, 1.0, 1.0, rp, rq, coincident=True)
+            else:
+                asked.append((k, Pc, Qc, True, (rp, rq)))
+            continue
+        how = shared_endpoints(P, Q)
+        if how == "none":
+            out[k] = IncompatibleCurvesError(
+                "the strokes do not share both endpoints (paper configuration 2 needs them): "
+                "use a carrier motion to register them first"
+            )
+            continue
+        Qo = Q[::-1].copy() if how == "reversed" else Q
+        if _coincident(P, Qo, False):
+            out[k] = PairSetup(P, Qo, False, 1.0, 1.0, False, how == "reversed", coincident=True)
+        else:
+            asked.append((k, P, Qo, False, how == "reversed"))
+    for (k, P, Q, closed, turned), config in zip(asked, classify_pairs([a[1:4] for a in asked])):
+        out[k] = _oriented(P, Q, closed, turned, config)
+    return out
+
+
+def _oriented(P, Q, closed, turned, config):
+    """The PairSetup of a pair that :func:`orient_pairs` classified as ``config``, or the
+    IncompatibleCurvesError of one in the wrong configuration (``turned``: loops, whether each
+    was counter-clockwise; strokes, whether Q was reversed)."""
     if closed:
-        Pc, Qc = orient_clockwise(P), orient_clockwise(Q)
-        rp, rq = signed_area(P) > 0, signed_area(Q) > 0
-        if _coincident(Pc, Qc, True):
-            return PairSetup(Pc, Qc, True, 1.0, 1.0, rp, rq, coincident=True)
-        config = classify(Pc, Qc, True)
         if config != "disjoint-loops":
-            raise IncompatibleCurvesError(
+            return IncompatibleCurvesError(
                 f"the loops are {config!r}, not disjoint nested loops (paper configuration 1): "
                 "split crossing loops at their intersections or register them first"
             )
         # Clockwise loops have their inside on the right: the inner loop's gap side is its
         # outside (left), the outer loop's gap side its inside (right).
-        p_inner = bool(points_in_loop(Pc[:1], Qc)[0])
-        return PairSetup(Pc, Qc, True, 1.0 if p_inner else -1.0, -1.0 if p_inner else 1.0, rp, rq)
-    how = shared_endpoints(P, Q)
-    if how == "none":
-        raise IncompatibleCurvesError(
-            "the strokes do not share both endpoints (paper configuration 2 needs them): "
-            "use a carrier motion to register them first"
-        )
-    Qo = Q[::-1].copy() if how == "reversed" else Q
-    if _coincident(P, Qo, False):
-        return PairSetup(P, Qo, False, 1.0, 1.0, False, how == "reversed", coincident=True)
-    config = classify(P, Qo, False)
+        p_inner = bool(points_in_loop(P[:1], Q)[0])
+        return PairSetup(P, Q, True, 1.0 if p_inner else -1.0, -1.0 if p_inner else 1.0, *turned)
     if config != "quasi-disjoint-strokes":
-        raise IncompatibleCurvesError(
+        return IncompatibleCurvesError(
             f"the strokes are {config!r}, not quasi-disjoint (paper configuration 2): "
             "split them at their crossings first"
         )
-    loop = np.concatenate([P, Qo[-2:0:-1]])
+    loop = np.concatenate([P, Q[-2:0:-1]])
     ccw = signed_area(loop) > 0
     # Walking P then Q backwards goes around the gap: it lies left of P and right of Q when
     # that walk is counter-clockwise.
-    return PairSetup(P, Qo, False, 1.0 if ccw else -1.0, -1.0 if ccw else 1.0, False, how == "reversed")
+    return PairSetup(P, Q, False, 1.0 if ccw else -1.0, -1.0 if ccw else 1.0, False, turned)

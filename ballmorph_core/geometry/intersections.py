@@ -17,7 +17,16 @@ from .polyline import edges, scale_of
 from .ragged import Ragged, group_argmin
 from .spatial import PAIR_BUDGET, box_overlap, box_pair_chunks
 
-__all__ = ["Crossings", "batch_crossings", "matched_hits", "crossings", "self_crossings", "is_simple", "segment_hits"]
+__all__ = [
+    "Crossings",
+    "batch_crossings",
+    "matched_hits",
+    "crossings",
+    "self_crossings",
+    "is_simple",
+    "simple_curves",
+    "segment_hits",
+]
 
 #: Two segments whose directions differ by less than this sine may lie along each other.
 _PARALLEL_SINE = 1e-3
@@ -453,15 +462,94 @@ def is_simple(curve, closed):
     Stops at the first run of candidate segment pairs holding a crossing: a scribble's
     million self-crossings are not enumerated to answer no.
     """
-    if any(len(i) for i, _, _, _ in _SelfHits(curve, closed).runs()):
-        return False
-    e = edges(curve, closed)
-    # Repeated points (within round-off) are one point, not a fold.
-    e = e[np.linalg.norm(e, axis=1) > tol.COINCIDENT * scale_of(curve)]
-    prev = np.roll(e, 1, axis=0) if closed else e[:-1]
-    nxt = e if closed else e[1:]
+    return bool(simple_curves([curve], [closed])[0])
+
+
+def simple_curves(curves, closed):
+    """:func:`is_simple` of many polylines at once: every curve's segments searched together.
+
+    Parameters
+    ----------
+    curves : list of ndarray, shape (N_i, 2)
+    closed : array_like of bool, shape (C,)
+
+    Returns
+    -------
+    ndarray of bool, shape (C,)
+        Each curve's own answer: its tolerances are its own size's, and a pair of segments is
+        tested only within one curve. A curve found to meet itself is searched no further.
+    """
+    closed = np.asarray(closed, dtype=bool).reshape(-1)
+    parts = [_Prepared(curve, bool(loop)) for curve, loop in zip(curves, closed)]
+    simple = np.ones(len(parts), dtype=bool)
+    if not parts:
+        return simple
+    scale = np.array([part.scale for part in parts])
+    simple &= ~_spikes(parts)
+    # Hits of non-adjacent segments of one curve, on the curves without repeated points.
+    rg = Ragged.from_list([part.curve for part in parts], closed)
+    e = np.flatnonzero(rg.nxt >= 0)
+    owner = rg.owner[e]
+    local, n = e - rg.offsets[owner], rg.n_edges[owner]
+    c0, ev = rg.pts[e], rg.edge[e]
+    active = simple[owner]
+    for i, j in box_pair_chunks(_apart(_boxes(c0, c0 + ev), owner, len(parts)), active=active):
+        mine = owner[i] == owner[j]
+        i, j = i[mine], j[mine]
+        adjacent = (local[j] - local[i] == 1) | (closed[owner[i]] & (local[i] == 0) & (local[j] == n[i] - 1))
+        i, j = i[~adjacent], j[~adjacent]
+        ok, _, _ = segment_hits(c0[i], ev[i], c0[j], ev[j], scale[owner[i]])
+        met = np.unique(owner[i[ok]])
+        simple[met] = False
+        active[np.isin(owner, met)] = False  # read before the next run: searched no further
+    return simple
+
+
+def _apart(boxes, owner, n):
+    """Boxes (K, 4) of ``n`` curves (``owner``, shape (K,)), each curve's moved to a square of
+    its own on a grid, so that only boxes of one curve overlap. Rounding is monotonic, so two
+    boxes of a curve that overlapped still do (a few that only nearly touched may now touch:
+    more candidates, never fewer)."""
+    lo = np.full((n, 2), np.inf)
+    hi = np.full((n, 2), -np.inf)
+    np.minimum.at(lo, owner, boxes[:, :2])
+    np.maximum.at(hi, owner, boxes[:, 2:])
+    used = np.isfinite(lo[:, 0])
+    size = float(np.max(hi[used] - lo[used], initial=0.0))
+    pitch = 2.0 * size if size > 0 else 1.0
+    side = int(np.ceil(np.sqrt(n)))
+    corner = np.c_[np.arange(n) % side, np.arange(n) // side] * pitch
+    shift = np.where(used[:, None], corner - lo, 0.0)[owner]
+    return boxes + np.concatenate([shift, shift], axis=1)
+
+
+class _Prepared:
+    """One curve as :func:`simple_curves` reads it: its size, the curve without repeated
+    points (for crossings), and its consecutive non-zero edges (for fold-back spikes)."""
+
+    def __init__(self, curve, closed):
+        curve = np.asarray(curve, dtype=np.float64).reshape(-1, 2)
+        self.scale = scale_of(curve) if len(curve) else 1.0
+        eps = tol.COINCIDENT * self.scale
+        # Repeated points (a fan of trajectories leaving one corner) are not crossings.
+        step = np.linalg.norm(np.diff(curve, axis=0), axis=1)
+        self.curve = curve[np.r_[True, step > eps]] if len(curve) else curve
+        if closed and len(self.curve) > 1 and np.linalg.norm(self.curve[-1] - self.curve[0]) <= eps:
+            self.curve = self.curve[:-1]
+        # Repeated points (within round-off) are one point, not a fold.
+        e = edges(curve, closed) if len(curve) else np.zeros((0, 2))
+        e = e[np.linalg.norm(e, axis=1) > eps]
+        self.prev = np.roll(e, 1, axis=0) if closed else e[:-1]
+        self.next = e if closed else e[1:]
+
+
+def _spikes(parts):
+    """Curves that fold back on themselves (two consecutive edges antiparallel), shape (C,) of bool."""
+    counts = np.array([len(part.prev) for part in parts])
+    prev = np.concatenate([part.prev for part in parts])
+    nxt = np.concatenate([part.next for part in parts])
     cross = prev[:, 0] * nxt[:, 1] - prev[:, 1] * nxt[:, 0]
     dot = np.einsum("ij,ij->i", prev, nxt)
     lens = np.linalg.norm(prev, axis=1) * np.linalg.norm(nxt, axis=1)
     spike = (np.abs(cross) <= tol.COINCIDENT * lens) & (dot < 0)
-    return not bool(spike.any())
+    return np.bincount(np.repeat(np.arange(len(parts)), counts)[spike], minlength=len(parts)) > 0

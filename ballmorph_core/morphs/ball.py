@@ -3,7 +3,7 @@
 import numpy as np
 
 from ..ballmap.correspondence import ball_map, ball_maps
-from ..ballmap.topology import orient_pair
+from ..ballmap.topology import orient_pairs
 from ..errors import BallMorphError, IncompatibleCurvesError
 from ..geometry.polyline import as_curve, curve_length, resolve_spacing
 from ..options import SAMPLINGS, check_option
@@ -101,19 +101,25 @@ def ball_morphs(pairs, kind, sampling="symmetric", check=True):
         (as the pipeline's ball road), a coincidence threshold of 1e-9 of a pair's size.
     """
     sampling = check_option("sampling", sampling, SAMPLINGS)
-    out, setups, spacings, where = [None] * len(pairs), [], [], []
+    out, valid, where = [None] * len(pairs), [], []
     for k, (P, Q, closed, spacing) in enumerate(pairs):
         try:
             # As make_morph and then ball_map validate them (each curve twice: the same values).
             P, Q = (as_curve(as_curve(c, name, closed), name, closed) for c, name in ((P, "P"), (Q, "Q")))
-            spacing = resolve_spacing(P, Q, closed, spacing)
-            setups.append(orient_pair(P, Q, closed))
+            valid.append((P, Q, closed, resolve_spacing(P, Q, closed, spacing)))
         except BallMorphError as exc:
             out[k] = exc
             continue
-        spacings.append(spacing)
         where.append(k)
-    for k, corr in zip(where, ball_maps(setups, spacings, sampling, check=False)):
+    setups, spacings, mapped = [], [], []
+    for k, (_, _, _, spacing), setup in zip(where, valid, orient_pairs([v[:3] for v in valid])):
+        if isinstance(setup, BallMorphError):
+            out[k] = setup
+        else:
+            setups.append(setup)
+            spacings.append(spacing)
+            mapped.append(k)
+    for k, corr in zip(mapped, ball_maps(setups, spacings, sampling, check=False)):
         report = corr.report
         failed = check and report.violations
         out[k] = IncompatibleCurvesError(report.describe(), report) if failed else _morph(corr, kind)

@@ -24,7 +24,7 @@ import numpy as np
 from .. import tolerances as tol
 from ..ballmap.correspondence import dense_map_batch
 from ..ballmap.thinning import running_backsteps, uniform_picks
-from ..ballmap.topology import orient_pair
+from ..ballmap.topology import orient_pairs
 from ..errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from ..geometry.polyline import curve_length, resolve_spacing, reversal_order, subcurve
 from .ball import ball_morphs, input_fractions
@@ -261,10 +261,13 @@ def build_composites(pairs, kind="circular"):
     """
     method = f"{kind}-ball"
     results, live = _Results(len(pairs)), []
-    for k, (P, Q, closed, spacing, sampling) in enumerate(pairs):
-        pair = _Pair(k, P, Q, closed, None, sampling, None)
-        pair.setup = results.attempt(pair, orient_pair, P, Q, closed)
-        pair.spacing = pair.setup and results.attempt(pair, resolve_spacing, P, Q, closed, spacing)
+    setups = orient_pairs([(P, Q, closed) for P, Q, closed, _, _ in pairs])
+    for k, ((P, Q, closed, spacing, sampling), setup) in enumerate(zip(pairs, setups)):
+        pair = _Pair(k, P, Q, closed, None, sampling, setup)
+        if isinstance(setup, BallMorphError):
+            results.out[k] = setup
+            continue
+        pair.spacing = results.attempt(pair, resolve_spacing, P, Q, closed, spacing)
         if pair.spacing is None:
             continue
         if pair.setup.coincident:

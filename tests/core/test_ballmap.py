@@ -17,6 +17,7 @@ from shapes import (
 import ballmorph_core as bm
 from ballmorph_core.ballmap import candidates, check
 from ballmorph_core.ballmap.candidates import tangent_disks
+from ballmorph_core.ballmap.topology import classify_pairs, orient_pair, orient_pairs
 from ballmorph_core.geometry.intersections import is_simple
 from ballmorph_core.geometry.polyline import vertex_normals
 
@@ -113,6 +114,43 @@ def test_classify_one_example_per_configuration():
         np.sin(2 * np.linspace(0, 2 * np.pi, 100, endpoint=False)),
     ]
     assert bm.classify(figure8, 3 * c, closed=True) == "invalid"
+
+
+def _pairs_of_every_configuration():
+    c = circle(1.0, 100)
+    wavy = graph_stroke(0.0, (0.2,))
+    figure8 = np.c_[np.sin(np.linspace(0, 2 * np.pi, 100, endpoint=False)), np.sin(2 * np.linspace(0, 2 * np.pi, 100))]
+    return [
+        (c, 2 * c, True),
+        (c[::-1].copy(), 2 * c, True),  # counter-clockwise: oriented
+        (c, c + [0.6, 0.0], True),
+        (c, c + [3.0, 0.0], True),
+        (graph_stroke(0.3), graph_stroke(-0.3), False),
+        (graph_stroke(0.3), graph_stroke(-0.3)[::-1].copy(), False),  # reversed: oriented
+        (graph_stroke(0.1), wavy, False),
+        (graph_stroke(0.1), graph_stroke(0.1) + [0, 1], False),
+        (figure8, 3 * c, True),
+        (c, c.copy(), True),  # coincident
+        (graph_stroke(0.2), graph_stroke(0.2), False),
+    ]
+
+
+def test_classify_and_orient_pairs_in_one_batch_answer_each_pair_as_alone():
+    pairs = _pairs_of_every_configuration()
+    assert classify_pairs(pairs) == [bm.classify(P, Q, closed) for P, Q, closed in pairs]
+    assert set(classify_pairs(pairs)) == set(bm.ballmap.CONFIGURATIONS)
+    for (P, Q, closed), got in zip(pairs, orient_pairs(pairs)):
+        try:
+            want = orient_pair(P, Q, closed)
+        except bm.IncompatibleCurvesError as exc:
+            assert isinstance(got, bm.IncompatibleCurvesError) and str(got) == str(exc)
+            continue
+        assert not isinstance(got, Exception)
+        for name in ("P", "Q"):
+            np.testing.assert_array_equal(getattr(got, name), getattr(want, name))
+        for name in ("closed", "side_p", "side_q", "reversed_p", "reversed_q", "coincident"):
+            assert getattr(got, name) == getattr(want, name)
+    assert classify_pairs([]) == [] and orient_pairs([]) == []
 
 
 def test_crossing_loops_with_two_intersection_components_are_invalid():

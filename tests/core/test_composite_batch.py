@@ -267,3 +267,40 @@ def test_disk_between_with_a_tolerance_per_row_bisects_each_row_as_alone():
         )
         for mine, alone in zip(together, one):
             np.testing.assert_array_equal(mine[row], alone[0])
+
+
+class _Frames:
+    """A stand-in composite ball-morph with given in-betweens (T, K, 2)."""
+
+    def __init__(self, frames):
+        self.given = np.asarray(frames)
+
+    def frames(self, ts):
+        return self.given[: len(ts)]
+
+
+def test_chains_are_checked_together_each_as_alone(monkeypatch):
+    """Composites that stray out of their chains' box, loop where neither chain does, fail, or
+    are fine, checked in one batch: each chain's note is the one it gets alone."""
+    x = np.linspace(0.0, 1.0, 20)
+    P, Q = np.c_[x, np.zeros(20)], np.c_[x, np.full(20, 0.5)]
+    middle = 0.5 * (P + Q)
+    looped = middle.copy()
+    looped[[5, 12]] = looped[[12, 5]] + [0.0, 0.1]
+    stands = {
+        0: _Frames([P + [0.0, -1.0]] * 5),  # far outside
+        1: _Frames([looped] + [middle] * 4),  # crosses itself at t = 1/8
+        2: _Frames([middle] * 5),  # followed
+        3: IncompatibleCurvesError("composite ball-morph: no disk bridges P near s=0.5"),
+    }
+    chains = [(P, Q, False, 0.05, f"lens {k + 1}/4", "why") for k in range(4)]
+
+    monkeypatch.setattr(fallbacks, "composite_morphs", lambda pairs, kind: [stands[k] for k in range(len(pairs))])
+    together = [note for _, note in fallbacks.chain_fallbacks(chains, "circular")]
+    alone = []
+    for k, chain in enumerate(chains):
+        monkeypatch.setattr(fallbacks, "composite_morphs", lambda pairs, kind, k=k: [stands[k]])
+        alone.append(fallbacks.chain_fallback(*chain[:3], "circular", *chain[3:])[1])
+    assert together == alone
+    assert "leave the chains' box" in alone[0] and "cross themselves" in alone[1]
+    assert "composite ball-morph used" in alone[2] and "no disk bridges P" in alone[3]

@@ -16,6 +16,7 @@ from ballmorph_core.geometry.intersections import (
     matched_hits,
     segment_hits,
     self_crossings,
+    simple_curves,
 )
 from ballmorph_core.geometry.polyline import (
     COARSEN_RATIO,
@@ -667,6 +668,47 @@ def test_is_simple_stops_early_but_agrees_with_every_self_crossing(seed, closed)
     rng = np.random.default_rng(seed)
     curve = np.cumsum(rng.standard_normal((rng.integers(3, 200), 2)), axis=0)
     assert is_simple(curve, closed) == (len(self_crossings(curve, closed)) == 0)
+
+
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=30)
+def test_simple_curves_answers_each_curve_as_is_simple_does(seed):
+    """Random walks (often crossing themselves), a loop with a repeated point, a fold-back
+    spike and single points, open and closed, lying over each other: each curve's answer is
+    its own (its self-crossings or spikes; another curve's segments never count), and equals
+    what its self-crossings and spikes say."""
+    rng = np.random.default_rng(seed)
+    curves = [np.cumsum(rng.standard_normal((int(rng.integers(3, 60)), 2)), axis=0) for _ in range(6)]
+    ring = circle(1.0, 30)
+    curves += [np.insert(ring, 7, ring[7], axis=0), np.c_[[0.0, 1.0, 0.4, 2.0], [0.0, 0.0, 0.0, 0.0]], np.zeros((1, 2))]
+    closed = rng.random(len(curves)) < 0.5
+    closed[6] = True
+    got = simple_curves(curves, closed)
+    for curve, loop, answer in zip(curves, closed, got):
+        crossing = len(self_crossings(curve, loop)) > 0 if len(curve) > 1 else False
+        assert answer == is_simple(curve, loop)
+        assert not answer or not crossing
+    assert got[6] and not got[7]  # the repeated point is no crossing; the spike folds back
+    assert simple_curves([], []).shape == (0,)
+
+
+def test_simple_curves_searches_a_curve_that_meets_itself_no_further(monkeypatch):
+    """A scribble that crosses itself thousands of times is not searched past its first run
+    of candidates; a simple curve beside it still is, to the end."""
+    rng = np.random.default_rng(4)
+    scribble = rng.random((400, 2))
+    runs = []
+    real = intersections.box_pair_chunks
+
+    def spy(boxes, *args, active=None, **kwargs):
+        for i, j in real(boxes, *args, active=active, budget=2000, **kwargs):
+            runs.append(int(active.sum()))
+            yield i, j
+
+    monkeypatch.setattr(intersections, "box_pair_chunks", spy)
+    line = np.c_[np.linspace(5.0, 9.0, 400), np.zeros(400)]
+    assert simple_curves([scribble, line], [False, False]).tolist() == [False, True]
+    assert runs[0] == 399 + 399 and runs[-1] == 399  # the scribble's edges cleared after its first run
 
 
 def test_crossing_budget_stops_a_crowded_pair_only():
