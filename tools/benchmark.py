@@ -2,14 +2,16 @@
 
 Runs inside bpy (Blender as a Python module, headless)::
 
-    $(tools/bootstrap.sh 5.0.1) tools/benchmark.py [--quick] [--sizes 100x200x9,...] [--kinds loops,open]
+    $(tools/bootstrap.sh 5.0.1) tools/benchmark.py [--quick] [--sizes 100x200x9,...] [--kinds loops,open,jagged]
                                                    [--methods CIRCULAR_BALL,...] [--write docs/benchmark.md]
 
 For every drawing of the grid strokes {10, 100, 400} x points per stroke {50, 200, 500} x
-in-betweens {3, 9, 23}, once with loops and once with open strokes, it builds two identical
-Grease Pencil objects whose layer has key A on frame 1 and key B on frame in-betweens + 2 (key B
-is key A with every stroke moved, turned, scaled and smoothly deformed: a fixed-seed random
-wobble, so the strokes really morph), puts each in Edit Mode in the factory screen's 3D viewport
+in-betweens {3, 9, 23}, once with loops and once with open strokes (and jagged redraws, strokes
+retraced with a tremor whose lenses take the fallback step, on a short grid of their own), it
+builds two identical Grease Pencil objects whose layer has key A on frame 1 and key B on frame
+in-betweens + 2 (key B is key A with every stroke moved, turned, scaled and smoothly deformed: a
+fixed-seed random wobble, so the strokes really morph), puts each in Edit Mode in the factory
+screen's 3D viewport
 (what Blender's operator needs) and times, in this one process:
 
 - ``bpy.ops.grease_pencil.interpolate_sequence`` (C++, pairs strokes by index and lerps),
@@ -66,12 +68,21 @@ ADDON_ID = "ballmorph_inbetween"
 REPO_MODULE = "ballmorph_bench"
 MODULE = f"bl_ext.{REPO_MODULE}.{ADDON_ID}"
 
-KINDS = ("loops", "open")
+KINDS = ("loops", "open", "jagged")
+KIND_TITLES = {
+    "loops": "Loops (closed strokes)",
+    "open": "Open strokes",
+    "jagged": "Jagged redraws (open strokes retraced with a tremor: the fallback path)",
+}
 STROKES = (10, 100, 400)
 POINTS = (50, 200, 500)
 INBETWEENS = (3, 9, 23)
 METHODS = ("CIRCULAR_BALL", "LINEAR_BALL", "PARABOLIC_BALL")
 QUICK_SIZES = ((10, 50, 3), (100, 200, 9))
+# Jagged redraws cross their first drawing again and again: every pair is cut into dozens of
+# lenses and many of them take the composite ball-morph or aligned interpolation (the fallback
+# step), so they get a short grid of their own.
+JAGGED_SIZES = ((10, 60, 9), (60, 60, 9), (200, 60, 9))
 
 # The goals of issue 14 (issue 6 asked for 1.5 and 1.0: out of reach for numpy, see its note).
 GOAL_RATIOS = {(100, 200, 9): 8.0, (400, 500, 23): 5.0}  # cold run, ours (circular) / built-in, at most
@@ -124,7 +135,8 @@ STAGES = {
     "ball-map": [
         ("ballmorph_core.drawing.pipeline", "map_batch"),
         ("ballmorph_core.morphs.ball", "ball_map"),
-        ("ballmorph_core.morphs.composite", "dense_maps"),
+        ("ballmorph_core.morphs.ball", "ball_maps"),
+        ("ballmorph_core.morphs.composite", "dense_map_batch"),
     ],
     "frames": [
         ("ballmorph_core.drawing.layout", "Layout.__init__"),
@@ -165,7 +177,10 @@ def make_keys(kind, n_strokes, n_points, seed=6):
 
     Loops are star-shaped blobs, open strokes gentle arcs; key B moves the whole drawing a little,
     then every stroke by its own small move, turn (up to 8 degrees) and scale (up to 8 %), plus a
-    smooth wobble along its normal (3 random harmonics, up to 6 % of its size).
+    smooth wobble along its normal (3 random harmonics, up to 6 % of its size). Jagged redraws
+    are wavy strokes 0.6 long drawn twice over the same line, moved by (0.01, 0.005), each time
+    with a tremor (normal noise of 0.01 at every point): the two drawings cross each other
+    again and again.
 
     Returns
     -------
@@ -176,6 +191,8 @@ def make_keys(kind, n_strokes, n_points, seed=6):
     cols = math.ceil(math.sqrt(n_strokes))
     drift = np.array([0.15, 0.05])
     key_a, key_b = [], []
+    if kind == "jagged":
+        return _jagged_keys(rng, n_strokes, n_points, cols)
     for i in range(n_strokes):
         centre = np.array([i % cols, -(i // cols)], dtype=float) + rng.uniform(-0.08, 0.08, 2)
         spin = rng.uniform(0, 2 * np.pi)
@@ -211,6 +228,18 @@ def make_keys(kind, n_strokes, n_points, seed=6):
         b = (b - centre) @ turn.T + centre + drift + rng.uniform(-0.06, 0.06, 2)
         key_a.append(a)
         key_b.append(b)
+    return key_a, key_b
+
+
+def _jagged_keys(rng, n_strokes, n_points, cols):
+    """Key A and key B of a jagged drawing (see :func:`make_keys`)."""
+    key_a, key_b = [], []
+    s = np.linspace(0.0, 1.0, n_points)
+    for i in range(n_strokes):
+        corner = np.array([i % cols, -(i // cols)], dtype=float)
+        line = np.c_[0.6 * s, 0.15 * np.sin(np.pi * s * rng.uniform(0.5, 2.0))] + corner
+        key_a.append(line + rng.normal(0.0, 0.01, line.shape))
+        key_b.append(line + [0.01, 0.005] + rng.normal(0.0, 0.01, line.shape))
     return key_a, key_b
 
 
@@ -847,7 +876,7 @@ def _memory_goals(cases):
 def _kind_section(kind, rows, methods, short):
     """The report's tables for one kind of drawing (lines of markdown)."""
     lines = []
-    title = "Loops (closed strokes)" if kind == "loops" else "Open strokes"
+    title = KIND_TITLES[kind]
     lines += [
         "",
         f"## {title}",
@@ -1017,7 +1046,11 @@ def method_notes(cases):
   turned (up to 8 degrees), scaled (up to 8 %) and smoothly deformed (3 random harmonics along
   its normal, up to 6 % of its size), fixed seed: the strokes really morph (a rigid copy would be
   registered exactly and be trivially cheap). Loops and open strokes are separate drawings; key
-  B has the same stroke and point counts, so both operators pair strokes by index.
+  B has the same stroke and point counts, so both operators pair strokes by index. Jagged
+  redraws (their own sizes, {", ".join("x".join(map(str, s)) for s in JAGGED_SIZES)}) are wavy
+  strokes drawn twice over the same line with a tremor (0.01 of noise at every point, key B moved
+  by (0.01, 0.005)): the drawings cross again and again, so each pair is cut into lenses and many
+  lenses take the fallback step (composite ball-morph, else aligned interpolation).
 - **Same process, identical copies.** Each drawing is built twice (the same arrays written
   twice), one object per operator, each in Edit Mode in the factory screen's 3D viewport:
   `grease_pencil.interpolate_sequence` only runs there (poll: 3D viewport, Grease Pencil paint
@@ -1039,8 +1072,9 @@ def method_notes(cases):
 - **Stages.** Separate runs of the circular ball-morph with the add-on's functions wrapped
   (outermost call of each stage, `perf_counter`): `keys.layer_keys` + `pairing.intervals`,
   `grease_pencil.read_strokes`, `PlanCache.plan` and `InbetweenPlan.evaluate` (the core) and
-  inside them `match_strokes`, `ball_maps`/`dense_maps`, the trajectories (`BallPaths` construction, every paths class's
-  `at`, `Morph.frames`/`__call__`, the batch's `carrier_at`), `_assemble`; `writer.write_all`.
+  inside them `match_strokes`, `ball_maps`/`dense_map_batch`, the trajectories (`BallPaths`
+  construction, every paths class's `at`, `Morph.frames`/`__call__`, the batch's `carrier_at`),
+  `_assemble`; `writer.write_all`.
   The wrappers add a few microseconds per call; stages that the core no longer has show n/a.
 - **Peak memory.** One cold run per operator and drawing, each in a fresh bpy process (this
   script with `--probe`): factory settings, the add-on enabled (for both operators, so both
@@ -1096,7 +1130,7 @@ def _parser():
         "--quick", action="store_true", help=f"only {', '.join('x'.join(map(str, s)) for s in QUICK_SIZES)}"
     )
     parser.add_argument("--sizes", type=parse_sizes, help="comma-separated STROKESxPOINTSxINBETWEENS")
-    parser.add_argument("--kinds", default=",".join(KINDS), help="loops, open or both (comma-separated)")
+    parser.add_argument("--kinds", default=",".join(KINDS), help=f"any of {', '.join(KINDS)} (comma-separated)")
     parser.add_argument("--methods", default=",".join(METHODS), help="operator method ids, comma-separated")
     parser.add_argument(
         "--memory-sizes", type=parse_sizes, help="drawings to probe memory on (default: the largest and the goal sizes)"
@@ -1109,9 +1143,12 @@ def _parser():
     return parser
 
 
-def _chosen_sizes(args):
+def _chosen_sizes(args, kind):
+    """The sizes run for drawings of ``kind``."""
     if args.sizes:
         sizes = args.sizes
+    elif kind == "jagged":
+        sizes = list(JAGGED_SIZES[:2] if args.quick else JAGGED_SIZES)
     elif args.quick:
         sizes = list(QUICK_SIZES)
     else:
@@ -1119,20 +1156,20 @@ def _chosen_sizes(args):
     return sorted(sizes, key=lambda s: (s[0] * s[1] * s[2], s))
 
 
-def _run_cases(kinds, sizes, methods, started):
-    """Every case timed in this process (the add-on enabled meanwhile)."""
+def _run_cases(sizes, methods, started):
+    """Every case timed in this process (the add-on enabled meanwhile); ``sizes``: kind -> its sizes."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     link = enable_addon()
     cases = []
     try:
-        for kind in kinds:
-            for strokes, points, inbetweens in sizes:
+        for kind, kind_sizes in sizes.items():
+            for strokes, points, inbetweens in kind_sizes:
                 case = Case(kind, strokes, points, inbetweens)
                 run_case(case, methods, replace=case.size in REPLACE_SIZES)
                 cases.append(case)
                 ours = "  ".join(f"{m.split('_')[0].lower()} {_ms(t.median)}" for m, t in case.ours.items())
                 say(
-                    f"{kind:5s} {case.label:>10s}: built-in {_ms(case.builtin.median)} ms  {ours} ms  "
+                    f"{kind:6s} {case.label:>10s}: built-in {_ms(case.builtin.median)} ms  {ours} ms  "
                     f"({time.perf_counter() - started:.0f} s so far)"
                 )
     finally:
@@ -1150,17 +1187,18 @@ def main(argv=None):
         kind, size, op = args.probe
         say(json.dumps(probe(kind, parse_sizes(size)[0], op)))
         return 0
-    sizes = _chosen_sizes(args)
-    memory_sizes = args.memory_sizes if args.memory_sizes is not None else _default_memory_sizes(sizes)
     kinds = [k for k in args.kinds.split(",") if k]
     methods = [m for m in args.methods.split(",") if m]
     for kind in kinds:
         if kind not in KINDS:
             parser.error(f"--kinds: {kind!r} is not one of {', '.join(KINDS)}")
+    sizes = {kind: _chosen_sizes(args, kind) for kind in kinds}
+    every = [size for kind_sizes in sizes.values() for size in kind_sizes]
+    memory_sizes = args.memory_sizes if args.memory_sizes is not None else _default_memory_sizes(every)
     info = machine()
     say(f"benchmark: bpy {info['bpy']}, {info['cpu']}, nproc {info['nproc']}, commit {info['commit']}")
     started = time.perf_counter()
-    cases = _run_cases(kinds, sizes, methods, started)
+    cases = _run_cases(sizes, methods, started)
     for case in cases:
         if case.size in memory_sizes:
             case.memory = memory_of(case, [BUILTIN, *methods])
