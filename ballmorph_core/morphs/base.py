@@ -125,6 +125,14 @@ class PathMorph(Morph):
     def _frame(self, t):
         return self.paths.at(t)
 
+    def frames(self, ts):
+        """In-between curves at several times, shape (T, K, 2): in one pass where the paths
+        can (``at_times``: the same values as time by time)."""
+        at_times = getattr(self.paths, "at_times", None)
+        if at_times is None:
+            return super().frames(ts)
+        return at_times(np.array([morph_time(t) for t in np.atleast_1d(ts)], dtype=np.float64))
+
     @property
     def p(self):
         return self.paths.start

@@ -267,6 +267,11 @@ class LinearPaths(_Endpoints):
             column += p
         return out
 
+    def at_times(self, ts):
+        """Positions at every time of ``ts`` (shape (T,), each already in [0, 1]), shape
+        (T, K, 2): the values :meth:`at` gives time by time, in one pass."""
+        return self.p + np.asarray(ts, dtype=np.float64)[:, None, None] * (self.q - self.p)
+
 
 class BallPaths(_Endpoints):
     """One of the five ball-morph paths for every contact pair.
@@ -449,6 +454,32 @@ class BallPaths(_Endpoints):
         for axis, column in enumerate((x, y)):
             column *= length
             np.add(column, p[axis], out=out[:, axis])
+        return out
+
+    def at_times(self, ts):
+        """Positions at every time of ``ts`` (shape (T,), each already in [0, 1]), shape
+        (T, K, 2): the values :meth:`at` gives time by time (a morph's sampled frames, a
+        composite's stages). The circular paths are computed for all times in one pass, each
+        value by the same operations as :meth:`_circular_at`'s; the others time by time."""
+        ts = np.asarray(ts, dtype=np.float64)
+        if self.kind != "circular" or not len(ts):
+            return np.stack([self.at(t) for t in ts]) if len(ts) else np.zeros((0, *self.p.shape))
+        self.at(0.0)  # the work buffers' columns and the angles' bound
+        (u0, u1), p = self._columns
+        shape = (len(ts), len(self.p))
+        turn = np.multiply(self._phi, ts[:, None])
+        cos, sin, length, term = (np.empty(shape) for _ in range(4))
+        _sincos(turn.reshape(-1), sin.reshape(-1), cos.reshape(-1), length.reshape(-1), self._bound)
+        np.multiply(self._per_sin, sin, out=length)
+        length += np.multiply(self._straight, ts[:, None], out=term)
+        x, y = np.multiply(cos, u0, out=turn), sin  # u turned by phi t
+        x -= np.multiply(sin, u1, out=term)
+        np.multiply(sin, u0, out=y)
+        y += np.multiply(cos, u1, out=term)
+        out = np.empty((*shape, 2))
+        for axis, column in enumerate((x, y)):
+            column *= length
+            np.add(column, p[axis], out=out[:, :, axis])
         return out
 
     def at(self, t, out=None):

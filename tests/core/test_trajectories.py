@@ -2,10 +2,13 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from shapes import circle
 
 import ballmorph_core as bm
-from ballmorph_core.morphs.paths import KINDS, BallPaths, LevelPaths, SampledPaths
+from ballmorph_core.morphs.base import PathMorph
+from ballmorph_core.morphs.paths import KINDS, BallPaths, LevelPaths, LinearPaths, SampledPaths
 
 # A right-angle contact: p on the x axis, m above it, q to the right of m (r = 1, psi = 90 deg).
 P1, M1, Q1 = np.array([[0.0, 0.0]]), np.array([[0.0, 1.0]]), np.array([[1.0, 1.0]])
@@ -230,3 +233,21 @@ def test_inverted_tables_reach_their_levels(shape):
     assert f.shape == (k, j) and np.all((f >= 0) & (f <= s - 1))
     for row, fractions in zip(table, f):
         np.testing.assert_allclose(np.interp(fractions, np.arange(s), row), levels, atol=1e-12)
+
+
+@given(st.integers(0, 2**32 - 1), st.sampled_from(KINDS + ("line",)))
+@settings(max_examples=40)
+def test_frames_at_many_times_are_those_of_each_time(seed, kind):
+    """A morph's frames at many times, in one pass where its paths can (circular and straight
+    paths), are bitwise the frames time by time; times outside [0, 1] are clamped as one by one."""
+    rng = np.random.default_rng(seed)
+    k = int(rng.integers(1, 40))
+    p, m, q = (rng.normal(size=(k, 2)) for _ in range(3))
+    m[: k // 3] = 0.5 * (p[: k // 3] + q[: k // 3])  # straight paths (phi 0) among them
+    paths = LinearPaths(p, q) if kind == "line" else BallPaths(p, m, q, kind)
+    morph = PathMorph("test", False, paths, np.linspace(0, 1, k), np.linspace(0, 1, k))
+    ts = np.r_[rng.random(int(rng.integers(0, 30))), 0.0, 1.0, -0.5, 1.5]
+    want = np.stack([morph(t) for t in ts])
+    np.testing.assert_array_equal(morph.frames(ts), want)
+    np.testing.assert_array_equal(morph.frames(0.25), morph(0.25)[None])
+    assert morph.frames([]).shape == (0, k, 2)
