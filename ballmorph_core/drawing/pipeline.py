@@ -356,6 +356,8 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
     counts = np.bincount(chains.pair, minlength=len(index))
     good = np.array([r is not None and not r.violations for r in maps.reports], dtype=bool)
     failing = np.flatnonzero(~good & ~chains.static)
+    if not len(failing):
+        return good
     orders = failing - np.searchsorted(chains.pair, chains.pair[failing])
     wanted = []
     for k, order in zip(failing, orders):
