@@ -220,10 +220,13 @@ def arc_length_morphs(R, Q, spacing):
     return morphs
 
 
-def unsplittable(P, Q, closed, why):
-    """Why a pair cannot be cut into lenses, for the note: a stroke crossing itself, else ``why``."""
-    for which, curve in (("first", P), ("second", Q)):
-        if not is_simple(curve, closed):
+def unsplittable(P, Q, closed, why, simple=None):
+    """Why a pair cannot be cut into lenses, for the note: a stroke crossing itself, else ``why``
+    (``simple``: whether P and Q are simple, when the caller asked :func:`simple_curves` for
+    many pairs at once)."""
+    simple = (is_simple(P, closed), is_simple(Q, closed)) if simple is None else simple
+    for which, ok in zip(("first", "second"), simple):
+        if not ok:
             return f"the {which} key's stroke crosses itself, which no ball-morph can follow"
     return why
 

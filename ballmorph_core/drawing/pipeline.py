@@ -38,6 +38,7 @@ from .. import tolerances as tol
 from ..ballmap.correspondence import map_batch
 from ..ballmap.onemap import OneWayMap
 from ..errors import InvalidCurveError
+from ..geometry.intersections import simple_curves
 from ..geometry.polyline import (
     already_clean,
     as_curve,
@@ -184,6 +185,11 @@ def choose_roads(R, Q, events, coincident, near, carrier, scale):
     ask = np.flatnonzero((kind == "whole") & ~coincident)
     inside_q = Q.contains(np.take(R.pts, R.offsets[ask], axis=0), ask)
     nested[ask] = inside_q | R.contains(np.take(Q.pts, Q.offsets[ask], axis=0), ask)
+    free = ~coincident & (kind != "near") & ~((carrier == "none") & ~closed & ~(first & last))
+    # Pairs that cannot be cut into lenses say whether a stroke crosses itself: asked of all at once.
+    told = np.flatnonzero(free & (~events.agree | ((kind == "whole") & ~nested)))
+    told_simple = simple_curves([c for k in told for c in (R.curve(k), Q.curve(k))], np.repeat(closed[told], 2))
+    simple = dict(zip(told.tolist(), told_simple.reshape(-1, 2)))
     for c in range(n):
         if coincident[c]:
             kind[c] = "carrier"
@@ -193,10 +199,10 @@ def choose_roads(R, Q, events, coincident, near, carrier, scale):
             kind[c], reason[c] = "linear", "the strokes do not share endpoints and no carrier is used"
         elif not events.agree[c]:
             kind[c] = "aligned"
-            reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), events.why_tangled(c))
+            reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), events.why_tangled(c), simple[c])
         elif kind[c] == "whole" and not nested[c]:
             why = "the loops neither cross nor lie one inside the other"
-            kind[c], reason[c] = "linear", unsplittable(R.curve(c), Q.curve(c), True, why)
+            kind[c], reason[c] = "linear", unsplittable(R.curve(c), Q.curve(c), True, why, simple[c])
     return _Roads(kind, reason)
 
 

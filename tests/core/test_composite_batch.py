@@ -304,3 +304,27 @@ def test_chains_are_checked_together_each_as_alone(monkeypatch):
     assert together == alone
     assert "leave the chains' box" in alone[0] and "cross themselves" in alone[1]
     assert "composite ball-morph used" in alone[2] and "no disk bridges P" in alone[3]
+
+
+def test_pairs_that_cannot_be_cut_into_lenses_say_so_together_as_alone():
+    """Pairs tangled beyond lenses say whether a key's stroke crosses itself; asked of every
+    such pair of a drawing at once, each says what it says alone."""
+    t = np.linspace(0, 4 * np.pi, 90)
+    curl = 0.2 * np.c_[t - 2 * np.sin(t), 1 - 2 * np.cos(t)]  # a prolate cycloid: crosses itself
+    arc = np.c_[np.linspace(0, 2.5, 60), 0.3 * np.sin(np.linspace(0, np.pi, 60))]
+    pairs = [(curl, curl * (1.0, 1.4) + (0.5, 0.2)), (curl, arc), (arc, arc * (1.0, -1.0) + (0.1, 0.0))]
+
+    def key(strokes):
+        return StrokeSet.from_strokes(
+            [np.c_[s[:, 0] + 10 * k, np.zeros(len(s)), s[:, 1]] for k, s in enumerate(strokes)]
+        )
+
+    together = bm.inbetween(key([a for a, _ in pairs]), key([b for _, b in pairs]), [0.5]).pairs
+    for (a, b), got in zip(pairs, together):
+        alone = bm.inbetween(key([a]), key([b]), [0.5]).pairs[0]
+        assert (got.method, got.reason) == (alone.method, alone.reason)
+    assert [got.reason.startswith("the first key's stroke crosses itself") for got in together] == [True, True, False]
+    assert fallbacks.unsplittable(arc, curl, False, "why", (True, False)).startswith("the second key's stroke")
+    assert fallbacks.unsplittable(arc, curl, False, "why") == fallbacks.unsplittable(
+        arc, curl, False, "why", (True, False)
+    )
