@@ -426,6 +426,17 @@ class BallPaths(_Endpoints):
             return self._chord / np.sinc(self._phi / np.pi)
         return self._par_len
 
+    def _circular_work(self):
+        """The circular paths' kept work buffers (5, K), their ``u`` and ``p`` as contiguous
+        columns, and the bound of every angle phi t (made at the first evaluation)."""
+        if self._work is None:
+            self._work = np.empty((5, len(self.p)))
+            self._columns = tuple(np.ascontiguousarray(a.T) for a in (self._u, self.p))
+            # Every angle phi t lies within the largest |phi| (at most pi: phi is an arctan2).
+            largest = float(np.max(np.abs(self._phi), initial=0.0))
+            self._bound = largest if largest <= np.pi else np.pi
+        return self._work
+
     def _circular_at(self, t, out):
         """The circular paths at time ``t`` into ``out`` (K, 2): the chord from p to the point
         reached after turning 2 phi t, of length |d| sin(phi t) / sin(phi), along u turned by
@@ -435,13 +446,13 @@ class BallPaths(_Endpoints):
         ``p + length * rotate(u, phi t)``): each full-size temporary costs a redo its page
         faults, frame after frame.
         """
-        if self._work is None:
-            self._work = np.empty((5, len(self.p)))
-            self._columns = tuple(np.ascontiguousarray(a.T) for a in (self._u, self.p))
-            # Every angle phi t lies within the largest |phi| (at most pi: phi is an arctan2).
-            largest = float(np.max(np.abs(self._phi), initial=0.0))
-            self._bound = largest if largest <= np.pi else np.pi
-        turn, cos, sin, length, term = self._work
+        return self._circular(t, self._circular_work(), out)
+
+    def _circular(self, t, work, out):
+        """:meth:`_circular_at` at ``t`` (a float, or times of shape (T, 1)) with work buffers
+        ``work`` (5 arrays of the result's shape without its last axis) into ``out`` (that shape
+        and 2): elementwise, so each value is the same whatever the shape."""
+        turn, cos, sin, length, term = work
         (u0, u1), p = self._columns
         np.multiply(self._phi, t, out=turn)
         _sincos(turn, sin, cos, length, self._bound)
@@ -453,34 +464,22 @@ class BallPaths(_Endpoints):
         y += np.multiply(cos, u1, out=term)
         for axis, column in enumerate((x, y)):
             column *= length
-            np.add(column, p[axis], out=out[:, axis])
+            np.add(column, p[axis], out=out[..., axis])
         return out
 
     def at_times(self, ts):
         """Positions at every time of ``ts`` (shape (T,), each already in [0, 1]), shape
         (T, K, 2): the values :meth:`at` gives time by time (a morph's sampled frames, a
-        composite's stages). The circular paths are computed for all times in one pass, each
-        value by the same operations as :meth:`_circular_at`'s; the others time by time."""
+        composite's stages). The circular paths in one pass (:meth:`_circular` on (T, K)
+        buffers); the others time by time."""
         ts = np.asarray(ts, dtype=np.float64)
-        if self.kind != "circular" or not len(ts):
-            return np.stack([self.at(t) for t in ts]) if len(ts) else np.zeros((0, *self.p.shape))
-        self.at(0.0)  # the work buffers' columns and the angles' bound
-        (u0, u1), p = self._columns
+        if not len(ts):
+            return np.zeros((0, *self.p.shape))
+        if self.kind != "circular":
+            return np.stack([self.at(t) for t in ts])
+        self._circular_work()
         shape = (len(ts), len(self.p))
-        turn = np.multiply(self._phi, ts[:, None])
-        cos, sin, length, term = (np.empty(shape) for _ in range(4))
-        _sincos(turn.reshape(-1), sin.reshape(-1), cos.reshape(-1), length.reshape(-1), self._bound)
-        np.multiply(self._per_sin, sin, out=length)
-        length += np.multiply(self._straight, ts[:, None], out=term)
-        x, y = np.multiply(cos, u0, out=turn), sin  # u turned by phi t
-        x -= np.multiply(sin, u1, out=term)
-        np.multiply(sin, u0, out=y)
-        y += np.multiply(cos, u1, out=term)
-        out = np.empty((*shape, 2))
-        for axis, column in enumerate((x, y)):
-            column *= length
-            np.add(column, p[axis], out=out[:, :, axis])
-        return out
+        return self._circular(ts[:, None], np.empty((5, *shape)), np.empty((*shape, 2)))
 
     def at(self, t, out=None):
         """Positions at time ``t`` in [0, 1] (uniform arc-length speed), shape (K, 2); the
