@@ -185,11 +185,7 @@ def choose_roads(R, Q, events, coincident, near, carrier, scale):
     ask = np.flatnonzero((kind == "whole") & ~coincident)
     inside_q = Q.contains(np.take(R.pts, R.offsets[ask], axis=0), ask)
     nested[ask] = inside_q | R.contains(np.take(Q.pts, Q.offsets[ask], axis=0), ask)
-    free = ~coincident & (kind != "near") & ~((carrier == "none") & ~closed & ~(first & last))
-    # Pairs that cannot be cut into lenses say whether a stroke crosses itself: asked of all at once.
-    told = np.flatnonzero(free & (~events.agree | ((kind == "whole") & ~nested)))
-    told_simple = simple_curves([c for k in told for c in (R.curve(k), Q.curve(k))], np.repeat(closed[told], 2))
-    simple = dict(zip(told.tolist(), told_simple.reshape(-1, 2)))
+    told = {}  # pairs that cannot be cut into lenses: why, said once their strokes are checked
     for c in range(n):
         if coincident[c]:
             kind[c] = "carrier"
@@ -198,11 +194,14 @@ def choose_roads(R, Q, events, coincident, near, carrier, scale):
         elif carrier == "none" and not closed[c] and not (first[c] and last[c]):
             kind[c], reason[c] = "linear", "the strokes do not share endpoints and no carrier is used"
         elif not events.agree[c]:
-            kind[c] = "aligned"
-            reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), events.why_tangled(c), simple[c])
+            kind[c], told[c] = "aligned", events.why_tangled(c)
         elif kind[c] == "whole" and not nested[c]:
-            why = "the loops neither cross nor lie one inside the other"
-            kind[c], reason[c] = "linear", unsplittable(R.curve(c), Q.curve(c), True, why, simple[c])
+            kind[c], told[c] = "linear", "the loops neither cross nor lie one inside the other"
+    # Whether a key's stroke crosses itself, asked of all of them at once.
+    asked = list(told)
+    simple = simple_curves([c for k in asked for c in (R.curve(k), Q.curve(k))], np.repeat(closed[asked], 2))
+    for c, both in zip(asked, simple.reshape(-1, 2)):
+        reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), told[c], both)
     return _Roads(kind, reason)
 
 
