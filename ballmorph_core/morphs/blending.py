@@ -122,7 +122,6 @@ class _Stretch:
     s_a: float
     ends: tuple
     windows: tuple
-    edges: tuple
 
 
 def _stretch(maps, side, first, last):
@@ -148,12 +147,10 @@ def _stretch(maps, side, first, last):
     s_a = own.cum[lip_a]
     s_b = own.cum[lip_b] + (own.length if closed and lip_b <= lip_a else 0.0)
     i, j = _jumping_samples(other_map.s_dst, s_a, s_b, own, closed, side)
-    a_e = own.pts[:n_edges]
-    b_e = np.roll(own.pts, -1, axis=0)[:n_edges] if closed else own.pts[1:]
     src, nrm_src = other_map.src, other_map.n_src
     ends = (src[i : i + 1], nrm_src[i : i + 1], src[j : j + 1], nrm_src[j : j + 1])
     windows = _lip_windows(lip_a, lip_b, n_edges, closed)
-    return _Stretch(maps, own, other, closed, s_a, ends, windows, (a_e, b_e, own.enormals))
+    return _Stretch(maps, own, other, closed, s_a, ends, windows)
 
 
 def _bridge(stretch, side, x, nrm, r, qa, qb):
@@ -236,18 +233,31 @@ def bridges_of(all_maps, side):
 
 
 def _disks(stretches):
-    """Every stretch's bridging disk by one :func:`disk_between` (rows of their curves' edges
-    laid one after the other): ``(x, nrm, r, qa, qb)`` per stretch, each one row."""
+    """Every stretch's bridging disk by one :func:`disk_between` (rows of their curves' edges,
+    each curve's laid once, one after the other): ``(x, nrm, r, qa, qb)`` per stretch, each one
+    row."""
     if not stretches:
         return []
-    counts = np.array([len(st.edges[0]) for st in stretches])
-    base = np.cumsum(counts) - counts
-    edges = tuple(np.concatenate([st.edges[k] for st in stretches]) for k in range(3))
+    laid, first, base, count = [], {}, [], 0  # each curve (a stretch's own side, by identity) once
+    for st in stretches:
+        if id(st.own) not in first:
+            first[id(st.own)] = count
+            laid.append(_edges(st.own, st.closed))
+            count += len(laid[-1][0])
+        base.append(first[id(st.own)])
+    edges = tuple(np.concatenate([e[k] for e in laid]) for k in range(3))
     ends = tuple(np.concatenate([st.ends[k] for st in stretches]) for k in range(4))
     windows = tuple([st.windows[k] + b for st, b in zip(stretches, base)] for k in range(2))
     eps = np.array([st.maps.eps for st in stretches])
     x, nrm, r, qa, qb = disk_between(ends, edges, windows, eps)
     return list(zip(x, nrm, r, qa, qb))
+
+
+def _edges(own, closed):
+    """A dense curve's edges ``a -> b`` and their gap normals, shapes (E, 2) each."""
+    n_edges = len(own.enormals)
+    b = np.roll(own.pts, -1, axis=0)[:n_edges] if closed else own.pts[1:]
+    return own.pts[:n_edges], b, own.enormals
 
 
 def _blend_order(items, closed, length):
