@@ -116,13 +116,15 @@ def _predecessor(visited, rows, j):
     return visited[int(rows[:, j].argmin())]
 
 
-def solve_assignment(cost):
+def solve_assignment(cost, duals=False):
     """Minimum-cost assignment of rows to columns (rectangular allowed).
 
     Parameters
     ----------
     cost : array_like, shape (R, C)
         Finite costs.
+    duals : bool
+        Also return the optimal dual potentials.
 
     Returns
     -------
@@ -130,6 +132,11 @@ def solve_assignment(cost):
         Row ``rows[k]`` is assigned column ``cols[k]``; rows sorted. The sum of
         ``cost[rows, cols]`` is minimal over all assignments of ``min(R, C)`` distinct rows to
         distinct columns.
+    u, v : ndarray, shape (R,), (C,)
+        Only with ``duals``: potentials with ``u_i + v_j <= cost_ij`` for every pair, equal on
+        the pairs assigned, and 0 on the rows or columns left out (the larger side's). So any
+        other table ``c >= u_i + v_j`` everywhere has the same assignment among its optimal
+        ones (the certificate a solve on part of a table is checked with).
 
     Raises
     ------
@@ -149,15 +156,18 @@ def solve_assignment(cost):
         raise InvalidCurveError(f"cost: expected a 2-D array, got shape {c.shape}")
     if not np.all(np.isfinite(c)):
         raise InvalidCurveError("cost: every entry must be finite")
-    transposed = c.shape[0] > c.shape[1]
+    shape, transposed = c.shape, c.shape[0] > c.shape[1]
     c = np.ascontiguousarray(c.T if transposed else c)
     if c.shape[0] == 0:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    duals = _Duals.row_reduced(c)
-    for cur in np.flatnonzero(duals.col4row < 0):
-        duals.augment(cur)
+        none = np.zeros(0, np.int64)
+        return (none, none, np.zeros(shape[0]), np.zeros(shape[1])) if duals else (none, none)
+    solved = _Duals.row_reduced(c)
+    for cur in np.flatnonzero(solved.col4row < 0):
+        solved.augment(cur)
     rows = np.arange(c.shape[0])
     if transposed:
-        order = np.argsort(duals.col4row)
-        return duals.col4row[order], rows[order]
-    return rows, duals.col4row.copy()
+        order = np.argsort(solved.col4row)
+        rows, cols, u, v = solved.col4row[order], rows[order], solved.v, solved.u
+    else:
+        rows, cols, u, v = rows, solved.col4row.copy(), solved.u, solved.v
+    return (rows, cols, u, v) if duals else (rows, cols)

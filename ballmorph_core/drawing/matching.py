@@ -25,7 +25,18 @@ sizes (``r``, the RMS distance of the samples from their centroid), once the key
 
 So a stroke turned by any angle, scaled from 1/4 to 4 times or moved by a few of its own sizes
 still pairs, and a small stroke is not paired with a big one across the drawing. ``G`` is found by
-alternating (assign, fit ``G`` to the paired centroids) from a few starting guesses.
+alternating (assign, fit ``G`` to the paired centroids) from a few starting guesses: no motion,
+the shift of the keys' ink, and the drawing order's motion where the order accounts for how the
+drawing moved.
+
+Pairs near each other
+---------------------
+Most pairs of a drawing of many strokes could never be formed. At each motion the pairs whose
+place term alone stays below ``MATCH_NEAR_COST`` are priced and solved first; the solve's dual
+potentials certify it for every pair (``u_i + v_j`` at most what each pair left out costs), or
+the strokes that break the certificate get all their pairs priced. Where that does not settle
+a motion, the whole table is priced (matrix products: the faster where most pairs may form),
+and so are the later motions'. Either way the assignment is an optimal one of the whole table.
 
 Direction
 ---------
@@ -51,6 +62,7 @@ from .. import tolerances as tol
 from ..errors import InvalidCurveError
 from ..geometry.polyline import as_curve, curve_length, resample
 from ..geometry.ragged import Ragged, budget_slices, ragged_arange
+from ..geometry.spatial import box_pairs
 from ..options import MATCHINGS, check_option
 from .assignment import solve_assignment
 
@@ -69,6 +81,15 @@ MATCH_CYCLIC_PENALTY = 0.1
 #: MATCH_INDEX_FACTOR of the optimal assignment's.
 MATCH_INDEX_MAX_COST = 0.75
 MATCH_INDEX_FACTOR = 1.25
+#: The drawing order's motion is a starting guess when it accounts for at least this share of
+#: the spread of key B's strokes (a reordered key's accounts for about 1 / count).
+MATCH_ORDER_EXPLAINS = 0.25
+#: A motion's assignment is first solved on the pairs whose place term alone stays below this
+#: (each stroke's neighbours), and kept when its dual potentials certify it.
+MATCH_NEAR_COST = 0.1
+#: ... and its strokes whose potentials do not certify it get all their pairs priced, while
+#: they stay within this share of the strokes (beyond, the whole table is priced).
+MATCH_NEAR_SHARE = 1 / 16
 #: Per pair, totals closer than this are equal (round-off of the cost evaluation).
 MATCH_ROUNDOFF = 1e-6
 #: Alternations of (assign strokes, re-fit the keys' overall motion) per starting guess.
@@ -304,8 +325,19 @@ def _complex(samples):
     return samples[..., 0] + 1j * samples[..., 1]
 
 
+def _residual(d, norms):
+    """``clip(1 - |d|^2 / norms, 0, 1)`` in place from ``|d|`` (the similarity fit's residual
+    from the product ``d = <a, b>`` and ``|a|^2 |b|^2``), shape of ``d``."""
+    e = np.abs(d)
+    np.square(e, out=e)
+    e /= norms
+    np.subtract(1.0, e, out=e)
+    return np.clip(e, 0.0, 1.0, out=e)
+
+
 def _open_shapes(a, b):
-    """Residuals of open (and mixed) pairs, both directions, and the turns of the fits.
+    """Residuals of open (and mixed) pairs, both directions, and the turns of the fits, for
+    every pair (matrix products: the fastest where most pairs are asked for).
 
     Parameters
     ----------
@@ -322,16 +354,24 @@ def _open_shapes(a, b):
     norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
     conj_a, out = np.conj(a), []
     for read in (b, b[:, ::-1]):
-        # One direction at a time, in place from |<a_i, b_j>| (the values of
-        # clip(1 - |d|^2 / norms, 0, 1)): the complex products are the largest arrays here.
+        # One direction at a time: the complex products are the largest arrays here.
         d = conj_a @ read.T
-        e = np.abs(d)
-        np.square(e, out=e)
-        e /= norms
-        np.subtract(1.0, e, out=e)
-        np.clip(e, 0.0, 1.0, out=e)
-        out.append((e, np.angle(d)))
+        out.append((_residual(d, norms), np.angle(d)))
         del d
+    (e_f, turn_f), (e_r, turn_r) = out
+    return e_f, e_r, turn_f, turn_r
+
+
+def _pair_shapes(a, b):
+    """:func:`_open_shapes` of pairs: ``a[k]`` with ``b[k]`` (shapes (K, m), complex, centred),
+    each ``e_fwd, e_rev, turn_fwd, turn_rev`` of shape (K,). Each pair's values are its own
+    (the same however many pairs are asked at once); they differ from the matrix products'
+    by round-off (the sums are taken in another order)."""
+    norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1) * np.sum(np.abs(b) ** 2, axis=1), 1e-300)
+    conj_a, out = np.conj(a), []
+    for read in (b, b[:, ::-1]):
+        d = np.sum(conj_a * read, axis=1)
+        out.append((_residual(d, norms), np.angle(d)))
     (e_f, turn_f), (e_r, turn_r) = out
     return e_f, e_r, turn_f, turn_r
 
@@ -404,47 +444,114 @@ def _backwards(samples):
     return np.concatenate([samples[..., :1], samples[..., :0:-1]], axis=-1)
 
 
+@dataclass
+class _Priced:
+    """The pairs priced at one motion of key A, and what those left out cost at least.
+
+    Attributes
+    ----------
+    rows, cols : ndarray of int, shape (K,)
+        Pair ``k`` is stroke ``rows[k]`` of key A with stroke ``cols[k]`` of key B.
+    costs : ndarray, shape (K,)
+        Exact below ``MATCH_MAX_COST``, at least that elsewhere.
+    size : tuple of int
+        ``(S_a, S_b)``.
+    floor_a, floor_b : ndarray, shape (S_a,), (S_b,)
+        A pair left out costs at least the larger of its strokes' floors, at most
+        ``MATCH_MAX_COST`` (a stroke's floor is that once all its pairs are priced that may
+        cost less).
+    """
+
+    rows: np.ndarray
+    cols: np.ndarray
+    costs: np.ndarray
+    size: tuple
+    floor_a: np.ndarray
+    floor_b: np.ndarray
+
+    def table(self):
+        """Every pair's cost clipped at ``MATCH_MAX_COST``, those left out at that, shape
+        (S_a, S_b): never below the clipped costs, equal to them on the pairs priced."""
+        table = np.full(self.size, MATCH_MAX_COST)
+        table[self.rows, self.cols] = np.minimum(self.costs, MATCH_MAX_COST)
+        return table
+
+    def cheapest(self):
+        """Each stroke's cheapest pair priced, clipped at its floor: never above its cheapest
+        pair's cost clipped at ``MATCH_MAX_COST``; shapes (S_a,), (S_b,)."""
+        out = []
+        for side, floor in ((self.rows, self.floor_a), (self.cols, self.floor_b)):
+            cheapest = floor.copy()
+            np.minimum.at(cheapest, side, self.costs)
+            out.append(cheapest)
+        return out
+
+    def least_total(self):
+        """:func:`_least_total` of the whole table, from the pairs priced and the floors
+        (float): never above it, so never above any matching's total at this motion."""
+        cheapest_a, cheapest_b = self.cheapest()
+        return 0.5 * (float(cheapest_a.sum()) + float(cheapest_b.sum()))
+
+    def uncertified(self, u, v):
+        """The strokes whose pairs must all be priced before potentials ``u``, ``v`` (shapes
+        (S_a,), (S_b,)) of a solve of :meth:`table` can certify it: masks, shapes (S_a,),
+        (S_b,), none when they do.
+
+        The solve's potentials hold on its table (``u_i + v_j`` at most each entry), so they
+        hold on every pair of a stroke whose pairs are all priced: those left out cost
+        ``MATCH_MAX_COST`` or more, the table's entry. Between the other strokes, a pair
+        left out costs at least ``level``, and a split ``u_i <= t``, ``v_j <= level - t``
+        certifies every such pair: of a few splits, the one leaving the fewest strokes over
+        their bound."""
+        open_a, open_b = self.floor_a < MATCH_MAX_COST, self.floor_b < MATCH_MAX_COST
+        if not (open_a.any() and open_b.any()):
+            return np.zeros(len(u), bool), np.zeros(len(v), bool)
+        level = float(min(self.floor_a[open_a].min(), self.floor_b[open_b].min()))
+        top_u, top_v = float(u[open_a].max()), float(v[open_b].max())
+        best = None
+        for t in (0.5 * level, level - max(top_v, 0.0), max(top_u, 0.0)):
+            over = (u > t) & open_a, (v > level - t) & open_b
+            if best is None or over[0].sum() + over[1].sum() < best[0].sum() + best[1].sum():
+                best = over
+        return best
+
+
 class _CostTable:
     """Pair costs of two keys, for any overall motion (see the module notes).
 
-    A loop pair's shape term (its FFT fit, the bulk of the table) is fitted only once a cost
-    asked for may fall below ``MATCH_MAX_COST`` (the other terms alone say when it cannot):
-    a pair never formed needs no exact cost.
+    A pair's shape term (the fit of its samples, the bulk of a cost) is fitted only once a
+    cost asked for may fall below ``MATCH_MAX_COST`` (the other terms alone say when it
+    cannot): a pair never formed needs no exact cost. Costs come two ways: the pairs near
+    each other (:meth:`priced`, each stroke's neighbours: what a drawing of many small strokes
+    needs), or the whole table (:meth:`costs`; once asked for, every open pair is fitted at
+    once by matrix products, the fastest where most pairs may be formed).
 
     Attributes
     ----------
     shape : ndarray, shape (S_a, S_b)
         ``sqrt(e_ij)``, the similarity-free shape difference; 0 where not fitted yet.
+    whole : bool
+        Whether the whole table's open fits are made (then they are the ones read).
     """
 
     def __init__(self, key_a, key_b):
         ca, cb = key_a.centroids(), key_b.centroids()
         self.ca, self.cb = _complex(ca), _complex(cb)
         self.ra, self.rb = key_a.sizes(), key_b.sizes()
-        self.valid = key_a.valid[:, None] & key_b.valid[None, :]
-        self.mixed = key_a.loop[:, None] != key_b.loop[None, :]
+        self._valid = key_a.valid, key_b.valid
+        self._loop = key_a.loop, key_b.loop
         self.dot_spread = DOT_SPREAD * max(key_a.diagonal, key_b.diagonal, 1e-300)
         self.prior_turn = 1.0 + 0j  # the turn motions are charged from (the hints' when given)
-        if key_a.loop.all() and key_b.loop.all():
-            # Every pair is a loop pair: its shape is its loop fit (or a dot's), its direction
-            # its loops' orientations; the open reads' fits would never be read.
-            e_f = e_r = np.zeros((key_a.count, key_b.count))
-            turn_f = turn_r = np.zeros((key_a.count, key_b.count))
-        else:
-            oa = _complex(key_a.open) - _complex(key_a.open.mean(axis=1))[:, None]
-            ob = _complex(key_b.open) - _complex(key_b.open.mean(axis=1))[:, None]
-            e_f, e_r, turn_f, turn_r = _open_shapes(oa, ob)
-        self._fits, self._turns = (e_f, e_r), (turn_f, turn_r)
         self._open = key_a.open, key_b.open
+        # The open reads centred: how every pair but two loops is fitted.
+        self._centred = [_complex(k.open) - _complex(k.open.mean(axis=1))[:, None] for k in (key_a, key_b)]
+        dot_a, dot_b = self.ra <= 0, self.rb <= 0
+        self.shape = np.zeros((key_a.count, key_b.count))
+        self.shape[dot_a[:, None] != dot_b[None, :]] = DOT_SHAPE
+        # A dot's shape term is fixed; every other pair's is fitted when first needed.
+        self._unfitted = ~(dot_a[:, None] | dot_b[None, :])
+        self.whole, self._fits, self._turns = False, None, None
         self._signs = None  # the loops' areas' signs (0 for open strokes), when both keys have loops
-        self._loop = None  # and the keys' loop flags then
-        self.shape = np.minimum(e_f, e_r)
-        np.sqrt(self.shape, out=self.shape)
-        both_dots = (self.ra[:, None] <= 0) & (self.rb[None, :] <= 0)
-        one_dot = (self.ra[:, None] <= 0) != (self.rb[None, :] <= 0)
-        np.copyto(self.shape, DOT_SHAPE, where=one_dot)
-        np.copyto(self.shape, 0.0, where=both_dots)
-        self._unfitted = np.zeros(self.shape.shape, dtype=bool)  # loop pairs not fitted yet
         la, lb = np.flatnonzero(key_a.loop), np.flatnonzero(key_b.loop)
         if la.size and lb.size:
             ra = _complex(key_a.ring[la]) - self.ca[la, None]
@@ -455,19 +562,61 @@ class _CostTable:
             # Each stroke's row among the loops (-1 for open strokes).
             self._loop_row = np.full(key_a.count, -1), np.full(key_b.count, -1)
             self._loop_row[0][la], self._loop_row[1][lb] = np.arange(len(la)), np.arange(len(lb))
-            self._unfitted[np.ix_(la, lb)] = ~(both_dots | one_dot)[np.ix_(la, lb)]
-            self.shape[self._unfitted] = 0.0
             self._signs = np.zeros(key_a.count), np.zeros(key_b.count)
             self._signs[0][la], self._signs[1][lb] = sign_a, sign_b
-            self._loop = key_a.loop, key_b.loop
+
+    def valid(self, rows, cols):
+        """Whether both strokes of pairs ``(rows[k], cols[k])`` have points, shape (K,)."""
+        return self._valid[0][rows] & self._valid[1][cols]
+
+    def _fit_whole(self):
+        """Fit every open (and mixed) pair at once, by matrix products (once)."""
+        if self.whole:
+            return
+        self.whole = True
+        n_a, n_b = self.shape.shape
+        if self._loop[0].all() and self._loop[1].all():
+            # Every pair is a loop pair: its shape is its loop fit (or a dot's), its direction
+            # its loops' orientations; the open reads' fits would never be read.
+            e_f = e_r = turn_f = turn_r = np.zeros((n_a, n_b))
+        else:
+            e_f, e_r, turn_f, turn_r = _open_shapes(*self._centred)
+        self._fits, self._turns = (e_f, e_r), (turn_f, turn_r)
+        loops = self._loop[0][:, None] & self._loop[1][None, :]
+        open_ = self._unfitted | ~(loops | self._fixed())
+        shape = np.minimum(e_f, e_r)
+        np.sqrt(shape, out=shape)
+        np.copyto(self.shape, shape, where=open_ & ~loops)
+        self._unfitted &= loops
+
+    def _fixed(self):
+        """Pairs with a dot, whose shape term is fixed, shape (S_a, S_b)."""
+        return (self.ra[:, None] <= 0) | (self.rb[None, :] <= 0)
+
+    def _pair_fits(self, rows, cols):
+        """Open fits of pairs ``(rows[k], cols[k])`` (shapes (K,)): ``e_fwd, e_rev, turn_fwd,
+        turn_rev``, shapes (K,), the whole table's where it is fitted."""
+        if self.whole:
+            return (*(e[rows, cols] for e in self._fits), *(t[rows, cols] for t in self._turns))
+        (a, b), out = self._centred, np.empty((4, len(rows)))
+        for sl in budget_slices(np.full(len(rows), a.shape[1]), _CHUNK):
+            out[:, sl] = _pair_shapes(np.take(a, rows[sl], axis=0), np.take(b, cols[sl], axis=0))
+        return tuple(out)
 
     def _fit(self, rows, cols):
-        """Fit the loop pairs ``(rows[k], cols[k])`` (shapes (K,)) not fitted yet."""
+        """Fit the pairs ``(rows[k], cols[k])`` (shapes (K,)) not fitted yet: two loops by their
+        loop fit, any other pair by its open reads."""
         todo = self._unfitted[rows, cols]
         if not todo.any():
             return
         rows, cols = rows[todo], cols[todo]
-        e = self._loop_fits.residuals(self._loop_row[0][rows], self._loop_row[1][cols])
+        loops = self._loop[0][rows] & self._loop[1][cols]
+        e = np.empty(len(rows))
+        if loops.any():
+            e[loops] = self._loop_fits.residuals(self._loop_row[0][rows[loops]], self._loop_row[1][cols[loops]])
+        if not loops.all():
+            e_f, e_r = self._pair_fits(rows[~loops], cols[~loops])[:2]
+            e[~loops] = np.minimum(e_f, e_r)
         self.shape[rows, cols] = np.sqrt(e)
         self._unfitted[rows, cols] = False
 
@@ -475,11 +624,9 @@ class _CostTable:
         """Whether B's stroke runs opposite to A's in pairs ``(rows[k], cols[k])`` (shapes (K,)),
         given the drawing's turn (radians), shape (K,): the direction sharing more ends; then the
         better fit, a turn away from the drawing's counting against it; then the drawn direction
-        (always, next to a dot). Only the pairs formed are read (elementwise: the same values
-        as reading every pair)."""
-        (e_f, e_r), turns = self._fits, self._turns
-        e_f, e_r = e_f[rows, cols], e_r[rows, cols]
-        away = [np.angle(np.exp(1j * (t[rows, cols] - turn))) / np.pi for t in turns]
+        (always, next to a dot)."""
+        e_f, e_r, *turns = self._pair_fits(rows, cols)
+        away = [np.angle(np.exp(1j * (t - turn))) / np.pi for t in turns]
         cost_f, cost_r = e_f + DIRECTION_TURN * away[0] ** 2, e_r + DIRECTION_TURN * away[1] ** 2
         reverse = cost_r < cost_f - EQUAL_FIT
         open_a, open_b = self._open
@@ -492,24 +639,78 @@ class _CostTable:
         # A dot has no direction: its partner keeps the one it was drawn in.
         return reverse & (self.ra[rows] > 0) & (self.rb[cols] > 0)
 
-    def costs(self, a, b, rows=None, cols=None):
+    def near(self, a, b, level=MATCH_MAX_COST, only_a=None, only_b=None):
+        """The pairs whose place term alone stays below the cost ``level`` with key A moved by
+        ``z -> a z + b`` (complex), and perhaps a few more: ``rows, cols``, shapes (K,), sorted
+        by row then column. Only the strokes of masks ``only_a``, ``only_b`` (shapes (S_a,),
+        (S_b,)) when given; strokes with no points are left out (their pairs cost inf).
+
+        The place term is at least ``level`` once the centroids are ``level / W_PLACE`` spreads
+        apart, and a pair's spread ``max(|a| r_i + r_j, dot_spread)`` is at most the sum of the
+        strokes' halves ``max(|a| r_i, dot_spread / 2) + max(r_j, dot_spread / 2)``: boxes of
+        those half-widths (grown by margins far above the round-off) around the moved
+        centroids of A and the centroids of B overlap for every pair that may cost less."""
+        moved = a * self.ca + b
+        ia, ib = (np.flatnonzero(v if k is None else v & k) for v, k in zip(self._valid, (only_a, only_b)))
+        za, zb = moved[ia], self.cb[ib]
+        scale, half_dot, reach = max(abs(a), 1e-300), 0.5 * self.dot_spread, level / W_PLACE * (1.0 + 1e-6)
+        # Round-off of the centroids' coordinates, far below any half-width that matters.
+        slack = 1e-12 * max(np.abs(za).max(initial=0.0), np.abs(zb).max(initial=0.0))
+        half_a = reach * np.maximum(scale * self.ra[ia], half_dot) + slack
+        half_b = reach * np.maximum(self.rb[ib], half_dot) + slack
+        boxes = [(z.real - h, z.imag - h, z.real + h, z.imag + h) for z, h in ((za, half_a), (zb, half_b))]
+        i, j = box_pairs(*boxes)
+        return ia[i], ib[j]
+
+    def priced(self, a, b, level):
+        """The pairs that may cost less than ``level`` (at most ``MATCH_MAX_COST``) with key A
+        moved by ``z -> a z + b`` (complex), and their costs (:class:`_Priced`)."""
+        level = min(level, MATCH_MAX_COST)
+        rows, cols = self.near(a, b, level)
+        floors = np.full(len(self.ra), level), np.full(len(self.rb), level)
+        return _Priced(rows, cols, self.costs(a, b, rows, cols, exact=False), self.shape.shape, *floors)
+
+    def widened(self, priced, a, b, wide_a, wide_b):
+        """``priced`` (at motion ``z -> a z + b``) and every pair of the strokes of masks
+        ``wide_a``, ``wide_b`` (shapes (S_a,), (S_b,)) that may cost less than
+        ``MATCH_MAX_COST`` (:class:`_Priced`)."""
+        n_b = len(self.rb)
+        runs = self.near(a, b, only_a=wide_a), self.near(a, b, only_b=wide_b)
+        code = np.concatenate([i * n_b + j for i, j in runs])
+        code = np.setdiff1d(code, priced.rows * n_b + priced.cols)
+        rows, cols = code // n_b, code % n_b
+        return _Priced(
+            np.concatenate([priced.rows, rows]),
+            np.concatenate([priced.cols, cols]),
+            np.concatenate([priced.costs, self.costs(a, b, rows, cols, exact=False)]),
+            priced.size,
+            np.where(wide_a, MATCH_MAX_COST, priced.floor_a),
+            np.where(wide_b, MATCH_MAX_COST, priced.floor_b),
+        )
+
+    def costs(self, a, b, rows=None, cols=None, exact=True):
         """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b): exact
-        where below ``MATCH_MAX_COST``, elsewhere at least that (those of loop pairs not fitted,
-        bounds from the other terms); with ``rows`` and ``cols`` (shapes (K,)) the exact costs
-        of pairs ``(rows[k], cols[k])`` only, shape (K,) (elementwise: the same values as
-        every pair's).
+        where below ``MATCH_MAX_COST``, elsewhere at least that (those of pairs not fitted,
+        bounds from the other terms); with ``rows`` and ``cols`` (shapes (K,)) the costs of
+        pairs ``(rows[k], cols[k])`` only, shape (K,), exact (or, with ``exact`` False, as
+        the whole table's). Elementwise: a pair's cost is the same whichever pairs are asked,
+        once the whole table's open fits are made (:meth:`_fit_whole`, which the whole table
+        makes).
 
         A cost with its shape term left out is a bound of the cost: the term is not negative
         and every rounded sum after it grows with it."""
-        if rows is not None:
+        if rows is not None and exact:
             self._fit(rows, cols)
             return self._costs(a, b, rows, cols)
-        c = self._costs(a, b)
-        may = self._unfitted & (c < MATCH_MAX_COST)
+        if rows is None:
+            self._fit_whole()
+        c = self._costs(a, b, rows, cols)
+        # The pairs whose bound may fall below the limit: fitted, then priced exactly.
+        may = (self._unfitted if rows is None else self._unfitted[rows, cols]) & (c < MATCH_MAX_COST)
         if may.any():
-            rows, cols = np.nonzero(may)
-            self._fit(rows, cols)
-            c[rows, cols] = self._costs(a, b, rows, cols)
+            fit = np.nonzero(may) if rows is None else (rows[may], cols[may])
+            self._fit(*fit)
+            c[may] = self._costs(a, b, *fit)
         return c
 
     def _costs(self, a, b, rows=None, cols=None):
@@ -518,10 +719,13 @@ class _CostTable:
         moved = a * self.ca + b
         if rows is None:
             ra, rb, za, zb = self.ra[:, None], self.rb[None, :], moved[:, None], self.cb[None, :]
-            shape, mixed, valid = self.shape, self.mixed, self.valid
+            shape = self.shape
+            (loop_a, loop_b), (valid_a, valid_b) = ((f[0][:, None], f[1][None, :]) for f in (self._loop, self._valid))
         else:
             ra, rb, za, zb = self.ra[rows], self.rb[cols], moved[rows], self.cb[cols]
-            shape, mixed, valid = self.shape[rows, cols], self.mixed[rows, cols], self.valid[rows, cols]
+            shape = self.shape[rows, cols]
+            (loop_a, loop_b), (valid_a, valid_b) = ((f[0][rows], f[1][cols]) for f in (self._loop, self._valid))
+        mixed, valid = loop_a != loop_b, valid_a & valid_b
         # The terms of the module notes, each full-size result worked on in place (the same
         # operations in the same order as the plain formula: a drawing of thousands of strokes
         # holds three (S_a, S_b) arrays here instead of a dozen).
@@ -549,7 +753,7 @@ class _CostTable:
 
     def fit_motion(self, rows, cols):
         """Least-squares similarity of the paired centroids (weighted by size): ``(a, b)`` complex."""
-        keep = self.valid[rows, cols]
+        keep = self.valid(rows, cols)
         rows, cols = rows[keep], cols[keep]
         if not len(rows):
             return 1.0 + 0j, 0j
@@ -563,6 +767,20 @@ class _CostTable:
         a = np.sum(w * np.conj(da) * db) / norm if norm > 0 else 1.0 + 0j
         return a, mb - a * ma
 
+    def explained(self, rows, cols, motion):
+        """The share of the spread of B's paired centroids that ``motion`` (complex ``a, b``)
+        accounts for: 1 - (weighted squared misses of A's moved centroids) / (weighted squared
+        distances of B's from their mean), weighted as :meth:`fit_motion`; 1 when they do not
+        spread (float)."""
+        keep = self.valid(rows, cols)
+        rows, cols = rows[keep], cols[keep]
+        w = np.maximum(self.ra[rows] + self.rb[cols], 1e-300)
+        zb = self.cb[cols]
+        spread = np.sum(w * np.abs(zb - np.sum(w * zb) / max(w.sum(), 1e-300)) ** 2)
+        if not spread > 0:
+            return 1.0
+        return 1.0 - float(np.sum(w * np.abs(motion[0] * self.ca[rows] + motion[1] - zb) ** 2) / spread)
+
 
 def _assign_within(costs):
     """Optimal pairs among those cheaper than MATCH_MAX_COST (rows, cols, each shape (K,))."""
@@ -571,6 +789,65 @@ def _assign_within(costs):
     rows, cols = solve_assignment(np.minimum(costs, MATCH_MAX_COST))
     keep = costs[rows, cols] < MATCH_MAX_COST
     return rows[keep], cols[keep]
+
+
+def _assign_at(table, motion, beat=None):
+    """Optimal pairs among those cheaper than MATCH_MAX_COST with key A moved by ``motion``
+    (complex ``a, b``): rows, cols, each shape (K,); None when no matching at this motion
+    totals less than ``beat`` (float).
+
+    Until a table has been priced whole, the pairs near each other are tried first
+    (:func:`_assign_near`); where that does not settle it, the whole table is priced, and so
+    are later motions'.
+    """
+    if not table.whole:
+        solved = _assign_near(table, motion, beat)
+        if solved is not _UNSETTLED:
+            return solved
+    costs = table.costs(*motion)
+    if beat is not None and _least_total(costs) >= beat:
+        return None
+    return _assign_within(costs)
+
+
+#: What :func:`_assign_near` returns when the pairs near each other do not settle a motion.
+_UNSETTLED = object()
+
+
+def _assign_near(table, motion, beat=None):
+    """:func:`_assign_at` from the pairs near each other, or ``_UNSETTLED``.
+
+    The pairs whose place term alone stays below ``MATCH_NEAR_COST`` are priced, and their
+    solve is the solve on every pair when its dual potentials certify it: ``u_i + v_j`` at
+    most what each pair left out costs (:func:`~.assignment.solve_assignment`), so a solve on
+    every pair would find nothing cheaper. The strokes whose potentials could break that get
+    all their pairs priced, and the solve is made again: while they stay within
+    ``MATCH_NEAR_SHARE`` of the strokes (beyond, each stroke's pairs are most of the table).
+    """
+    priced = table.priced(*motion, MATCH_NEAR_COST)
+    most = MATCH_NEAR_SHARE * (len(priced.floor_a) + len(priced.floor_b))
+    # A stroke of the smaller key (the solve's rows, whose potentials are at least their
+    # pair's cost) with no pair priced below the floor breaks the certificate: where many
+    # do, most pairs are needed anyway.
+    cheapest = priced.cheapest()[0 if len(priced.floor_a) <= len(priced.floor_b) else 1]
+    if np.count_nonzero(cheapest >= MATCH_NEAR_COST) > most:
+        return _UNSETTLED
+    while True:
+        if beat is not None and priced.least_total() >= beat:
+            return None
+        if not np.any(priced.costs < MATCH_MAX_COST):
+            return _UNSETTLED
+        clipped = priced.table()
+        rows, cols, u, v = solve_assignment(clipped, duals=True)
+        wide_a, wide_b = priced.uncertified(u, v)
+        if not (wide_a.any() or wide_b.any()):
+            keep = clipped[rows, cols] < MATCH_MAX_COST
+            return rows[keep], cols[keep]
+        wide_a |= priced.floor_a >= MATCH_MAX_COST
+        wide_b |= priced.floor_b >= MATCH_MAX_COST
+        if wide_a.sum() + wide_b.sum() > most:
+            return _UNSETTLED
+        priced = table.widened(priced, *motion, wide_a, wide_b)
 
 
 def _padded_total(pair_costs, n_a, n_b):
@@ -597,8 +874,13 @@ def _guesses(table, key_a, key_b, motion=None):
         shift = _complex(key_b.ink_centroid() - key_a.ink_centroid())
         guesses.append((1.0 + 0j, complex(shift)))
         if key_a.count == key_b.count:
+            # The drawing order's motion, where the order says how the drawing moved: the
+            # motion fitted to a reordered key crowds key A together and leads nowhere (from
+            # there each solve is a table of near-ties, the costliest there is).
             index = np.arange(key_a.count)
-            guesses.append(table.fit_motion(index, index))
+            order = table.fit_motion(index, index)
+            if table.explained(index, index, order) >= MATCH_ORDER_EXPLAINS:
+                guesses.append(order)
     return guesses
 
 
@@ -619,14 +901,15 @@ def _best_assignment(table, key_a, key_b, motion=None):
             if any(abs(motion[0] - a) + abs(motion[1] - b) <= MATCH_ROUNDOFF for a, b in tried):
                 break
             tried.append(motion)
-            costs = table.costs(*motion)
             # The guess's last motion only counts if it beats the best so far (no refit follows
-            # it), and its table may say it cannot: then its solve, the costly part where
+            # it), and its costs may say it cannot: then its solve, the costly part where
             # strokes look alike, is left out. (Earlier in a chain it may not be: a chain that
             # starts far behind often ends ahead, e.g. from a turned drawing.)
-            if step == MATCH_MOTION_ITERATIONS - 1 and best is not None and _least_total(costs) >= best[0]:
+            last = step == MATCH_MOTION_ITERATIONS - 1 and best is not None
+            solved = _assign_at(table, motion, best[0] if last else None)
+            if solved is None:
                 break
-            rows, cols = _assign_within(costs)
+            rows, cols = solved
             if key_a.valid.sum() == 1 and key_b.valid.sum() == 1:  # alone in both keys: always a pair
                 rows, cols = np.flatnonzero(key_a.valid), np.flatnonzero(key_b.valid)
             # (Exact costs: such a pair may cost more than the table's bounds say.)
@@ -643,7 +926,7 @@ def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
     costs = table.costs(*motion, rows, cols)
     order = np.argsort(rows, kind="stable")
     rows, cols, costs = rows[order], cols[order], costs[order]
-    reverse = table.directions(float(np.angle(motion[0])), rows, cols) & table.valid[rows, cols]
+    reverse = table.directions(float(np.angle(motion[0])), rows, cols) & table.valid(rows, cols)
     return Matching(
         pairs=[(int(i), int(j), bool(flip)) for i, j, flip in zip(rows, cols, reverse)],
         unmatched_a=sorted(set(range(key_a.count)) - {int(i) for i in rows}),

@@ -270,6 +270,23 @@ def test_solver_agrees_with_brute_force(data):
 
 
 @given(st.data())
+def test_solver_duals_certify_the_assignment(data):
+    # u_i + v_j <= c_ij everywhere, equal on the pairs assigned, 0 on the larger side's rows
+    # or columns left out: their sum is the optimum (strong duality).
+    cost = _matrix(data, -50, 50)
+    rows, cols, u, v = solve_assignment(cost, duals=True)
+    assert all(np.array_equal(x, y) for x, y in zip((rows, cols), solve_assignment(cost)))
+    assert u.shape == (cost.shape[0],) and v.shape == (cost.shape[1],)
+    slack = cost - u[:, None] - v[None, :]
+    assert slack.min() >= -1e-9
+    np.testing.assert_allclose(slack[rows, cols], 0.0, atol=1e-9)
+    left_rows = np.setdiff1d(np.arange(cost.shape[0]), rows)
+    left_cols = np.setdiff1d(np.arange(cost.shape[1]), cols)
+    assert np.all(u[left_rows] == 0.0) and np.all(v[left_cols] == 0.0)
+    assert u.sum() + v.sum() == pytest.approx(_brute_force(cost), abs=1e-9)
+
+
+@given(st.data())
 def test_thresholded_assignment_agrees_with_brute_force(data):
     limit = matching.MATCH_MAX_COST
     cost = _matrix(data, 0, 1) * 2 * limit
@@ -299,15 +316,17 @@ def test_least_total_is_reached_where_strokes_pick_each_other():
 
 
 def test_a_guess_s_last_solve_is_skipped_only_where_it_cannot_win(monkeypatch):
-    # The drawing order fitted to reordered look-alike strokes crowds key A together: its
-    # guess's tables are far behind the best matching, and the last of them is not solved.
+    # The drawing order fitted to reordered look-alike strokes crowds key A together (tried
+    # here whatever it accounts for): its guess's tables are far behind the best matching,
+    # and the last of them is not solved.
+    monkeypatch.setattr(matching, "MATCH_ORDER_EXPLAINS", -np.inf)
     a, b, perm = bench_matching.reordered_hatching(60, 4)
     flags = [False] * 60
     solves = []
 
-    def counted(cost):
-        solves.append(cost.shape)
-        return solve_assignment(cost)
+    def counted(cost, **options):
+        solves.append(np.shape(cost))
+        return solve_assignment(cost, **options)
 
     monkeypatch.setattr(matching, "solve_assignment", counted)
     m = match_strokes(a, b, flags, flags)
@@ -315,6 +334,7 @@ def test_a_guess_s_last_solve_is_skipped_only_where_it_cannot_win(monkeypatch):
     assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
     solves.clear()
     monkeypatch.setattr(matching, "_least_total", lambda cost: -np.inf)
+    monkeypatch.setattr(matching._Priced, "least_total", lambda priced: -np.inf)
     unbounded = match_strokes(a, b, flags, flags)
     assert skipped < len(solves)
     assert (unbounded.pairs, unbounded.costs, unbounded.method) == (m.pairs, m.costs, m.method)
@@ -487,22 +507,28 @@ def _table(keys):
 @pytest.mark.parametrize("seed", range(8))
 def test_costs_and_directions_of_some_pairs_are_those_of_the_whole_table(seed):
     # The whole table's costs are exact below MATCH_MAX_COST and at least that elsewhere (loop
-    # pairs it need not fit); those of some pairs are exact, the same values.
+    # pairs it need not fit); once it is made, those of some pairs are its values, bit for bit.
+    # Before, a pair's open fit is its own dot product: the same value to round-off.
     keys = _random_keys(seed)
     (sa, _), (sb, _) = keys
     rows, cols = (g.ravel() for g in np.meshgrid(np.arange(len(sa)), np.arange(len(sb)), indexing="ij"))
     pick = np.random.default_rng(seed).permutation(len(rows))[: len(rows) // 2 + 1]
     motion = (0.9 + 0.2j, 0.3 - 0.1j)
-    whole = _table(keys).costs(*motion)[rows[pick], cols[pick]]
-    some = _table(keys).costs(*motion, rows[pick], cols[pick])
-    low = some < matching.MATCH_MAX_COST
-    assert np.array_equal(whole[low], some[low]) and np.all(whole[~low] >= matching.MATCH_MAX_COST)
     table = _table(keys)
+    some = table.costs(*motion, rows[pick], cols[pick])
+    alone = table.directions(0.4, rows[pick], cols[pick])
+    assert not table.whole
+    whole = table.costs(*motion)
+    assert table.whole
+    low = some < matching.MATCH_MAX_COST
+    np.testing.assert_allclose(whole[rows[pick], cols[pick]][low], some[low], rtol=0, atol=1e-7)
+    assert np.all(whole[rows[pick], cols[pick]][~low] >= matching.MATCH_MAX_COST - 1e-7)
     every = table.costs(*motion, rows, cols)
     assert np.array_equal(table.costs(*motion, rows[pick], cols[pick]), every[pick])
-    assert np.array_equal(np.minimum(table.costs(*motion), 9.0).ravel(), np.minimum(every, 9.0))
+    assert np.array_equal(np.minimum(whole, 9.0).ravel(), np.minimum(every, 9.0))
     every = table.directions(0.4, rows, cols)
     assert np.array_equal(table.directions(0.4, rows[pick], cols[pick]), every[pick])
+    assert np.array_equal(alone, every[pick])
 
 
 @pytest.mark.parametrize("seed", range(8))
@@ -521,8 +547,10 @@ def test_table_costs_and_open_shapes_are_the_plain_formulas_bit_for_bit(seed):
     ratio = np.maximum(rb, 1e-300) / np.maximum(scale * ra, 1e-300)
     size = np.where((ra > 0) & (rb > 0), np.abs(np.log(ratio)) / np.log(4.0), 0.0)
     want = matching.W_SHAPE * table.shape + matching.W_PLACE * place + matching.W_SCALE * size
-    want = want + matching.MATCH_CYCLIC_PENALTY * table.mixed
-    want = np.where(table.valid, want + matching.W_TURN * abs(np.angle(a * np.exp(-0.3j))) / np.pi, np.inf)
+    (_, ca), (_, cb) = keys
+    valid = np.array([len(p) > 0 for p in keys[0][0]])[:, None] & np.array([len(p) > 0 for p in keys[1][0]])[None, :]
+    want = want + matching.MATCH_CYCLIC_PENALTY * (ca[:, None] != cb[None, :])
+    want = np.where(valid, want + matching.W_TURN * abs(np.angle(a * np.exp(-0.3j))) / np.pi, np.inf)
     assert np.array_equal(got, want)
     rng = np.random.default_rng(seed)
     oa, ob = (rng.normal(size=(n, 16)) + 1j * rng.normal(size=(n, 16)) for n in (7, 5))
@@ -533,6 +561,15 @@ def test_table_costs_and_open_shapes_are_the_plain_formulas_bit_for_bit(seed):
     for d, e, turn in zip((np.conj(oa) @ ob.T, np.conj(oa) @ ob[:, ::-1].T), (e_f, e_r), (turn_f, turn_r)):
         assert np.array_equal(e, np.clip(1.0 - np.abs(d) ** 2 / norms, 0.0, 1.0))
         assert np.array_equal(turn, np.angle(d))
+    # Pair by pair: each pair's own dot products, the matrix products' values to round-off.
+    i, j = (g.ravel() for g in np.meshgrid(np.arange(7), np.arange(5), indexing="ij"))
+    pairs = matching._pair_shapes(oa[i], ob[j])
+    reads = (np.sum(np.conj(oa[i]) * ob[j], axis=1), np.sum(np.conj(oa[i]) * ob[j][:, ::-1], axis=1))
+    for d, e, turn, whole in zip(reads, pairs[:2], pairs[2:], (e_f, e_r)):
+        assert np.array_equal(e, np.clip(1.0 - np.abs(d) ** 2 / norms[i, j], 0.0, 1.0))
+        assert np.array_equal(turn, np.angle(d))
+        np.testing.assert_allclose(e, whole[i, j], rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(matching._pair_shapes(oa[i[::3]], ob[j[::3]])[0], pairs[0][::3])
 
 
 @given(st.integers(0, 2**32 - 1))

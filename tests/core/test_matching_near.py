@@ -1,0 +1,166 @@
+"""Stroke matching from the pairs near each other: the pairs priced, the duals' certificate, the
+strokes widened, and the drawing order's guess (issue 14: a drawing of many small strokes)."""
+
+import os
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from ballmorph_core.drawing import matching
+from ballmorph_core.drawing.matching import match_strokes
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
+
+import bench_matching  # (tools/ on the path first)
+
+
+def _keys(seed, count=None):
+    """Two keys of random walks on a grid (some loops, a dot, strokes of every size), key B key
+    A moved, turned, redrawn with noise, reordered and one stroke short: (strokes, flags) twice."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(2, 40)) if count is None else count
+    side = int(np.ceil(np.sqrt(n)))
+    scale = rng.choice([0.02, 0.2, 1.0], size=n)
+    walks = [np.cumsum(rng.normal(0.0, s, (int(rng.integers(1, 12)), 2)), axis=0) for s in scale]
+    a = [walk + [k % side, k // side] for k, walk in enumerate(walks)]
+    closed_a = rng.random(n) < 0.3
+    turn = rng.normal(0.0, 0.3)
+    rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]]) * np.exp(rng.normal(0.0, 0.1))
+    perm = rng.permutation(n)[: n - int(rng.integers(0, 2))]
+    noise = rng.choice([0.001, 0.02, 0.2])
+    b = [a[p] @ rot.T + rng.normal(0.0, noise, a[p].shape) + rng.normal(0.0, 0.3, 2) for p in perm]
+    return (a, closed_a), (b, closed_a[perm])
+
+
+def _table(keys):
+    (sa, ca), (sb, cb) = keys
+    key = [matching._Key(st, c, "k", "c", matching.MATCH_SAMPLES) for st, c in ((sa, ca), (sb, cb))]
+    return matching._CostTable(*key)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.sampled_from([0.01, 0.1, 0.4, 1.5]))
+def test_no_pair_left_out_of_the_near_ones_costs_less_than_the_level(seed, level):
+    # The boxes around the centroids hold every pair whose cost may fall below the level (the
+    # place term alone reaches it), at any motion: the whole table says which pairs do.
+    keys = _keys(seed)
+    rng = np.random.default_rng(seed)
+    motion = complex(*rng.normal(1.0, 0.3, 2)), complex(*rng.normal(0.0, 0.5, 2))
+    table = _table(keys)
+    rows, cols = table.near(*motion, level)
+    every = table.costs(*motion)
+    near = np.zeros(every.shape, bool)
+    near[rows, cols] = True
+    assert not np.any(~near & (every < level))
+    # Sorted by row then column, each pair once.
+    code = rows * every.shape[1] + cols
+    assert np.all(np.diff(code) > 0)
+
+
+def _whole_only(monkeypatch):
+    monkeypatch.setattr(matching, "_assign_near", lambda *args, **kwargs: matching._UNSETTLED)
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_the_near_pairs_match_as_the_whole_table(seed, monkeypatch):
+    # Where the duals certify the solve on the near pairs, it is the solve on every pair: the
+    # same pairs; their costs are the same to the round-off of the open fits' sums.
+    keys = _keys(seed)
+    (sa, ca), (sb, cb) = keys
+    near = match_strokes(sa, sb, ca, cb)
+    with monkeypatch.context() as whole_only:
+        _whole_only(whole_only)
+        whole = match_strokes(sa, sb, ca, cb)
+    assert near.pairs == whole.pairs
+    assert (near.unmatched_a, near.unmatched_b, near.method) == (whole.unmatched_a, whole.unmatched_b, whole.method)
+    np.testing.assert_allclose(near.costs, whole.costs, rtol=0, atol=1e-6)
+
+
+def test_reordered_hatching_is_settled_by_the_near_pairs(monkeypatch):
+    # Look-alike strokes redrawn a little moved: every motion's solve is certified on each
+    # stroke's neighbours, and the whole table is never priced.
+    a, b, perm = bench_matching.reordered_hatching(300, 2)
+    flags = [False] * 300
+    made = []
+    monkeypatch.setattr(matching._CostTable, "_fit_whole", lambda table: made.append(table))
+    m = match_strokes(a, b, flags, flags)
+    assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
+    assert made == []
+
+
+def test_a_stroke_whose_partner_is_far_gets_all_its_pairs_priced(monkeypatch):
+    # One hatch line of key B is redrawn three lines away: the pairs about it cost more than
+    # the near level, so potentials break the first certificate; those strokes' pairs are all
+    # priced, and the solve then settles the drawing as the whole table does.
+    a, b, perm = bench_matching.reordered_hatching(120, 3)
+    far = int(np.flatnonzero(perm == 0)[0])
+    b[far] = b[far] + [0.9, 0.6]
+    flags = [False] * 120
+    widened = []
+    real = matching._CostTable.widened
+
+    def counted(table, priced, *args):
+        out = real(table, priced, *args)
+        widened.append((int(args[-2].sum()), int(args[-1].sum())))
+        return out
+
+    monkeypatch.setattr(matching._CostTable, "widened", counted)
+    m = match_strokes(a, b, flags, flags)
+    assert widened and all(0 < sa + sb <= 120 * 2 * matching.MATCH_NEAR_SHARE for sa, sb in widened)
+    with monkeypatch.context() as whole_only:
+        _whole_only(whole_only)
+        whole = match_strokes(a, b, flags, flags)
+    assert m.pairs == whole.pairs
+
+
+def test_a_drawing_far_from_its_near_pairs_is_priced_whole(monkeypatch):
+    # Every stroke changed shape: no pair costs less than the near level, and the motion is
+    # priced whole at once (no solve on the near pairs first).
+    (sa, ca), (sb, cb) = _keys(7, count=30)
+    sb = [s[::-1] * [1.0, -0.5] for s in sb]
+    solves = []
+    real = matching.solve_assignment
+
+    def counted(cost, **options):
+        solves.append(options.get("duals", False))
+        return real(cost, **options)
+
+    monkeypatch.setattr(matching, "solve_assignment", counted)
+    match_strokes(sa, sb, ca, cb)
+    assert solves and not any(solves)
+
+
+def test_the_drawing_order_guess_is_tried_where_the_order_accounts_for_the_motion(monkeypatch):
+    # A drawing turned by 150 degrees and listed in order: only the order's motion finds the
+    # turn. Listed in another order, that guess accounts for nothing and is not tried.
+    (sa, ca), _ = _keys(3, count=40)
+    sa = [s for s in sa if len(s) > 2]
+    ca = np.zeros(len(sa), bool)
+    turn = np.deg2rad(150)
+    rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+    sb = [s @ rot.T + [0.4, -0.2] for s in sa]
+    tried = []
+    real = matching._assign_at
+
+    def counted(table, motion, beat=None):
+        tried.append(motion[0])
+        return real(table, motion, beat)
+
+    monkeypatch.setattr(matching, "_assign_at", counted)
+    m = match_strokes(sa, sb, ca, ca)
+    assert m.pairs == [(i, i, False) for i in range(len(sa))]
+    assert np.angle(m.rotation) == pytest.approx(turn, abs=1e-6)
+    assert any(abs(np.angle(a) - turn) < 1e-6 for a in tried)
+    table = _table(((sa, ca), (sb, ca)))
+    index = np.arange(len(sa))
+    assert table.explained(index, index, table.fit_motion(index, index)) == pytest.approx(1.0)
+    perm = np.random.default_rng(0).permutation(len(sa))
+    shuffled = _table(((sa, ca), ([sb[p] for p in perm], ca)))
+    order = shuffled.fit_motion(index, index)
+    assert shuffled.explained(index, index, order) < matching.MATCH_ORDER_EXPLAINS
+    tried.clear()
+    match_strokes(sa, [sb[p] for p in perm], ca, ca)
+    assert tried and all(abs(a - order[0]) > 1e-9 for a in tried)
