@@ -3,7 +3,8 @@
 Shortest augmenting paths with dual potentials, in the Jonker-Volgenant form, rectangular
 variant as described by Crouse, "On implementing 2D rectangular assignment algorithms", IEEE
 TAES 2016. Each Dijkstra step is one vectorised update over all columns; a row-reduction start
-assigns every row whose cheapest column is still free.
+assigns every row whose cheapest column is still free. A table that is one value but at a few
+entries (:class:`SparseCosts`) is read row by row as it is needed, never laid out whole.
 """
 
 from dataclasses import dataclass
@@ -12,17 +13,103 @@ import numpy as np
 
 from ..errors import InvalidCurveError
 
-__all__ = ["solve_assignment"]
+__all__ = ["SparseCosts", "solve_assignment"]
 
 # Rows of distances the searches first make room for (see _Duals.rows).
 _ROWS_FIRST = 64
 
 
 @dataclass
+class SparseCosts:
+    """A cost table that is ``fill`` everywhere but at a few entries.
+
+    Attributes
+    ----------
+    shape : tuple of int
+        ``(R, C)``.
+    rows, cols : ndarray of int, shape (K,)
+        The entries, each at most once.
+    values : ndarray, shape (K,)
+    fill : float
+    """
+
+    shape: tuple
+    rows: np.ndarray
+    cols: np.ndarray
+    values: np.ndarray
+    fill: float
+
+    def at(self, rows, cols):
+        """The table's values at ``(rows[k], cols[k])``, shape (K,)."""
+        code = self.rows * self.shape[1] + self.cols
+        order = np.argsort(code, kind="stable")
+        want = np.asarray(rows) * self.shape[1] + np.asarray(cols)
+        at = np.minimum(np.searchsorted(code[order], want), max(len(code) - 1, 0))
+        found = code[order][at] == want if len(code) else np.zeros(len(want), bool)
+        return np.where(found, self.values[order][at] if len(code) else 0.0, self.fill)
+
+
+class _DenseRows:
+    """The rows of a dense table (C-contiguous, shape (R, C))."""
+
+    def __init__(self, c):
+        self.c = c
+
+    def reduced(self):
+        """Each row's least value and the first column holding it, shapes (R,)."""
+        return self.c.min(axis=1), np.argmin(self.c, axis=1)
+
+    def add(self, i, x, out):
+        """``out = row i + x`` (float), shape (C,)."""
+        np.add(self.c[i], x, out=out)
+
+
+class _SparseRows:
+    """The rows of a :class:`SparseCosts` (its entries sorted by row, then column): the same
+    values as the dense table's, every one computed by the same operation."""
+
+    def __init__(self, table, transposed):
+        rows, cols = (table.cols, table.rows) if transposed else (table.rows, table.cols)
+        self.shape = table.shape[::-1] if transposed else tuple(table.shape)
+        order = np.lexsort((cols, rows))
+        self.rows, self.cols, self.values = rows[order], cols[order], np.asarray(table.values, np.float64)[order]
+        self.start = np.searchsorted(self.rows, np.arange(self.shape[0] + 1))
+        self.fill = float(table.fill)
+
+    def reduced(self):
+        """As :meth:`_DenseRows.reduced`: the least of a row's entries and, where it has columns
+        left out, ``fill``; the first column at that value, an entry's or one left out."""
+        n_rows, n_cols = self.shape
+        counts = np.diff(self.start)
+        least = np.full(n_rows, np.inf)
+        np.minimum.at(least, self.rows, self.values)
+        gaps = counts < n_cols
+        least[gaps] = np.minimum(least[gaps], self.fill)
+        first = np.full(n_rows, n_cols)
+        at_least = self.values == least[self.rows]
+        np.minimum.at(first, self.rows[at_least], self.cols[at_least])
+        # A row's first column left out: the first place k where its k-th entry is not column
+        # k (entries sorted), else the column after its entries.
+        local = np.arange(len(self.rows)) - self.start[self.rows]
+        gap = counts.copy()
+        skipped = self.cols != local
+        np.minimum.at(gap, self.rows[skipped], local[skipped])
+        first = np.where(gaps & (least == self.fill), np.minimum(first, gap), first)
+        return least, first
+
+    def add(self, i, x, out):
+        """``out = row i + x`` (float), shape (C,)."""
+        out.fill(self.fill + x)
+        at = slice(self.start[i], self.start[i + 1])
+        out[self.cols[at]] = self.values[at] + x
+
+
+@dataclass
 class _Duals:
     """Dual potentials and the partial assignment (rows fewer than columns)."""
 
-    c: np.ndarray
+    #: The table's rows (:class:`_DenseRows` or :class:`_SparseRows`).
+    c: object
     u: np.ndarray
     v: np.ndarray
     row4col: np.ndarray
@@ -32,20 +119,22 @@ class _Duals:
     rows: np.ndarray
 
     @classmethod
-    def row_reduced(cls, c):
+    def row_reduced(cls, c, shape):
         """u_i = min_j c_ij, v = 0 is dual feasible (c_ij - u_i - v_j >= 0), and a row sitting on
         its cheapest column has zero reduced cost, so that partial assignment already satisfies
-        complementary slackness."""
-        n_rows, n_cols = c.shape
+        complementary slackness. ``c``: the table's rows (:class:`_DenseRows` or
+        :class:`_SparseRows`), of shape ``shape``."""
+        n_rows, n_cols = shape
+        least, first = c.reduced()
         duals = cls(
             c,
-            c.min(axis=1),
+            least,
             np.zeros(n_cols),
             np.full(n_cols, -1, np.int64),
             np.full(n_rows, -1, np.int64),
             np.empty((min(_ROWS_FIRST, n_rows), n_cols)),
         )
-        taken, first_row = np.unique(np.argmin(c, axis=1), return_index=True)
+        taken, first_row = np.unique(first, return_index=True)
         duals.row4col[taken] = first_row
         duals.col4row[first_row] = taken
         return duals
@@ -76,7 +165,7 @@ class _Duals:
             reduced = rows[len(visited)]
             visited.append(i)
             # min_val + c_i - u_i - v, in that order (the same rounding as written out).
-            np.add(self.c[i], min_val, out=reduced)
+            self.c.add(i, min_val, reduced)
             reduced -= self.u[i]
             reduced -= v
             np.minimum(remaining, reduced, out=remaining)
@@ -121,7 +210,7 @@ def solve_assignment(cost, duals=False):
 
     Parameters
     ----------
-    cost : array_like, shape (R, C)
+    cost : array_like, shape (R, C), or SparseCosts
         Finite costs.
     duals : bool
         Also return the optimal dual potentials.
@@ -149,22 +238,31 @@ def solve_assignment(cost, duals=False):
     >>> rows.tolist(), cols.tolist()
     ([0, 1, 2], [1, 0, 2])
     """
-    # Read only (no copy of a float array: the matching of thousands of strokes passes tables
-    # of tens of MiB); rows are read one by one, so a transposed table is made contiguous.
-    c = np.asarray(cost, dtype=np.float64)
-    if c.ndim != 2:
-        raise InvalidCurveError(f"cost: expected a 2-D array, got shape {c.shape}")
-    if not np.all(np.isfinite(c)):
-        raise InvalidCurveError("cost: every entry must be finite")
-    shape, transposed = c.shape, c.shape[0] > c.shape[1]
-    c = np.ascontiguousarray(c.T if transposed else c)
-    if c.shape[0] == 0:
+    if isinstance(cost, SparseCosts):
+        shape = tuple(cost.shape)
+        if not (np.all(np.isfinite(cost.values)) and np.isfinite(cost.fill)):
+            raise InvalidCurveError("cost: every entry must be finite")
+        transposed = shape[0] > shape[1]
+        c = _SparseRows(cost, transposed)
+    else:
+        # Read only (no copy of a float array: the matching of thousands of strokes passes
+        # tables of tens of MiB); rows are read one by one, so a transposed table is made
+        # contiguous.
+        c = np.asarray(cost, dtype=np.float64)
+        if c.ndim != 2:
+            raise InvalidCurveError(f"cost: expected a 2-D array, got shape {c.shape}")
+        if not np.all(np.isfinite(c)):
+            raise InvalidCurveError("cost: every entry must be finite")
+        shape, transposed = c.shape, c.shape[0] > c.shape[1]
+        c = _DenseRows(np.ascontiguousarray(c.T if transposed else c))
+    solved_shape = shape[::-1] if transposed else shape
+    if solved_shape[0] == 0:
         none = np.zeros(0, np.int64)
         return (none, none, np.zeros(shape[0]), np.zeros(shape[1])) if duals else (none, none)
-    solved = _Duals.row_reduced(c)
+    solved = _Duals.row_reduced(c, solved_shape)
     for cur in np.flatnonzero(solved.col4row < 0):
         solved.augment(cur)
-    rows = np.arange(c.shape[0])
+    rows = np.arange(solved_shape[0])
     if transposed:
         order = np.argsort(solved.col4row)
         rows, cols, u, v = solved.col4row[order], rows[order], solved.v, solved.u

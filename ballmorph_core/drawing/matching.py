@@ -64,7 +64,7 @@ from ..geometry.polyline import as_curve, curve_length, resample
 from ..geometry.ragged import Ragged, budget_slices, ragged_arange
 from ..geometry.spatial import box_pairs
 from ..options import MATCHINGS, check_option
-from .assignment import solve_assignment
+from .assignment import SparseCosts, solve_assignment
 
 __all__ = ["Matching", "match_strokes", "pair_direction"]
 
@@ -351,7 +351,7 @@ def _open_shapes(a, b):
         The fits' turns, the angles of the products ``<a_i, b_j>`` (only the angles are
         kept: 8 bytes a pair rather than 16, which a drawing of thousands of strokes feels).
     """
-    norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1)[:, None] * np.sum(np.abs(b) ** 2, axis=1)[None, :], 1e-300)
+    norms = np.maximum(_sq_norms(a)[:, None] * _sq_norms(b)[None, :], 1e-300)
     conj_a, out = np.conj(a), []
     for read in (b, b[:, ::-1]):
         # One direction at a time: the complex products are the largest arrays here.
@@ -362,12 +362,20 @@ def _open_shapes(a, b):
     return e_f, e_r, turn_f, turn_r
 
 
-def _pair_shapes(a, b):
-    """:func:`_open_shapes` of pairs: ``a[k]`` with ``b[k]`` (shapes (K, m), complex, centred),
-    each ``e_fwd, e_rev, turn_fwd, turn_rev`` of shape (K,). Each pair's values are its own
-    (the same however many pairs are asked at once); they differ from the matrix products'
-    by round-off (the sums are taken in another order)."""
-    norms = np.maximum(np.sum(np.abs(a) ** 2, axis=1) * np.sum(np.abs(b) ** 2, axis=1), 1e-300)
+def _sq_norms(a):
+    """``|a_k|^2`` of samples ``a`` (complex, shape (K, m)), shape (K,)."""
+    return np.sum(np.abs(a) ** 2, axis=1)
+
+
+def _pair_shapes(a, b, norm_a=None, norm_b=None):
+    """:func:`_open_shapes` of pairs: ``a[k]`` with ``b[k]`` (shapes (K, m), complex, centred;
+    their :func:`_sq_norms`, shapes (K,), when known), each ``e_fwd, e_rev, turn_fwd,
+    turn_rev`` of shape (K,). Each pair's values are its own (the same however many pairs are
+    asked at once); they differ from the matrix products' by round-off (the sums are taken in
+    another order)."""
+    norm_a = _sq_norms(a) if norm_a is None else norm_a
+    norm_b = _sq_norms(b) if norm_b is None else norm_b
+    norms = np.maximum(norm_a * norm_b, 1e-300)
     conj_a, out = np.conj(a), []
     for read in (b, b[:, ::-1]):
         d = np.sum(conj_a * read, axis=1)
@@ -471,10 +479,9 @@ class _Priced:
 
     def table(self):
         """Every pair's cost clipped at ``MATCH_MAX_COST``, those left out at that, shape
-        (S_a, S_b): never below the clipped costs, equal to them on the pairs priced."""
-        table = np.full(self.size, MATCH_MAX_COST)
-        table[self.rows, self.cols] = np.minimum(self.costs, MATCH_MAX_COST)
-        return table
+        (S_a, S_b) (:class:`~.assignment.SparseCosts`): never below the clipped costs, equal
+        to them on the pairs priced."""
+        return SparseCosts(self.size, self.rows, self.cols, np.minimum(self.costs, MATCH_MAX_COST), MATCH_MAX_COST)
 
     def cheapest(self):
         """Each stroke's cheapest pair priced, clipped at its floor: never above its cheapest
@@ -545,6 +552,7 @@ class _CostTable:
         self._open = key_a.open, key_b.open
         # The open reads centred: how every pair but two loops is fitted.
         self._centred = [_complex(k.open) - _complex(k.open.mean(axis=1))[:, None] for k in (key_a, key_b)]
+        self._norms = [_sq_norms(c) for c in self._centred]
         dot_a, dot_b = self.ra <= 0, self.rb <= 0
         self.shape = np.zeros((key_a.count, key_b.count))
         self.shape[dot_a[:, None] != dot_b[None, :]] = DOT_SHAPE
@@ -598,9 +606,10 @@ class _CostTable:
         turn_rev``, shapes (K,), the whole table's where it is fitted."""
         if self.whole:
             return (*(e[rows, cols] for e in self._fits), *(t[rows, cols] for t in self._turns))
-        (a, b), out = self._centred, np.empty((4, len(rows)))
+        (a, b), (na, nb), out = self._centred, self._norms, np.empty((4, len(rows)))
         for sl in budget_slices(np.full(len(rows), a.shape[1]), _CHUNK):
-            out[:, sl] = _pair_shapes(np.take(a, rows[sl], axis=0), np.take(b, cols[sl], axis=0))
+            i, j = rows[sl], cols[sl]
+            out[:, sl] = _pair_shapes(np.take(a, i, axis=0), np.take(b, j, axis=0), na[i], nb[j])
         return tuple(out)
 
     def _fit(self, rows, cols):
@@ -841,7 +850,7 @@ def _assign_near(table, motion, beat=None):
         rows, cols, u, v = solve_assignment(clipped, duals=True)
         wide_a, wide_b = priced.uncertified(u, v)
         if not (wide_a.any() or wide_b.any()):
-            keep = clipped[rows, cols] < MATCH_MAX_COST
+            keep = clipped.at(rows, cols) < MATCH_MAX_COST
             return rows[keep], cols[keep]
         wide_a |= priced.floor_a >= MATCH_MAX_COST
         wide_b |= priced.floor_b >= MATCH_MAX_COST

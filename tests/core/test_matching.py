@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from shapes import circle
 
 from ballmorph_core.drawing import matching
-from ballmorph_core.drawing.assignment import solve_assignment
+from ballmorph_core.drawing.assignment import SparseCosts, solve_assignment
 from ballmorph_core.drawing.matching import (
     _assign_within,
     _backwards,
@@ -284,6 +284,27 @@ def test_solver_duals_certify_the_assignment(data):
     left_cols = np.setdiff1d(np.arange(cost.shape[1]), cols)
     assert np.all(u[left_rows] == 0.0) and np.all(v[left_cols] == 0.0)
     assert u.sum() + v.sum() == pytest.approx(_brute_force(cost), abs=1e-9)
+
+
+@given(st.data())
+def test_a_sparse_table_solves_as_the_dense_table_it_stands_for(data):
+    # Its rows are laid out one at a time with the dense table's values: the same assignment
+    # and potentials, bit for bit (ties to the fill value, empty and full rows, more rows than
+    # columns, entries listed in any order).
+    r = data.draw(st.integers(1, 7), label="rows")
+    c = data.draw(st.integers(1, 7), label="cols")
+    fill = data.draw(st.sampled_from([1.5, 2.0]), label="fill")
+    kept = np.array(data.draw(st.lists(st.booleans(), min_size=r * c, max_size=r * c)), dtype=bool).reshape(r, c)
+    values = st.sampled_from([0.0, 0.5, 1.0, 1.5, 2.0]) | st.floats(0.0, 2.0, allow_nan=False)
+    dense = np.array(data.draw(st.lists(values, min_size=r * c, max_size=r * c)), dtype=float).reshape(r, c)
+    dense[~kept] = fill
+    rows, cols = np.nonzero(kept)
+    order = np.random.default_rng(data.draw(st.integers(0, 99), label="order")).permutation(len(rows))
+    sparse = SparseCosts((r, c), rows[order], cols[order], dense[rows, cols][order], fill)
+    for got, want in zip(solve_assignment(sparse, duals=True), solve_assignment(dense, duals=True)):
+        assert np.array_equal(got, want)
+    picks = np.arange(r).repeat(c), np.tile(np.arange(c), r)
+    assert np.array_equal(sparse.at(*picks), dense[picks])
 
 
 @given(st.data())
