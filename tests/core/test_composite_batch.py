@@ -7,6 +7,9 @@ A batch gives each pair what it gets alone: the same errors, word for word, and 
 morphs up to the round-off of the batch's layout (its curves' arc lengths are one running sum).
 """
 
+import os
+import sys
+
 import numpy as np
 import pytest
 from shapes import circle
@@ -21,6 +24,10 @@ from ballmorph_core.errors import BallMorphError, IncompatibleCurvesError, Inval
 from ballmorph_core.morphs import blending, composite
 from ballmorph_core.morphs.ball import ball_morphs
 from ballmorph_core.morphs.composite import build_composite, build_composites
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
+
+import bench_drawings  # (tools/ on the path first)
 
 #: Morphs of one pair built in a batch and alone agree to this (their arc lengths are summed
 #: along the batch, not along the pair alone).
@@ -147,16 +154,10 @@ def test_one_batch_builds_every_stage_ball_morph_of_a_side(monkeypatch):
 
 
 def _jagged(n, seed, points=60):
-    """Wavy strokes redrawn with a tremor that crosses the first drawing again and again."""
-    rng = np.random.default_rng(seed)
-    keys = ([], [])
-    for k in range(n):
-        s = np.linspace(0, 1, points)
-        base = np.c_[0.6 * s, 0.15 * np.sin(np.pi * s * rng.uniform(0.5, 2))] + [1.0 * k, 0.0]
-        for key, shift in zip(keys, ([0.0, 0.0], [0.01, 0.005])):
-            stroke = base + shift + rng.normal(0, 0.01, base.shape)
-            key.append(np.c_[stroke[:, 0], np.zeros(points), stroke[:, 1]])
-    return StrokeSet.from_strokes(keys[0]), StrokeSet.from_strokes(keys[1])
+    """The benchmark's jagged redraws (tools/bench_drawings.py): wavy strokes redrawn with a
+    tremor that crosses the first drawing again and again, as two StrokeSets on the XZ canvas."""
+    keys = bench_drawings.make_keys("jagged", n, points, seed)
+    return tuple(StrokeSet.from_strokes([np.c_[s[:, 0], np.zeros(len(s)), s[:, 1]] for s in key]) for key in keys)
 
 
 def test_the_fallback_step_builds_every_failing_chain_together_as_it_would_alone(monkeypatch):
@@ -170,7 +171,7 @@ def test_the_fallback_step_builds_every_failing_chain_together_as_it_would_alone
         return real(chains, kind)
 
     monkeypatch.setattr(pipeline, "chain_fallbacks", spy)
-    key_a, key_b = _jagged(4, seed=0)
+    key_a, key_b = _jagged(6, seed=0)
     plan = bm.plan_inbetween(key_a, key_b)
     assert len(seen) == 1 and len(seen[0]) >= 4, "expected several failing chains in one call"
     outcomes = real(seen[0], "circular")
@@ -180,7 +181,7 @@ def test_the_fallback_step_builds_every_failing_chain_together_as_it_would_alone
         alone_morph, alone_note = fallbacks.chain_fallback(*chain[:3], "circular", *chain[3:])
         assert note == alone_note
         _assert_same(morph, alone_morph)
-    assert len(plan.evaluate([0.5]).frames[0]) == 4
+    assert len(plan.evaluate([0.5]).frames[0]) == 6
 
 
 @pytest.mark.parametrize("bad", [np.zeros((0, 2)), np.full((4, 2), np.inf)])
