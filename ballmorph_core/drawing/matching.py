@@ -35,8 +35,9 @@ Most pairs of a drawing of many strokes could never be formed. At each motion th
 place term alone stays below ``MATCH_NEAR_COST`` are priced and solved first; the solve's dual
 potentials certify it for every pair (``u_i + v_j`` at most what each pair left out costs), or
 the strokes that break the certificate get all their pairs priced. Where that does not settle
-a motion, the whole table is priced (matrix products: the faster where most pairs may form),
-and so are the later motions'. Either way the assignment is an optimal one of the whole table.
+a motion, the whole table is priced (its open fits by matrix products, once: the faster where
+most pairs may form, and the ones read from then on). Either way the assignment is an optimal
+one of the whole table.
 
 Direction
 ---------
@@ -591,15 +592,11 @@ class _CostTable:
             e_f, e_r, turn_f, turn_r = _open_shapes(*self._centred)
         self._fits, self._turns = (e_f, e_r), (turn_f, turn_r)
         loops = self._loop[0][:, None] & self._loop[1][None, :]
-        open_ = self._unfitted | ~(loops | self._fixed())
         shape = np.minimum(e_f, e_r)
         np.sqrt(shape, out=shape)
-        np.copyto(self.shape, shape, where=open_ & ~loops)
+        # Every pair but two loops' and a dot's (its shape term is fixed).
+        np.copyto(self.shape, shape, where=~(loops | (self.ra[:, None] <= 0) | (self.rb[None, :] <= 0)))
         self._unfitted &= loops
-
-    def _fixed(self):
-        """Pairs with a dot, whose shape term is fixed, shape (S_a, S_b)."""
-        return (self.ra[:, None] <= 0) | (self.rb[None, :] <= 0)
 
     def _pair_fits(self, rows, cols):
         """Open fits of pairs ``(rows[k], cols[k])`` (shapes (K,)): ``e_fwd, e_rev, turn_fwd,
@@ -805,14 +802,12 @@ def _assign_at(table, motion, beat=None):
     (complex ``a, b``): rows, cols, each shape (K,); None when no matching at this motion
     totals less than ``beat`` (float).
 
-    Until a table has been priced whole, the pairs near each other are tried first
-    (:func:`_assign_near`); where that does not settle it, the whole table is priced, and so
-    are later motions'.
+    The pairs near each other are tried first (:func:`_assign_near`); where they do not settle
+    the motion, the whole table is priced.
     """
-    if not table.whole:
-        solved = _assign_near(table, motion, beat)
-        if solved is not _UNSETTLED:
-            return solved
+    solved = _assign_near(table, motion, beat)
+    if solved is not _UNSETTLED:
+        return solved
     costs = table.costs(*motion)
     if beat is not None and _least_total(costs) >= beat:
         return None
