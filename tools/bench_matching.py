@@ -3,10 +3,11 @@ no input superlinear), in plain CPython.
 
 Times ``match_strokes`` on short hatch lines (2-5 points) on a grid, redrawn a little moved and
 listed in another order: the case where the optimal assignment does the most work. Every stroke
-looks like every other, and the drawing order fitted to a shuffled key crowds key A together,
-so the assignment from that guess is a table of near-ties. The cost table itself is
-quadratic in the stroke count (every pair is priced); the goal asks the whole matching to grow
-no faster than the ball-map's own bar when the count doubles.
+looks like every other: the drawing order fitted to a shuffled key would crowd key A together
+(the matching leaves that guess out, as the order accounts for nothing), and every stroke has
+neighbours its pair could be mistaken for. The matching prices each stroke's neighbours first
+and the whole table only where those do not settle a motion; the goal asks it to grow no faster
+than the ball-map's own bar when the count doubles.
 
 Usage (``make bench`` runs it through tools/benchmark.py, which embeds the table in
 docs/benchmark.md)::
