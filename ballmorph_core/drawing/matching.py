@@ -83,8 +83,10 @@ MATCH_CYCLIC_PENALTY = 0.1
 MATCH_INDEX_MAX_COST = 0.75
 MATCH_INDEX_FACTOR = 1.25
 #: The drawing order's motion is a starting guess when it accounts for at least this share of
-#: the spread of key B's strokes (a reordered key's accounts for about 1 / count).
+#: the spread of key B's strokes (a reordered key's accounts for about 1 / count), or when the
+#: keys have fewer than MATCH_ORDER_GATE strokes.
 MATCH_ORDER_EXPLAINS = 0.25
+MATCH_ORDER_GATE = 64
 #: A motion's assignment is first solved on the pairs whose place term alone stays below this
 #: (each stroke's neighbours), and kept when its dual potentials certify it.
 MATCH_NEAR_COST = 0.1
@@ -880,10 +882,11 @@ def _guesses(table, key_a, key_b, motion=None):
         if key_a.count == key_b.count:
             # The drawing order's motion, where the order says how the drawing moved: the
             # motion fitted to a reordered key crowds key A together and leads nowhere (from
-            # there each solve is a table of near-ties, the costliest there is).
+            # there each solve is a table of near-ties, the costliest there is). A few strokes'
+            # order accounts for much by chance, and their solves cost little: always tried.
             index = np.arange(key_a.count)
             order = table.fit_motion(index, index)
-            if table.explained(index, index, order) >= MATCH_ORDER_EXPLAINS:
+            if key_a.count < MATCH_ORDER_GATE or table.explained(index, index, order) >= MATCH_ORDER_EXPLAINS:
                 guesses.append(order)
     return guesses
 

@@ -177,7 +177,7 @@ def test_a_drawing_far_from_its_near_pairs_is_priced_whole(monkeypatch):
 def test_the_drawing_order_guess_is_tried_where_the_order_accounts_for_the_motion(monkeypatch):
     # A drawing turned by 150 degrees and listed in order: only the order's motion finds the
     # turn. Listed in another order, that guess accounts for nothing and is not tried.
-    (sa, ca), _ = _keys(3, count=40)
+    (sa, ca), _ = _keys(3, count=100)
     sa = [s for s in sa if len(s) > 2]
     ca = np.zeros(len(sa), bool)
     turn = np.deg2rad(150)
@@ -205,3 +205,30 @@ def test_the_drawing_order_guess_is_tried_where_the_order_accounts_for_the_motio
     tried.clear()
     match_strokes(sa, [sb[p] for p in perm], ca, ca)
     assert tried and all(abs(a - order[0]) > 1e-9 for a in tried)
+
+
+def test_a_few_strokes_always_try_the_drawing_order_guess(monkeypatch):
+    # Below MATCH_ORDER_GATE strokes a reordered drawing's order may account for much by
+    # chance, and its chain costs little: its motion is tried whatever it accounts for.
+    (sa, ca), (sb, cb) = _keys(5, count=20)
+    sb, cb = sb[: len(sa)], cb[: len(sa)]
+    sb = sb + [sa[0]] * (len(sa) - len(sb))
+    cb = np.r_[cb, ca[:1].repeat(len(sa) - len(cb))]
+    table = _table(((sa, ca), (sb, cb)))
+    index = np.arange(len(sa))
+    order = table.fit_motion(index, index)
+    tried = []
+    real = matching._assign_at
+
+    def counted(table, motion, beat=None):
+        tried.append(motion[0])
+        return real(table, motion, beat)
+
+    monkeypatch.setattr(matching, "_assign_at", counted)
+    match_strokes(sa, sb, ca, cb)
+    assert any(abs(a - order[0]) < 1e-12 for a in tried)
+    monkeypatch.setattr(matching, "MATCH_ORDER_GATE", 0)
+    tried.clear()
+    match_strokes(sa, sb, ca, cb)
+    explained = table.explained(index, index, order)
+    assert (explained >= matching.MATCH_ORDER_EXPLAINS) == any(abs(a - order[0]) < 1e-12 for a in tried)
