@@ -174,6 +174,20 @@ def test_a_drawing_far_from_its_near_pairs_is_priced_whole(monkeypatch):
     assert solves and not any(solves)
 
 
+def _tried_turns(monkeypatch):
+    """The turns and scales (complex ``a``) of every motion the matching solves at, as a list
+    filled while it runs."""
+    tried = []
+    real = matching._assign_at
+
+    def counted(table, motion, beat=None):
+        tried.append(motion[0])
+        return real(table, motion, beat)
+
+    monkeypatch.setattr(matching, "_assign_at", counted)
+    return tried
+
+
 def test_the_drawing_order_guess_is_tried_where_the_order_accounts_for_the_motion(monkeypatch):
     # A drawing turned by 150 degrees and listed in order: only the order's motion finds the
     # turn. Listed in another order, that guess accounts for nothing and is not tried.
@@ -183,14 +197,7 @@ def test_the_drawing_order_guess_is_tried_where_the_order_accounts_for_the_motio
     turn = np.deg2rad(150)
     rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
     sb = [s @ rot.T + [0.4, -0.2] for s in sa]
-    tried = []
-    real = matching._assign_at
-
-    def counted(table, motion, beat=None):
-        tried.append(motion[0])
-        return real(table, motion, beat)
-
-    monkeypatch.setattr(matching, "_assign_at", counted)
+    tried = _tried_turns(monkeypatch)
     m = match_strokes(sa, sb, ca, ca)
     assert m.pairs == [(i, i, False) for i in range(len(sa))]
     assert np.angle(m.rotation) == pytest.approx(turn, abs=1e-6)
@@ -217,14 +224,7 @@ def test_a_few_strokes_always_try_the_drawing_order_guess(monkeypatch):
     table = _table(((sa, ca), (sb, cb)))
     index = np.arange(len(sa))
     order = table.fit_motion(index, index)
-    tried = []
-    real = matching._assign_at
-
-    def counted(table, motion, beat=None):
-        tried.append(motion[0])
-        return real(table, motion, beat)
-
-    monkeypatch.setattr(matching, "_assign_at", counted)
+    tried = _tried_turns(monkeypatch)
     match_strokes(sa, sb, ca, cb)
     assert any(abs(a - order[0]) < 1e-12 for a in tried)
     monkeypatch.setattr(matching, "MATCH_ORDER_GATE", 0)
