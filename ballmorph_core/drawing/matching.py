@@ -849,9 +849,9 @@ def _assign_near(table, motion, beat=None):
         if not (wide_a.any() or wide_b.any()):
             keep = clipped.at(rows, cols) < MATCH_MAX_COST
             return rows[keep], cols[keep]
-        wide_a |= priced.floor_a >= MATCH_MAX_COST
-        wide_b |= priced.floor_b >= MATCH_MAX_COST
-        if wide_a.sum() + wide_b.sum() > most:
+        # Strokes already widened keep their pairs: only the new ones are searched.
+        full = np.count_nonzero(priced.floor_a >= MATCH_MAX_COST) + np.count_nonzero(priced.floor_b >= MATCH_MAX_COST)
+        if full + np.count_nonzero(wide_a) + np.count_nonzero(wide_b) > most:
             return _UNSETTLED
         priced = table.widened(priced, *motion, wide_a, wide_b)
 
