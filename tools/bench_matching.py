@@ -6,8 +6,10 @@ listed in another order: the case where the optimal assignment does the most wor
 looks like every other: the drawing order fitted to a shuffled key would crowd key A together
 (the matching leaves that guess out, as the order accounts for nothing), and every stroke has
 neighbours its pair could be mistaken for. The matching prices each stroke's neighbours first
-and the whole table only where those do not settle a motion; the goal asks it to grow no faster
-than the ball-map's own bar when the count doubles.
+and the whole table only where those do not settle a motion, and beyond 400 strokes a stroke's
+neighbourhood follows the strokes' spacing, not the drawing's size (so it holds as many strokes
+however many are drawn); the goal asks it to grow no faster than the ball-map's own bar when
+the count doubles.
 
 Usage (``make bench`` runs it through tools/benchmark.py, which embeds the table in
 docs/benchmark.md)::

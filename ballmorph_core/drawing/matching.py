@@ -112,8 +112,14 @@ W_TURN = 0.1
 MATCH_SHARED_ENDS = 0.05
 #: Shape term of a dot paired with a stroke (it grows out of the dot or shrinks into it).
 DOT_SHAPE = 0.5
-#: Two dots have no size: their distance counts relative to this fraction of the drawings' size.
+#: Two dots have no size: their distance counts relative to this fraction of the drawings' size
+#: (the floor of every pair's spread, so also of tiny strokes'). In a drawing of more than
+#: ``DOT_SPREAD_STROKES`` strokes the fraction shrinks with one over the square root of the
+#: count: the floor stays the strokes' spacing (the size over that root; 0.05 x 20 at 400).
+#: Relative to the drawing's size only, each of a thousand hatch lines would reach hundreds of
+#: candidates, a share of the drawing that stays put as the count grows (quadratic matching).
 DOT_SPREAD = 0.05
+DOT_SPREAD_STROKES = 400
 
 # Elements per block when a product would otherwise allocate S_a x S_b x m at once (memory only).
 _CHUNK = 2_000_000
@@ -401,6 +407,13 @@ def _shared_ends(a, b, spread):
     return shared(0, 0) + shared(-1, -1), shared(0, -1) + shared(-1, 0)
 
 
+def _dot_spread(key_a, key_b):
+    """The floor of every pair's spread (see ``DOT_SPREAD``): a float."""
+    strokes = max(np.count_nonzero(key_a.valid), np.count_nonzero(key_b.valid), 1)
+    spacing = min(1.0, np.sqrt(DOT_SPREAD_STROKES / strokes))
+    return DOT_SPREAD * spacing * max(key_a.diagonal, key_b.diagonal, 1e-300)
+
+
 class _LoopFits:
     """Residuals of loop pairs over every cyclic shift of B's samples (by FFT), for any pairs.
 
@@ -550,7 +563,7 @@ class _CostTable:
         self.ra, self.rb = key_a.sizes(), key_b.sizes()
         self._valid = key_a.valid, key_b.valid
         self._loop = key_a.loop, key_b.loop
-        self.dot_spread = DOT_SPREAD * max(key_a.diagonal, key_b.diagonal, 1e-300)
+        self.dot_spread = _dot_spread(key_a, key_b)
         self.prior_turn = 1.0 + 0j  # the turn motions are charged from (the hints' when given)
         self._open = key_a.open, key_b.open
         # The open reads centred: how every pair but two loops is fitted.

@@ -232,3 +232,25 @@ def test_a_few_strokes_always_try_the_drawing_order_guess(monkeypatch):
     match_strokes(sa, sb, ca, cb)
     explained = table.explained(index, index, order)
     assert (explained >= matching.MATCH_ORDER_EXPLAINS) == any(abs(a - order[0]) < 1e-12 for a in tried)
+
+
+def _candidates_per_stroke(n):
+    """Pairs a stroke of ``n`` reordered hatch lines may form (its place term alone below the
+    limit), on average over the strokes."""
+    a, b, _ = bench_matching.reordered_hatching(n, 3)
+    table = _table(((a, [False] * n), (b, [False] * n)))
+    return len(table.near(1.0 + 0j, 0j)[0]) / n
+
+
+def test_a_hatch_line_reaches_as_many_candidates_however_many_lines_are_drawn():
+    # The floor of the pairs' spread follows the strokes' spacing beyond DOT_SPREAD_STROKES
+    # strokes: drawn on the same grid, 1,600 lines give each line about as many candidates as
+    # 800 (333 against 293, the grid's edges cut fewer neighbourhoods; relative to the
+    # drawing's size only, 957 against 466: quadratic growth).
+    small, large = _candidates_per_stroke(800), _candidates_per_stroke(1600)
+    assert large <= 1.25 * small
+    # ... and up to that count, the floor is the drawing's share, as it always was.
+    a, b, _ = bench_matching.reordered_hatching(100, 3)
+    table = _table(((a, [False] * 100), (b, [False] * 100)))
+    keys = [matching._Key(k, [False] * 100, "a", "c", matching.MATCH_SAMPLES) for k in (a, b)]
+    assert table.dot_spread == matching.DOT_SPREAD * max(k.diagonal for k in keys)
