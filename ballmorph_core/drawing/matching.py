@@ -35,9 +35,10 @@ Most pairs of a drawing of many strokes could never be formed. At each motion th
 place term alone stays below ``MATCH_NEAR_COST`` are priced and solved first; the solve's dual
 potentials certify it for every pair (``u_i + v_j`` at most what each pair left out costs), or
 the strokes that break the certificate get all their pairs priced. Where that does not settle
-a motion, the whole table is priced (its open fits by matrix products, once: the faster where
-most pairs may form, and the ones read from then on). Either way the assignment is an optimal
-one of the whole table.
+a motion, every pair that may cost less than ``MATCH_MAX_COST`` is priced where those are few
+(key A moved across key B), else the whole table (its open fits by matrix products, once: the
+faster where most pairs may form, and the ones read from then on). Either way the assignment
+is an optimal one of the whole table.
 
 Direction
 ---------
@@ -93,6 +94,10 @@ MATCH_NEAR_COST = 0.1
 #: ... and its strokes whose potentials do not certify it get all their pairs priced, while
 #: they stay within this share of the strokes (beyond, the whole table is priced).
 MATCH_NEAR_SHARE = 1 / 16
+#: ... and where they do not settle it, every pair that may cost less than MATCH_MAX_COST is
+#: priced when those are at most this share of the table (else the whole table is, its open
+#: fits by matrix products: the faster where more pairs may form).
+MATCH_SPARSE_SHARE = 1 / 8
 #: Per pair, totals closer than this are equal (round-off of the cost evaluation).
 MATCH_ROUNDOFF = 1e-6
 #: Alternations of (assign strokes, re-fit the keys' overall motion) per starting guess.
@@ -683,11 +688,12 @@ class _CostTable:
         i, j = box_pairs(*boxes)
         return ia[i], ib[j]
 
-    def priced(self, a, b, level):
+    def priced(self, a, b, level, pairs=None):
         """The pairs that may cost less than ``level`` (at most ``MATCH_MAX_COST``) with key A
-        moved by ``z -> a z + b`` (complex), and their costs (:class:`_Priced`)."""
+        moved by ``z -> a z + b`` (complex), and their costs (:class:`_Priced`); ``pairs``:
+        those pairs, ``(rows, cols)`` as :meth:`near` gives them, when already found."""
         level = min(level, MATCH_MAX_COST)
-        rows, cols = self.near(a, b, level)
+        rows, cols = self.near(a, b, level) if pairs is None else pairs
         floors = np.full(len(self.ra), level), np.full(len(self.rb), level)
         return _Priced(rows, cols, self.costs(a, b, rows, cols, exact=False), self.shape.shape, *floors)
 
@@ -834,7 +840,7 @@ _UNSETTLED = object()
 
 
 def _assign_near(table, motion, beat=None):
-    """:func:`_assign_at` from the pairs near each other, or ``_UNSETTLED``.
+    """:func:`_assign_at` from the pairs near each other, or ``_UNSETTLED`` (the whole table is needed).
 
     The pairs whose place term alone stays below ``MATCH_NEAR_COST`` are priced, and their
     solve is the solve on every pair when its dual potentials certify it: ``u_i + v_j`` at
@@ -842,6 +848,7 @@ def _assign_near(table, motion, beat=None):
     every pair would find nothing cheaper. The strokes whose potentials could break that get
     all their pairs priced, and the solve is made again: while they stay within
     ``MATCH_NEAR_SHARE`` of the strokes (beyond, each stroke's pairs are most of the table).
+    Where the pairs near each other do not settle the motion: :func:`_assign_every`.
     """
     priced = table.priced(*motion, MATCH_NEAR_COST)
     most = MATCH_NEAR_SHARE * (len(priced.floor_a) + len(priced.floor_b))
@@ -850,12 +857,12 @@ def _assign_near(table, motion, beat=None):
     # do, most pairs are needed anyway.
     cheapest = priced.cheapest()[0 if len(priced.floor_a) <= len(priced.floor_b) else 1]
     if np.count_nonzero(cheapest >= MATCH_NEAR_COST) > most:
-        return _UNSETTLED
+        return _assign_every(table, motion, beat)
     while True:
         if beat is not None and priced.least_total() >= beat:
             return None
         if not np.any(priced.costs < MATCH_MAX_COST):
-            return _UNSETTLED
+            return _assign_every(table, motion, beat)
         clipped = priced.table()
         rows, cols, u, v = solve_assignment(clipped, duals=True)
         wide_a, wide_b = priced.uncertified(u, v)
@@ -865,8 +872,27 @@ def _assign_near(table, motion, beat=None):
         # Strokes already widened keep their pairs: only the new ones are searched.
         full = np.count_nonzero(priced.floor_a >= MATCH_MAX_COST) + np.count_nonzero(priced.floor_b >= MATCH_MAX_COST)
         if full + np.count_nonzero(wide_a) + np.count_nonzero(wide_b) > most:
-            return _UNSETTLED
+            return _assign_every(table, motion, beat)
         priced = table.widened(priced, *motion, wide_a, wide_b)
+
+
+def _assign_every(table, motion, beat=None):
+    """:func:`_assign_at` from every pair that may cost less than ``MATCH_MAX_COST`` (the
+    others would be clipped to it: the solve is the whole table's), where those are at most
+    ``MATCH_SPARSE_SHARE`` of the table; else ``_UNSETTLED``. At a motion that takes the
+    strokes far from their partners (a drawing moved across itself), few pairs may form."""
+    rows, cols = table.near(*motion)
+    if len(rows) > MATCH_SPARSE_SHARE * len(table.ra) * len(table.rb):
+        return _UNSETTLED
+    priced = table.priced(*motion, MATCH_MAX_COST, (rows, cols))
+    if beat is not None and priced.least_total() >= beat:
+        return None
+    if not np.any(priced.costs < MATCH_MAX_COST):
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    clipped = priced.table()
+    rows, cols = solve_assignment(clipped)
+    keep = clipped.at(rows, cols) < MATCH_MAX_COST
+    return rows[keep], cols[keep]
 
 
 def _padded_total(pair_costs, n_a, n_b):

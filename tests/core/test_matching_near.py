@@ -254,3 +254,48 @@ def test_a_hatch_line_reaches_as_many_candidates_however_many_lines_are_drawn():
     table = _table(((a, [False] * 100), (b, [False] * 100)))
     keys = [matching._Key(k, [False] * 100, "a", "c", matching.MATCH_SAMPLES) for k in (a, b)]
     assert table.dot_spread == matching.DOT_SPREAD * max(k.diagonal for k in keys)
+
+
+def _moved_hatching(n, seed, far, angle, turn=0.0):
+    """Reordered hatch lines (key A) and a motion moving them ``far`` of the drawing's width
+    towards ``angle``, turned by ``turn`` (radians): the table and the motion."""
+    a, b, _ = bench_matching.reordered_hatching(n, seed)
+    width = 0.3 * np.ceil(np.sqrt(n))
+    return _table(((a, [False] * n), (b, [False] * n))), (np.exp(1j * turn), far * width * np.exp(1j * angle))
+
+
+@settings(max_examples=12, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.floats(0.8, 1.4), st.floats(-np.pi, np.pi), st.floats(-0.3, 0.3))
+def test_every_pair_that_may_form_solves_as_the_whole_table(seed, far, angle, turn):
+    # Where few pairs may form at a motion (key A moved across key B), the solve on those pairs
+    # alone is optimal on the whole table: the same total (between look-alike strokes on a
+    # grid, another assignment may tie within the round-off of the pairs' fits).
+    n = int(np.random.default_rng(seed).integers(450, 650))
+    table, motion = _moved_hatching(n, seed, far, angle, turn)
+    solved = matching._assign_every(table, motion)
+    if solved is matching._UNSETTLED:
+        return
+    whole = matching._assign_within(table.costs(*motion))
+    totals = [matching._padded_total(table.costs(*motion, *pairs), n, n) for pairs in (solved, whole)]
+    assert totals[0] == pytest.approx(totals[1], rel=0, abs=matching.MATCH_ROUNDOFF * n)
+
+
+def test_every_pair_that_may_form_is_often_few_across_a_drawing():
+    # (The property above would hold vacuously if the pairs were never few.)
+    settled = [
+        matching._assign_every(*_moved_hatching(500, seed, 1.0, seed)) is not matching._UNSETTLED for seed in range(6)
+    ]
+    assert sum(settled) >= 3
+
+
+def test_hatching_moved_across_itself_is_never_priced_whole(monkeypatch):
+    # 1,000 hatch lines moved by most of the drawing: at no motion, not even before the ink's
+    # shift is guessed, is the whole table priced; few pairs may form at each.
+    a, b, perm = bench_matching.reordered_hatching(1000, 2)
+    b = [s + [8.0, 5.0] for s in b]
+    flags = [False] * 1000
+    made = []
+    monkeypatch.setattr(matching._CostTable, "_fit_whole", lambda table: made.append(table))
+    m = match_strokes(a, b, flags, flags)
+    assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
+    assert made == []
