@@ -851,18 +851,19 @@ def _assign_near(table, motion, beat=None):
     Where the pairs near each other do not settle the motion: :func:`_assign_every`.
     """
     priced = table.priced(*motion, MATCH_NEAR_COST)
+    near = len(priced.rows)
     most = MATCH_NEAR_SHARE * (len(priced.floor_a) + len(priced.floor_b))
     # A stroke of the smaller key (the solve's rows, whose potentials are at least their
     # pair's cost) with no pair priced below the floor breaks the certificate: where many
     # do, most pairs are needed anyway.
     cheapest = priced.cheapest()[0 if len(priced.floor_a) <= len(priced.floor_b) else 1]
     if np.count_nonzero(cheapest >= MATCH_NEAR_COST) > most:
-        return _assign_every(table, motion, beat)
+        return _assign_every(table, motion, beat, near)
     while True:
         if beat is not None and priced.least_total() >= beat:
             return None
         if not np.any(priced.costs < MATCH_MAX_COST):
-            return _assign_every(table, motion, beat)
+            return _assign_every(table, motion, beat, near)
         clipped = priced.table()
         rows, cols, u, v = solve_assignment(clipped, duals=True)
         wide_a, wide_b = priced.uncertified(u, v)
@@ -872,17 +873,26 @@ def _assign_near(table, motion, beat=None):
         # Strokes already widened keep their pairs: only the new ones are searched.
         full = np.count_nonzero(priced.floor_a >= MATCH_MAX_COST) + np.count_nonzero(priced.floor_b >= MATCH_MAX_COST)
         if full + np.count_nonzero(wide_a) + np.count_nonzero(wide_b) > most:
-            return _assign_every(table, motion, beat)
+            return _assign_every(table, motion, beat, near)
         priced = table.widened(priced, *motion, wide_a, wide_b)
 
 
-def _assign_every(table, motion, beat=None):
+def _assign_every(table, motion, beat=None, near=0):
     """:func:`_assign_at` from every pair that may cost less than ``MATCH_MAX_COST`` (the
     others would be clipped to it: the solve is the whole table's), where those are at most
     ``MATCH_SPARSE_SHARE`` of the table; else ``_UNSETTLED``. At a motion that takes the
-    strokes far from their partners (a drawing moved across itself), few pairs may form."""
+    strokes far from their partners (a drawing moved across itself), few pairs may form.
+
+    ``near`` (int): how many pairs :func:`_assign_near` found within ``MATCH_NEAR_COST``. A
+    stroke's reach grows with the level, the pairs within it with its square: where that many
+    would be most of the table, they are not listed (the benchmark's 400 open strokes: 96,000
+    pairs, 47 ms to list, then priced whole anyway).
+    """
+    limit = MATCH_SPARSE_SHARE * len(table.ra) * len(table.rb)
+    if near * (MATCH_MAX_COST / MATCH_NEAR_COST) ** 2 > limit:
+        return _UNSETTLED
     rows, cols = table.near(*motion)
-    if len(rows) > MATCH_SPARSE_SHARE * len(table.ra) * len(table.rb):
+    if len(rows) > limit:
         return _UNSETTLED
     priced = table.priced(*motion, MATCH_MAX_COST, (rows, cols))
     if beat is not None and priced.least_total() >= beat:

@@ -14,7 +14,8 @@ from ballmorph_core.drawing.matching import match_strokes
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
 
-import bench_matching  # (tools/ on the path first)
+import bench_drawings  # (tools/ on the path first)
+import bench_matching
 
 
 def _keys(seed, count=None):
@@ -299,3 +300,22 @@ def test_hatching_moved_across_itself_is_never_priced_whole(monkeypatch):
     m = match_strokes(a, b, flags, flags)
     assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
     assert made == []
+
+
+def test_where_most_pairs_may_form_they_are_not_listed_before_the_whole_table(monkeypatch):
+    # The benchmark's 400 open strokes: the near pairs do not settle the first motion, and they
+    # say the pairs that may form are most of the table (96,000 of 160,000): the whole table is
+    # priced without listing them first.
+    key_a, key_b = bench_drawings.make_keys("open", 400, 50)
+    levels = []
+    real = matching._CostTable.near
+
+    def spy(table, a, b, level=matching.MATCH_MAX_COST, only_a=None, only_b=None):
+        if only_a is None and only_b is None:  # (a widening lists a few strokes' pairs)
+            levels.append(level)
+        return real(table, a, b, level, only_a, only_b)
+
+    monkeypatch.setattr(matching._CostTable, "near", spy)
+    flags = [False] * 400
+    match_strokes(key_a, key_b, flags, flags)
+    assert matching.MATCH_NEAR_COST in levels and matching.MATCH_MAX_COST not in levels
