@@ -121,16 +121,22 @@ def test_the_near_pairs_match_as_the_whole_table(draw, monkeypatch):
         assert np.mean(settled) > 0.5
 
 
-def test_reordered_hatching_is_settled_by_the_near_pairs(monkeypatch):
-    # Look-alike strokes redrawn a little moved: every motion's solve is certified on each
-    # stroke's neighbours, and the whole table is never priced.
-    a, b, perm = bench_matching.reordered_hatching(300, 2)
-    flags = [False] * 300
+def _hatching_matched_without_the_whole_table(monkeypatch, n, move=(0.0, 0.0)):
+    """Whether ``n`` reordered hatch lines, key B also moved by ``move``, pair right with the
+    whole table never priced (two bools)."""
+    a, b, perm = bench_matching.reordered_hatching(n, 2)
+    b = [s + move for s in b]
+    flags = [False] * n
     made = []
     monkeypatch.setattr(matching._CostTable, "_fit_whole", lambda table: made.append(table))
     m = match_strokes(a, b, flags, flags)
-    assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
-    assert made == []
+    return m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm)), made == []
+
+
+def test_reordered_hatching_is_settled_by_the_near_pairs(monkeypatch):
+    # Look-alike strokes redrawn a little moved: every motion's solve is certified on each
+    # stroke's neighbours, and the whole table is never priced.
+    assert _hatching_matched_without_the_whole_table(monkeypatch, 300) == (True, True)
 
 
 def test_a_stroke_whose_partner_is_far_gets_all_its_pairs_priced(monkeypatch):
@@ -292,14 +298,7 @@ def test_every_pair_that_may_form_is_often_few_across_a_drawing():
 def test_hatching_moved_across_itself_is_never_priced_whole(monkeypatch):
     # 1,000 hatch lines moved by most of the drawing: at no motion, not even before the ink's
     # shift is guessed, is the whole table priced; few pairs may form at each.
-    a, b, perm = bench_matching.reordered_hatching(1000, 2)
-    b = [s + [8.0, 5.0] for s in b]
-    flags = [False] * 1000
-    made = []
-    monkeypatch.setattr(matching._CostTable, "_fit_whole", lambda table: made.append(table))
-    m = match_strokes(a, b, flags, flags)
-    assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
-    assert made == []
+    assert _hatching_matched_without_the_whole_table(monkeypatch, 1000, np.array([8.0, 5.0])) == (True, True)
 
 
 def test_where_most_pairs_may_form_they_are_not_listed_before_the_whole_table(monkeypatch):
