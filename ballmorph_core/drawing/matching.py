@@ -26,8 +26,9 @@ sizes (``r``, the RMS distance of the samples from their centroid), once the key
 So a stroke turned by any angle, scaled from 1/4 to 4 times or moved by a few of its own sizes
 still pairs, and a small stroke is not paired with a big one across the drawing. ``G`` is found by
 alternating (assign, fit ``G`` to the paired centroids) from a few starting guesses: no motion,
-the shift of the keys' ink, and the drawing order's motion where the order accounts for how the
-drawing moved.
+the shift of the keys' ink, the turn on which similar strokes' fits agree (found without pairing
+them: a drawing turned far and redrawn in another order), and the drawing order's motion where
+the order accounts for how the drawing moved.
 
 Pairs near each other
 ---------------------
@@ -98,6 +99,15 @@ MATCH_NEAR_SHARE = 1 / 16
 #: priced when those are at most this share of the table (else the whole table is, its open
 #: fits by matrix products: the faster where more pairs may form).
 MATCH_SPARSE_SHARE = 1 / 8
+#: The turn guess: the ``TURN_VOTERS`` largest strokes of each key pair up every way, and each
+#: pair whose shapes fit within ``TURN_VOTE_FIT`` (``sqrt(e)``) votes for its fit's turn (the
+#: better fitting the more), in ``TURN_VOTE_BINS`` bins; the guess is tried where it turns or
+#: scales by more than ``TURN_VOTE_MOVE`` (``|a - 1|``, about 6 degrees; below, alternating from
+#: the ink's shift finds it).
+TURN_VOTERS = 48
+TURN_VOTE_FIT = 0.2
+TURN_VOTE_BINS = 72
+TURN_VOTE_MOVE = 0.1
 #: Per pair, totals closer than this are equal (round-off of the cost evaluation).
 MATCH_ROUNDOFF = 1e-6
 #: Alternations of (assign strokes, re-fit the keys' overall motion) per starting guess.
@@ -311,6 +321,14 @@ class _Key:
         x, y = self.ring[..., 0], self.ring[..., 1]
         area = 0.5 * np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1)
         return np.where(self.loop, area, 0.0)
+
+    def ink_spread(self):
+        """Length-weighted RMS distance of the stroke centroids from :meth:`ink_centroid`
+        (float; 0 where none has ink)."""
+        ctr, w = self.centroids()[self.valid], self.length[self.valid]
+        if not len(ctr) or w.sum() <= 0:
+            return 0.0
+        return float(np.sqrt(np.sum(w * np.sum((ctr - self.ink_centroid()) ** 2, axis=1)) / w.sum()))
 
     def ink_centroid(self):
         """Length-weighted mean of the stroke centroids, shape (2,) (dots weigh in if no ink)."""
@@ -928,6 +946,9 @@ def _guesses(table, key_a, key_b, motion=None):
     if key_a.valid.any() and key_b.valid.any():
         shift = _complex(key_b.ink_centroid() - key_a.ink_centroid())
         guesses.append((1.0 + 0j, complex(shift)))
+        turned = _turn_guess(table, key_a, key_b)
+        if turned is not None and abs(turned[0] - 1.0) > TURN_VOTE_MOVE:
+            guesses.append(turned)
         if key_a.count == key_b.count:
             # The drawing order's motion, where the order says how the drawing moved: the
             # motion fitted to a reordered key crowds key A together and leads nowhere (from
@@ -938,6 +959,40 @@ def _guesses(table, key_a, key_b, motion=None):
             if key_a.count < MATCH_ORDER_GATE or table.explained(index, index, order) >= MATCH_ORDER_EXPLAINS:
                 guesses.append(order)
     return guesses
+
+
+def _turn_guess(table, key_a, key_b):
+    """The keys' overall motion from the turn that similar strokes' fits agree on, found
+    without pairing them (see ``TURN_VOTERS``): complex ``(a, b)``, the scale the voters'
+    sizes say, the shift taking key A's ink centroid onto key B's; None where no pair votes.
+
+    A drawing turned a quarter turn and redrawn in another order, or with a stroke more: no
+    other guess turns, and alternating from them rarely finds the turn.
+    """
+    voters = []
+    for size, valid in ((table.ra, key_a.valid), (table.rb, key_b.valid)):
+        index = np.flatnonzero(valid & (size > 0))
+        voters.append(index[np.argsort(-size[index], kind="stable")][:TURN_VOTERS])
+    rows, cols = np.repeat(voters[0], len(voters[1])), np.tile(voters[1], len(voters[0]))
+    if not len(rows):
+        return None
+    e_f, e_r, turn_f, turn_r = table._pair_fits(rows, cols)
+    reverse = e_r < e_f
+    fit, turn = np.sqrt(np.where(reverse, e_r, e_f)), np.where(reverse, turn_r, turn_f)
+    weight = np.clip(1.0 - fit / TURN_VOTE_FIT, 0.0, None)
+    if not np.any(weight > 0):
+        return None
+    bins = np.floor((turn + np.pi) / (2 * np.pi) * TURN_VOTE_BINS).astype(np.int64) % TURN_VOTE_BINS
+    votes = np.bincount(bins, weight, TURN_VOTE_BINS)
+    votes = votes + 0.5 * (np.roll(votes, 1) + np.roll(votes, -1))
+    off = np.abs((bins - int(np.argmax(votes)) + TURN_VOTE_BINS // 2) % TURN_VOTE_BINS - TURN_VOTE_BINS // 2)
+    peak = (off <= 1) & (weight > 0)
+    w = weight[peak]
+    angle = np.angle(np.sum(w * np.exp(1j * turn[peak])))
+    # The scale of the whole ink, not the voters': the largest strokes of key B are the ones
+    # that grew the most.
+    a = key_b.ink_spread() / max(key_a.ink_spread(), 1e-300) * np.exp(1j * angle)
+    return complex(a), complex(_complex(key_b.ink_centroid()) - a * _complex(key_a.ink_centroid()))
 
 
 def _best_assignment(table, key_a, key_b, motion=None):

@@ -27,7 +27,8 @@ from ballmorph_core.geometry.ragged import Ragged
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
 
-import bench_matching  # (tools/ on the path first)
+import bench_drawings  # (tools/ on the path first)
+import bench_matching
 
 
 def face():
@@ -626,3 +627,32 @@ def test_the_matching_benchmark_times_right_matchings_and_rejects_bad_sizes(caps
         with pytest.raises(SystemExit):
             bench_matching.main(["--sizes", bad])
         assert "--sizes" in capsys.readouterr().err
+
+
+def _turned_arcs(n, degrees, scale=1.0, seed=3):
+    """The benchmark's open arcs (key A) and key B turned by ``degrees`` and scaled about the
+    drawing's centre, reordered and one stroke short: (a, b, source of each stroke of B)."""
+    key_a, key_b = bench_drawings.make_keys("open", n, 40, seed)
+    source = np.random.default_rng(seed).permutation(n)[:-1]
+    centre = np.mean(np.concatenate(key_a), axis=0)
+    turn = scale * np.exp(1j * np.radians(degrees))
+    rotate = np.array([[turn.real, -turn.imag], [turn.imag, turn.real]])
+    return key_a, [(key_b[i] - centre) @ rotate.T + centre for i in source], source
+
+
+@pytest.mark.parametrize("degrees", [45, 90, 150, -120])
+def test_a_drawing_turned_and_redrawn_in_another_order_pairs_right(degrees):
+    # No drawing order to fit (the counts differ), strokes of every orientation: before the turn
+    # guess, 2 of 29 pairs were right at 45 degrees, none at 90 or 150.
+    a, b, source = _turned_arcs(30, degrees)
+    m = match_strokes(a, b, [False] * 30, [False] * 29)
+    assert sorted((i, j) for i, j, _ in m.pairs) == sorted((int(s), j) for j, s in enumerate(source))
+
+
+def test_the_turn_guess_reads_the_turn_and_scale_without_pairing():
+    a, b, _ = _turned_arcs(60, 70.0, 1.25)
+    keys = [matching._Key(k, [False] * len(k), "k", "c", matching.MATCH_SAMPLES) for k in (a, b)]
+    turn, _ = matching._turn_guess(matching._CostTable(*keys), *keys)
+    # The arcs of key B are key A's redrawn, each a little turned (up to 8 degrees) and scaled.
+    assert abs(np.degrees(np.angle(turn)) - 70.0) < 4.0
+    assert abs(abs(turn) / 1.25 - 1.0) < 0.05
