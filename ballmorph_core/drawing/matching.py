@@ -322,19 +322,21 @@ class _Key:
         area = 0.5 * np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1)
         return np.where(self.loop, area, 0.0)
 
-    def ink_spread(self):
-        """Length-weighted RMS distance of the stroke centroids from :meth:`ink_centroid`
-        (float; 0 where none has ink)."""
+    def _ink(self):
+        """The stroke centroids with points and their weights, their lengths (the dots' equal
+        where no stroke has ink): shapes (V, 2), (V,)."""
         ctr, w = self.centroids()[self.valid], self.length[self.valid]
-        if not len(ctr) or w.sum() <= 0:
-            return 0.0
+        return ctr, (w if w.sum() > 0 else np.ones(len(ctr)))
+
+    def ink_spread(self):
+        """Weighted RMS distance of the stroke centroids from :meth:`ink_centroid`, weighted
+        as there (float)."""
+        ctr, w = self._ink()
         return float(np.sqrt(np.sum(w * np.sum((ctr - self.ink_centroid()) ** 2, axis=1)) / w.sum()))
 
     def ink_centroid(self):
         """Length-weighted mean of the stroke centroids, shape (2,) (dots weigh in if no ink)."""
-        ctr, w = self.centroids()[self.valid], self.length[self.valid]
-        if w.sum() <= 0:
-            w = np.ones(len(ctr))
+        ctr, w = self._ink()
         return (w[:, None] * ctr).sum(axis=0) / w.sum()
 
 
@@ -869,19 +871,32 @@ def _assign_near(table, motion, beat=None):
     Where the pairs near each other do not settle the motion: :func:`_assign_every`.
     """
     priced = table.priced(*motion, MATCH_NEAR_COST)
-    near = len(priced.rows)
     most = MATCH_NEAR_SHARE * (len(priced.floor_a) + len(priced.floor_b))
     # A stroke of the smaller key (the solve's rows, whose potentials are at least their
     # pair's cost) with no pair priced below the floor breaks the certificate: where many
     # do, most pairs are needed anyway.
     cheapest = priced.cheapest()[0 if len(priced.floor_a) <= len(priced.floor_b) else 1]
-    if np.count_nonzero(cheapest >= MATCH_NEAR_COST) > most:
-        return _assign_every(table, motion, beat, near)
+    if np.count_nonzero(cheapest >= MATCH_NEAR_COST) <= most:
+        solved = _settle(table, motion, priced, beat, most)
+        if solved is not _UNSETTLED:
+            return solved
+    return _assign_every(table, motion, beat, len(priced.rows))
+
+
+def _settle(table, motion, priced, beat, most):
+    """The solve of the pairs ``priced`` (:class:`_Priced`) at ``motion``, widened until its
+    dual potentials certify it (see :func:`_assign_near`): rows, cols; None when no matching
+    totals less than ``beat``; ``_UNSETTLED`` when more than ``most`` strokes would need all
+    their pairs priced, or when none priced may form while others left out still may."""
     while True:
         if beat is not None and priced.least_total() >= beat:
             return None
         if not np.any(priced.costs < MATCH_MAX_COST):
-            return _assign_every(table, motion, beat, near)
+            # Every pair that may form is priced (each left out has a stroke whose floor is
+            # the limit) and none does: no pair.
+            if np.all(priced.floor_a >= MATCH_MAX_COST) or np.all(priced.floor_b >= MATCH_MAX_COST):
+                return np.zeros(0, np.int64), np.zeros(0, np.int64)
+            return _UNSETTLED
         clipped = priced.table()
         rows, cols, u, v = solve_assignment(clipped, duals=True)
         wide_a, wide_b = priced.uncertified(u, v)
@@ -891,15 +906,16 @@ def _assign_near(table, motion, beat=None):
         # Strokes already widened keep their pairs: only the new ones are searched.
         full = np.count_nonzero(priced.floor_a >= MATCH_MAX_COST) + np.count_nonzero(priced.floor_b >= MATCH_MAX_COST)
         if full + np.count_nonzero(wide_a) + np.count_nonzero(wide_b) > most:
-            return _assign_every(table, motion, beat, near)
+            return _UNSETTLED
         priced = table.widened(priced, *motion, wide_a, wide_b)
 
 
 def _assign_every(table, motion, beat=None, near=0):
     """:func:`_assign_at` from every pair that may cost less than ``MATCH_MAX_COST`` (the
-    others would be clipped to it: the solve is the whole table's), where those are at most
-    ``MATCH_SPARSE_SHARE`` of the table; else ``_UNSETTLED``. At a motion that takes the
-    strokes far from their partners (a drawing moved across itself), few pairs may form.
+    others would be clipped to it: the solve is the whole table's, certified at once), where
+    those are at most ``MATCH_SPARSE_SHARE`` of the table; else ``_UNSETTLED``. At a motion
+    that takes the strokes far from their partners (a drawing moved across itself), few pairs
+    may form.
 
     ``near`` (int): how many pairs :func:`_assign_near` found within ``MATCH_NEAR_COST``. A
     stroke's reach grows with the level, the pairs within it with its square: where that many
@@ -912,15 +928,7 @@ def _assign_every(table, motion, beat=None, near=0):
     rows, cols = table.near(*motion)
     if len(rows) > limit:
         return _UNSETTLED
-    priced = table.priced(*motion, MATCH_MAX_COST, (rows, cols))
-    if beat is not None and priced.least_total() >= beat:
-        return None
-    if not np.any(priced.costs < MATCH_MAX_COST):
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    clipped = priced.table()
-    rows, cols = solve_assignment(clipped)
-    keep = clipped.at(rows, cols) < MATCH_MAX_COST
-    return rows[keep], cols[keep]
+    return _settle(table, motion, table.priced(*motion, MATCH_MAX_COST, (rows, cols)), beat, 0)
 
 
 def _padded_total(pair_costs, n_a, n_b):
@@ -963,8 +971,8 @@ def _guesses(table, key_a, key_b, motion=None):
 
 def _turn_guess(table, key_a, key_b):
     """The keys' overall motion from the turn that similar strokes' fits agree on, found
-    without pairing them (see ``TURN_VOTERS``): complex ``(a, b)``, the scale the voters'
-    sizes say, the shift taking key A's ink centroid onto key B's; None where no pair votes.
+    without pairing them (see ``TURN_VOTERS``): complex ``(a, b)``, scaled as the keys' ink
+    spreads, the shift taking key A's ink centroid onto key B's; None where no pair votes.
 
     A drawing turned a quarter turn and redrawn in another order, or with a stroke more: no
     other guess turns, and alternating from them rarely finds the turn.
