@@ -7,9 +7,7 @@ A batch gives each pair what it gets alone: the same errors, word for word, and 
 morphs up to the round-off of the batch's layout (its curves' arc lengths are one running sum).
 """
 
-import os
-import sys
-
+import bench_drawings
 import numpy as np
 import pytest
 from shapes import circle
@@ -24,10 +22,6 @@ from ballmorph_core.errors import BallMorphError, IncompatibleCurvesError, Inval
 from ballmorph_core.morphs import blending, composite
 from ballmorph_core.morphs.ball import ball_morphs
 from ballmorph_core.morphs.composite import build_composite, build_composites
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
-
-import bench_drawings  # (tools/ on the path first)
 
 #: Morphs of one pair built in a batch and alone agree to this (their arc lengths are summed
 #: along the batch, not along the pair alone).

@@ -1,10 +1,10 @@
 """Stroke matching between two keys: index pairing, optimal assignment, reversal, unmatched."""
 
 import itertools
-import os
-import sys
 import time
 
+import bench_drawings
+import bench_matching
 import numpy as np
 import pytest
 from hypothesis import given
@@ -24,11 +24,6 @@ from ballmorph_core.drawing.matching import (
 from ballmorph_core.errors import InvalidCurveError
 from ballmorph_core.geometry.polyline import resample, reverse, signed_area
 from ballmorph_core.geometry.ragged import Ragged
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
-
-import bench_drawings  # (tools/ on the path first)
-import bench_matching
 
 
 def face():

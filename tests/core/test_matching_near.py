@@ -1,9 +1,8 @@
 """Stroke matching from the pairs near each other: the pairs priced, the duals' certificate, the
 strokes widened, and the drawing order's guess (issue 14: a drawing of many small strokes)."""
 
-import os
-import sys
-
+import bench_drawings
+import bench_matching
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -11,11 +10,6 @@ from hypothesis import strategies as st
 
 from ballmorph_core.drawing import matching
 from ballmorph_core.drawing.matching import match_strokes
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
-
-import bench_drawings  # (tools/ on the path first)
-import bench_matching
 
 
 def _keys(seed, count=None):

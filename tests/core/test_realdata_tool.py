@@ -4,13 +4,9 @@ Tests that read the Inter variable font skip when it is not installed.
 """
 
 import os
-import sys
 
 import numpy as np
 import pytest
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools"))
-
 import realdata as rd
 
 

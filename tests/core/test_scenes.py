@@ -6,13 +6,8 @@ The second half tests the figures themselves on frames whose answer is known, so
 cannot fail (or measures the wrong thing) is caught.
 """
 
-import os
-import sys
-
 import numpy as np
 import pytest
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 import scenes
 from scenes import Stroke
 
