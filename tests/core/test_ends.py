@@ -1,6 +1,7 @@
 """Open strokes whose registered ends do not meet (drawing/ends.py) and the sliding fit that
 finds strokes lying along each other (drawing/registration.py)."""
 
+import bench_drawings
 import numpy as np
 import pytest
 from hypothesis import example, given, settings
@@ -186,10 +187,12 @@ def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monke
         np.testing.assert_array_equal(getattr(fits, name), getattr(want, name))
 
 
-def _lying_partly_along(rng, n_pairs):
+def _lying_partly_along(rng, n_pairs, truth=False):
     """Pairs of pieces of one arc, spiral or wandering curve, overlapping by 55-85 % of them,
-    the second turned (up to 20 degrees), scaled (up to 10 %), moved and a little noisy."""
-    pairs = []
+    the second turned (up to 20 degrees), scaled (up to 10 %), moved and a little noisy; with
+    ``truth``, also the scale taking each P onto its Q and the kind of curve (0 arc, 1 spiral,
+    2 wandering), shape (n_pairs,) each."""
+    pairs, scale, kinds = [], [], []
     for _ in range(n_pairs):
         u = np.linspace(0.0, 1.0, 400)
         kind = rng.integers(3)
@@ -211,8 +214,11 @@ def _lying_partly_along(rng, n_pairs):
         a = rng.uniform(0.9, 1.1) * np.exp(1j * turn)
         z = a * as_complex(q) + size * complex(*rng.uniform(-0.2, 0.2, 2))
         q = np.c_[z.real, z.imag] + 0.002 * size * rng.normal(size=q.shape)
-        pairs.append((p, q) if rng.integers(2) else (q, p))
-    return pairs
+        first = rng.integers(2)
+        pairs.append((p, q) if first else (q, p))
+        scale.append(abs(a) if first else 1.0 / abs(a))
+        kinds.append(kind)
+    return (pairs, np.array(scale), np.array(kinds)) if truth else pairs
 
 
 def _ungate(patch):
@@ -267,6 +273,45 @@ def test_the_coarse_gate_keeps_a_slide_whose_start_overlaps_by_a_few_samples(mon
     gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
     assert want.residual[0] < sliding.SLIDE_GAIN * end_to_end.residual[0]  # the full fit slides
     np.testing.assert_array_equal(gated.residual, want.residual)
+
+
+def _slid(monkeypatch, P, Q):
+    """The fits of pairs ``P``, ``Q`` and which of them slid (fit better than end to end)."""
+    fits = fit_pairs(P, Q)
+    with monkeypatch.context() as no_sliding:
+        no_sliding.setattr(sliding, "SLIDE_FROM", np.inf)
+        return fits, fits.residual < fit_pairs(P, Q).residual
+
+
+@pytest.mark.xfail(strict=True, reason="the sliding fit's free scale shrinks spirals and wandering curves")
+def test_a_slide_keeps_the_scale_the_strokes_were_drawn_at(monkeypatch):
+    """Pieces of one curve lying partly along each other, the second scaled by 0.9-1.1: a slide
+    should take one onto the other at about that scale. The sliding fit's scale is free, and
+    its trimmed closest points, stopped after ``SLIDE_ITERATIONS``, shrink P onto a part of Q:
+    of these 300 pairs 217 slide, 114 of them more than 12 % off the drawn scale (no arc, 63 of
+    104 spirals, 51 of 74 wandering curves; over 1,000 pairs 367 of 716). Fitted rigid (scale
+    1) instead, 1,032 of 2,000 such pairs slide within 12 % of their scale, against 812 now. A
+    strict xfail until the sliding fit keeps the scale (a known limit, measured in issue 14's
+    note of 2026-12-05)."""
+    pairs, scale, _ = _lying_partly_along(np.random.default_rng(1), 300, truth=True)
+    fits, slid = _slid(monkeypatch, batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs]))
+    off = np.abs(np.log(np.sqrt(np.abs(np.linalg.det(fits.A))) / scale)) > 0.12
+    assert slid.sum() >= 150
+    assert (off & slid).sum() <= 0.05 * slid.sum()
+
+
+@pytest.mark.xfail(strict=True, reason="wobbly redraws slide where a shorter overlap fits their wobble better")
+def test_no_wobbly_redraw_of_the_benchmark_slides(monkeypatch):
+    """The benchmark's open strokes: key B redraws every stroke of key A with a wobble across it
+    (up to 6 % of its size), moved, turned and scaled a little, so end to end is the truth.
+    Strokes 66 and 71 of these 100 slide all the same, their ends moved by 3-5 % of their size
+    (400 strokes of 500 points: 18 slide, one end moved by 56 %): fitted on 60 % of the stroke,
+    a similarity follows the wobble far better than on all of it, and the acceptance compares
+    the two as they are. A strict xfail until the sliding fit tells a redraw from a slide (a
+    known limit, measured in issue 14's note of 2026-12-05)."""
+    key_a, key_b = bench_drawings.make_keys("open", 100, 200)
+    _, slid = _slid(monkeypatch, batch(*key_a), batch(*key_b))
+    assert not slid.any(), np.flatnonzero(slid)
 
 
 def test_the_full_sliding_fit_runs_only_from_the_starts_the_gate_lets_through(monkeypatch):
