@@ -250,7 +250,7 @@ def _affine_loops(P, Q, index, res_sim, xp, xq):
     return ok & moderate & (residual < AFFINE_GAIN * res_sim), A, b, residual
 
 
-def fit_pairs(P, Q, affine=True, turn=0.0):
+def fit_pairs(P, Q, affine=True, turn=0.0, scale=1.0):
     """Registrations of every P of a batch onto its Q (see the module docstring).
 
     Parameters
@@ -261,6 +261,9 @@ def fit_pairs(P, Q, affine=True, turn=0.0):
         Allow affine fits of squashed or stretched loops.
     turn : float
         The drawing's own turn (radians): symmetric loops turn closest to it.
+    scale : float
+        The drawing's own scale: strokes sliding along each other start at it (see
+        :mod:`.sliding`).
 
     Returns
     -------
@@ -274,7 +277,7 @@ def fit_pairs(P, Q, affine=True, turn=0.0):
         loop_samples = _samples(P, loops, k), _samples(Q, loops, k)
         a[loops], b[loops], residual[loops] = _loop_fits(*loop_samples, turn)
     if len(opened):
-        a[opened], b[opened], residual[opened] = _open_fits(P, Q, opened, k, turn)
+        a[opened], b[opened], residual[opened] = _open_fits(P, Q, opened, k, turn, scale)
     A, bb = similarity_matrices(a), from_complex(b)
     if affine and len(loops):
         use, A_aff, b_aff, res_aff = _affine_loops(P, Q, loops, residual[loops], *loop_samples)
@@ -282,7 +285,7 @@ def fit_pairs(P, Q, affine=True, turn=0.0):
     return Fits(A, bb, residual)
 
 
-def _open_fits(P, Q, index, k, turn):
+def _open_fits(P, Q, index, k, turn, scale):
     """Strokes: end to end (about a shared endpoint when there is one), as loops when nearly
     closed, or sliding along each other, whichever fits clearly better."""
     xp, xq = _samples(P, index, k), _samples(Q, index, k)
@@ -298,7 +301,7 @@ def _open_fits(P, Q, index, k, turn):
         better = lr < residual[round_] - tol.EQUAL_FIT * size[round_]
         rows = np.flatnonzero(round_)[better]
         a[rows], b[rows], residual[rows] = la[better], lb[better], lr[better]
-    slide(xp, Q, index, size, a, b, residual)
+    slide(xp, Q, index, size, a, b, residual, scale)
     return a, b, residual
 
 
