@@ -40,7 +40,7 @@ from ballmorph_core.geometry.projection import (
     distances_to_polyline,
     nearest_within,
 )
-from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange
+from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange, unit_left
 from ballmorph_core.geometry.spatial import CurveTree, PointTree, _box_reach, box_pair_chunks, box_pairs
 
 POINTS = st.integers(0, 2**32 - 1).map(lambda seed: np.random.default_rng(seed).uniform(-1, 1, (60, 2)))
@@ -54,6 +54,21 @@ def _wobbly(n, seed, closed=True):
 
 
 # ------------------------------------------------------------------ ragged arrays
+
+
+def test_unit_left_is_the_row_wise_normal_bit_for_bit():
+    """Column by column, unit_left gives the values of the row-wise form it replaced (a norm
+    along the last axis, a division where it is positive, the turn), signs of zeros included."""
+    rng = np.random.default_rng(3)
+    scaled = rng.normal(size=(2000, 2)) * 10.0 ** rng.uniform(-150, 150, (2000, 1))
+    for v in (scaled, rng.normal(size=(4, 3, 2)), np.array([[0.0, -0.0], [-0.0, 0.0], [3.0, 4.0], [5e-324, 0.0]])):
+        norm = np.linalg.norm(v, axis=-1, keepdims=True)
+        u = np.divide(v, norm, out=np.zeros_like(v), where=norm > 0)
+        want = np.stack([-u[..., 1], u[..., 0]], axis=-1)
+        got = unit_left(v)
+        assert got.shape == want.shape
+        np.testing.assert_array_equal(got, want)
+        np.testing.assert_array_equal(np.signbit(got), np.signbit(want))
 
 
 def test_ragged_arange_and_budget_slices():
