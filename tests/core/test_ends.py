@@ -164,6 +164,22 @@ def test_an_outline_started_elsewhere_passes_the_coarse_gate(monkeypatch):
     np.testing.assert_allclose(fits.A[0], np.eye(2), atol=5e-3)
 
 
+@pytest.mark.parametrize("bad", [0.0, np.nan])
+def test_an_outline_started_elsewhere_in_a_drawing_scaled_twice_slides_at_its_scale(bad):
+    """The sliding fit turns and moves P at the drawing's scale before it frees the scale: in
+    a drawing scaled 2 times, an outline redrawn from another start registers as twice itself.
+    At scale 1 its first iterations would place P at the wrong size, and the end-to-end fit
+    (turned by 166 degrees) would stay. A drawing motion of no size counts as scale 1."""
+    P, Q = batch(arc(0, 330, 110) * [1.0, 0.8]), batch(2.0 * arc(100, 430, 110) * [1.0, 0.8])
+    fits = fit_pairs(P, Q, scale=2.0)
+    np.testing.assert_allclose(fits.A[0], 2.0 * np.eye(2), atol=0.01)
+    assert fits.residual[0] < 0.01
+    unscaled = fit_pairs(P, Q, scale=1.0)
+    assert unscaled.residual[0] > 0.1  # the same pair at the wrong scale does not slide
+    for name in ("A", "b", "residual"):
+        np.testing.assert_array_equal(getattr(fit_pairs(P, Q, scale=bad), name), getattr(unscaled, name))
+
+
 @pytest.mark.parametrize("move", [0.1, 3.0])
 @pytest.mark.parametrize("n", [200, 10])
 def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monkeypatch, move, n):
