@@ -175,7 +175,7 @@ def carrier_motions(P, Q, carrier, scale, drawing=None):
     kept = np.full(n, np.nan)
     if carrier == "none":
         return Motions.identity(n, kind), kept
-    turn, size = (0.0, 1.0) if drawing is None else (drawing.turn, abs(drawing.a))
+    turn, size = (0.0, 1.0) if drawing is None else (drawing.turn, drawing.scale)
     fits = fit_pairs(P, Q, turn=turn, scale=size)
     still = (np.abs(fits.A - np.eye(2)).max(axis=(1, 2)) <= tol.IDENTITY) & (
         np.linalg.norm(fits.b, axis=1) <= tol.IDENTITY * scale

@@ -410,6 +410,11 @@ class DrawingMotion:
         """The drawing's turn, radians."""
         return float(np.angle(self.a))
 
+    @property
+    def scale(self):
+        """The drawing's scale (``|a|``)."""
+        return float(abs(self.a))
+
 
 def _reach_scales(P, fits, scale, drawing):
     """The size each pair's pivot reach is measured in, shape (C,): the pair's own, or the

@@ -10,7 +10,8 @@ import numpy as np
 from .. import tolerances as tol
 from ..errors import InvalidCurveError
 from ..options import check_positive
-from .ragged import Ragged, unit_left
+from .ragged import Ragged
+from .vectors import unit_left
 
 __all__ = [
     "as_curve",

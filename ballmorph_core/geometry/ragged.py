@@ -13,8 +13,9 @@ import numpy as np
 
 from .. import tolerances as tol
 from .spline import catmull_rom
+from .vectors import unit_left
 
-__all__ = ["Ragged", "ragged_arange", "budget_slices", "group_argmin", "unit_left"]
+__all__ = ["Ragged", "ragged_arange", "budget_slices", "group_argmin"]
 
 #: (point, edge) pairs tested at once by :meth:`Ragged.contains` (memory bound).
 _EDGE_BUDGET = 2_000_000
@@ -95,26 +96,6 @@ def group_argmin(values, owner, n_groups):
     first = hit[np.r_[True, owner[hit][1:] != owner[hit][:-1]]] if len(hit) else hit
     out = np.zeros(n_groups, dtype=np.int64)
     out[owner[first]] = first
-    return out
-
-
-def unit_left(v):
-    """Unit vectors turned +90 degrees (zero for zero vectors), shape (..., 2).
-
-    Coordinate by coordinate (the ball-map turns every dense vertex and edge of both sides):
-    the values of ``np.linalg.norm(v, axis=-1)``, the division and the turn bit for bit (x x +
-    y y, then the root), without numpy's reductions along rows two long and its (..., 1)
-    column broadcast, several times slower."""
-    v = np.asarray(v, dtype=np.float64)
-    x, y = v[..., 0], v[..., 1]
-    norm = x * x
-    norm += y * y
-    np.sqrt(norm, out=norm)
-    some = norm > 0
-    out = np.zeros_like(v)
-    np.divide(y, norm, out=out[..., 0], where=some)
-    np.negative(out[..., 0], out=out[..., 0])
-    np.divide(x, norm, out=out[..., 1], where=some)
     return out
 
 

@@ -8,6 +8,7 @@ they were drawn while new points land on the smooth curve the polyline approxima
 import numpy as np
 
 from .. import tolerances as tol
+from .vectors import norms
 
 __all__ = ["catmull_rom", "subdivide", "densify", "needs_subdivision"]
 
@@ -40,10 +41,10 @@ def catmull_rom(p0, p1, p2, p3, frac):
     (x0, y0), (x1, y1), (x2, y2), (x3, y3) = (
         (np.ascontiguousarray(p[:, 0]), np.ascontiguousarray(p[:, 1])) for p in (p0, p1, p2, p3)
     )
-    t1 = np.maximum(_distance(x0, y0, x1, y1) ** 0.5, floor)
-    d12 = np.maximum(_distance(x1, y1, x2, y2) ** 0.5, floor)
+    t1 = np.maximum(norms(x1 - x0, y1 - y0) ** 0.5, floor)
+    d12 = np.maximum(norms(x2 - x1, y2 - y1) ** 0.5, floor)
     t2 = t1 + d12
-    t3 = t2 + np.maximum(_distance(x2, y2, x3, y3) ** 0.5, floor)
+    t3 = t2 + np.maximum(norms(x3 - x2, y3 - y2) ** 0.5, floor)
     t = t1 + frac * d12
     # Barry-Goldman pyramid (t0 = 0).
     out = np.empty((len(t), 2))
@@ -55,12 +56,6 @@ def catmull_rom(p0, p1, p2, p3, frac):
         b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
         out[:, k] = ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
     return out
-
-
-def _distance(xa, ya, xb, yb):
-    """Distances between points given by coordinates, shape (K,) (as np.linalg.norm sums them)."""
-    dx, dy = xb - xa, yb - ya
-    return np.sqrt(dx * dx + dy * dy)
 
 
 def subdivide(curve, closed, steps=1):

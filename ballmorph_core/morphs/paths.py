@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from ..geometry.vectors import row_norms
 from ..options import check_option
 
 __all__ = ["KINDS", "BallPaths", "SampledPaths", "LevelPaths", "LinearPaths", "midpoint_locus"]
@@ -40,16 +41,6 @@ _GAUSS3 = ((-np.sqrt(0.6), 5.0 / 9.0), (0.0, 8.0 / 9.0), (np.sqrt(0.6), 5.0 / 9.
 
 def _cross(a, b):
     return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-
-
-def _norms(v):
-    """Lengths of the rows of ``v`` (shape (K, 2)), shape (K,): ``np.linalg.norm(v, axis=1)``
-    bit for bit (x x + y y, then the root), column by column instead of numpy's reduction
-    along rows two elements long (several times slower on many rows)."""
-    x, y = v[:, 0], v[:, 1]
-    out = x * x
-    out += y * y
-    return np.sqrt(out, out=out)
 
 
 #: :func:`_sincos` keeps the Taylor terms whose size at its largest angle can reach this (a
@@ -253,7 +244,7 @@ class LinearPaths(_Endpoints):
 
     def lengths(self):
         """Shape (K,)."""
-        return _norms(self.q - self.p)
+        return row_norms(self.q - self.p)
 
     def at(self, t, out=None):
         """Shape (K, 2); written into ``out`` (any (K, 2) array) when given."""
@@ -298,12 +289,12 @@ class BallPaths(_Endpoints):
         self.m = np.asarray(m, dtype=np.float64)
         self.q = np.asarray(q, dtype=np.float64)
         d = self.q - self.p
-        self._chord = _norms(d)
+        self._chord = row_norms(d)
         self._work = None  # the circular paths' work buffers (at the first at())
         if kind == "circular":
             # Angle phi between the start direction (p -> m) and the chord; the arc turns 2 phi.
             u = self.m - self.p
-            size = _norms(u)[:, None]
+            size = row_norms(u)[:, None]
             self._u = np.divide(u, size, out=np.zeros_like(u), where=size > 0)
             self._phi = np.arctan2(_cross(self._u, d), np.einsum("ij,ij->i", self._u, d))
             self._phi = np.where(self._chord > 0, self._phi, 0.0)
@@ -415,7 +406,7 @@ class BallPaths(_Endpoints):
 
     def lengths(self):
         """Arc length of each path, shape (K,)."""
-        r = _norms(self.m - self.p)
+        r = row_norms(self.m - self.p)
         if self.kind == "linear":
             return self._chord
         if self.kind == "hat":

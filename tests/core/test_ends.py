@@ -9,10 +9,11 @@ from hypothesis import strategies as st
 from shapes import distance_to_polyline
 
 from ballmorph_core.drawing import ends, sliding
+from ballmorph_core.drawing.carrier_choice import carrier_motions
 from ballmorph_core.drawing.ends import overhang_morph, settle_ends
 from ballmorph_core.drawing.pipeline import PairMorph
-from ballmorph_core.drawing.registration import FIT_SAMPLES, fit_pairs
-from ballmorph_core.geometry.polyline import resample
+from ballmorph_core.drawing.registration import FIT_SAMPLES, DrawingMotion, fit_pairs
+from ballmorph_core.geometry.polyline import pair_scales, resample
 from ballmorph_core.geometry.projection import nearest_within
 from ballmorph_core.geometry.ragged import Ragged
 from ballmorph_core.geometry.similarity import as_complex
@@ -180,6 +181,20 @@ def test_an_outline_started_elsewhere_in_a_drawing_scaled_twice_slides_at_its_sc
         np.testing.assert_array_equal(getattr(fit_pairs(P, Q, scale=bad), name), getattr(unscaled, name))
 
 
+def test_the_carrier_slides_at_the_scale_of_the_drawing_motion():
+    """The carrier of that outline reads the scale from the drawing's motion (the stroke
+    matching's): twice the outline in a drawing scaled 2 times, turned by it too."""
+    P, Q = batch(arc(0, 330, 110) * [1.0, 0.8]), batch(2.0 * arc(100, 430, 110) * [1.0, 0.8])
+    drawing = DrawingMotion(2.0 + 0j)
+    assert (drawing.scale, drawing.turn) == (2.0, 0.0)
+    assert DrawingMotion(-2j).scale == 2.0 and DrawingMotion(-2j).turn == -np.pi / 2
+    scale = pair_scales(P, Q)
+    motion, _ = carrier_motions(P, Q, "similarity", scale, drawing)
+    np.testing.assert_allclose(motion.A[0], 2.0 * np.eye(2), atol=0.01)
+    unscaled, _ = carrier_motions(P, Q, "similarity", scale, DrawingMotion())
+    assert np.abs(unscaled.A[0] - 2.0 * np.eye(2)).max() > 0.1
+
+
 @pytest.mark.parametrize("move", [0.1, 3.0])
 @pytest.mark.parametrize("n", [200, 10])
 def test_a_wobbly_redraw_is_fitted_end_to_end_without_the_full_sliding_fit(monkeypatch, move, n):
@@ -243,6 +258,13 @@ def _ungate(patch):
     patch.setattr(sliding, "_worth_sliding", lambda xp, *args: np.ones((2, len(xp)), bool))
 
 
+def _end_to_end(monkeypatch, P, Q):
+    """The fits with no sliding fit at all (every pair fitted end to end)."""
+    with monkeypatch.context() as no_sliding:
+        no_sliding.setattr(sliding, "SLIDE_FROM", np.inf)
+        return fit_pairs(P, Q)
+
+
 def _gated_ungated_end_to_end(monkeypatch, P, Q):
     """The fits with the coarse gate, with the full sliding fit on every loose pair, and with
     no sliding fit at all."""
@@ -250,8 +272,7 @@ def _gated_ungated_end_to_end(monkeypatch, P, Q):
     with monkeypatch.context() as ungated:
         _ungate(ungated)
         want = fit_pairs(P, Q)
-        ungated.setattr(sliding, "SLIDE_FROM", np.inf)  # no sliding fit at all
-        return gated, want, fit_pairs(P, Q)
+    return gated, want, _end_to_end(monkeypatch, P, Q)
 
 
 @pytest.mark.parametrize(("seed", "count", "few", "least"), [(11, 60, False, 30), (1, 200, True, 85)])
@@ -295,9 +316,7 @@ def test_the_coarse_gate_keeps_a_slide_whose_start_overlaps_by_a_few_samples(mon
 def _slid(monkeypatch, P, Q):
     """The fits of pairs ``P``, ``Q`` and which of them slid (fit better than end to end)."""
     fits = fit_pairs(P, Q)
-    with monkeypatch.context() as no_sliding:
-        no_sliding.setattr(sliding, "SLIDE_FROM", np.inf)
-        return fits, fits.residual < fit_pairs(P, Q).residual
+    return fits, fits.residual < _end_to_end(monkeypatch, P, Q).residual
 
 
 @pytest.mark.xfail(strict=True, reason="the sliding fit's last, free iterations still shrink some pieces")

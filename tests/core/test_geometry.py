@@ -40,8 +40,9 @@ from ballmorph_core.geometry.projection import (
     distances_to_polyline,
     nearest_within,
 )
-from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange, unit_left
+from ballmorph_core.geometry.ragged import Ragged, budget_slices, group_argmin, ragged_arange
 from ballmorph_core.geometry.spatial import CurveTree, PointTree, _box_reach, box_pair_chunks, box_pairs
+from ballmorph_core.geometry.vectors import row_norms, unit_left
 
 POINTS = st.integers(0, 2**32 - 1).map(lambda seed: np.random.default_rng(seed).uniform(-1, 1, (60, 2)))
 
@@ -54,6 +55,18 @@ def _wobbly(n, seed, closed=True):
 
 
 # ------------------------------------------------------------------ ragged arrays
+
+
+def test_row_norms_are_numpys_norms_bit_for_bit():
+    """Lengths column by column (the paths', the splines', unit_left's) against
+    np.linalg.norm(axis=-1): rows of every scale, zeros, subnormals, values whose squares
+    overflow, a strided view and a batch of batches."""
+    rng = np.random.default_rng(3)
+    v = rng.standard_normal((4000, 2)) * 10.0 ** rng.integers(-320, 300, (4000, 1))
+    v[:5] = [[0.0, 0.0], [-0.0, 5e-324], [1e300, 1e300], [3.0, -4.0], [np.inf, 1.0]]
+    with np.errstate(over="ignore"):
+        for rows in (v, v[::3], v.reshape(40, 100, 2)):
+            np.testing.assert_array_equal(row_norms(rows), np.linalg.norm(rows, axis=-1))
 
 
 def test_unit_left_is_the_row_wise_normal_bit_for_bit():
