@@ -319,24 +319,42 @@ def _slid(monkeypatch, P, Q):
     return fits, fits.residual < _end_to_end(monkeypatch, P, Q).residual
 
 
-@pytest.mark.xfail(strict=True, reason="the sliding fit's last, free iterations still shrink some pieces")
+def _slides_off_their_drawn_scale(monkeypatch):
+    """Of 300 pieces lying partly along each other (seed 1), drawn at 0.9-1.1 of each other:
+    which slid, which of those came out more than 12 % off the drawn scale, and each one's kind
+    of curve (0 arc, 1 spiral, 2 wandering), shape (300,) each."""
+    pairs, scale, kind = _lying_partly_along(np.random.default_rng(1), 300, truth=True)
+    fits, slid = _slid(monkeypatch, batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs]))
+    off = np.abs(np.log(np.sqrt(np.abs(np.linalg.det(fits.A))) / scale)) > 0.12
+    return slid, slid & off, kind
+
+
+def test_a_wandering_stroke_slides_at_the_scale_it_was_drawn_at(monkeypatch):
+    """Wandering curves have no stretch that a smaller copy of another fits: their slides keep
+    the drawn scale. The free iterations' scale counts only where it fits clearly better than
+    the drawing's (``sliding.SLIDE_FREE_GAIN``): 1 of 58 slides is off; kept whenever it fitted
+    at all better, 16 of 63 were."""
+    slid, off, kind = _slides_off_their_drawn_scale(monkeypatch)
+    wandering = kind == 2
+    assert (slid & wandering).sum() >= 50
+    assert (off & wandering).sum() <= 0.05 * (slid & wandering).sum()
+
+
+@pytest.mark.xfail(strict=True, reason="a spiral's slides still land on stretches a smaller copy fits")
 def test_a_slide_keeps_the_scale_the_strokes_were_drawn_at(monkeypatch):
     """Pieces of one curve lying partly along each other, the second scaled by 0.9-1.1: a slide
     should take one onto the other at about that scale, as drawn. The sliding fit turns and
-    moves P at the drawing's scale, then frees the scale for its last iterations (see
-    ``sliding._weighted_fit``): of these 300 pairs 154 slide, 23 of them more than 12 % off the
-    drawn scale (no arc, 7 of 49 spirals, 16 of 63 wandering curves; of 1,000 pairs, 67 of 566).
-    With the scale free throughout they were 114 of 217 and 367 of 716: closest points shrink
-    P onto another part of Q, half the time where the drawn pose, refined alike, fits better,
-    otherwise onto a self-similar stretch (a spiral's), where the drawn scale is what an
-    animator means. Kept fixed to the end, the scale would miss a ring opened and redrawn 1.2
-    times larger (the golden case 'mixed-cyclic'). A strict xfail until the sliding fit prefers
-    the drawn scale throughout (measured in issue 14's note of 2026-12-05)."""
-    pairs, scale, _ = _lying_partly_along(np.random.default_rng(1), 300, truth=True)
-    fits, slid = _slid(monkeypatch, batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs]))
-    off = np.abs(np.log(np.sqrt(np.abs(np.linalg.det(fits.A))) / scale)) > 0.12
-    assert slid.sum() >= 150
-    assert (off & slid).sum() <= 0.05 * slid.sum()
+    moves P at the drawing's scale, then frees the scale for its last iterations and keeps it
+    where it fits clearly better (see ``sliding._iterate``): of these 300 pairs 141 slide, 8 of
+    them more than 12 % off the drawn scale (no arc, 7 of 42 spirals, 1 of 58 wandering
+    curves; of 1,000 pairs, 25 of 527). Keeping every freed scale they were 23 of 154 and 67
+    of 566, and with the scale free throughout 114 of 217 and 367 of 716. A spiral's stretch
+    further out, scaled, lies close to a stretch further in: the drawn scale is what an animator
+    means. A strict xfail until the sliding fit prefers it there too (measured in issue 14's
+    notes of 2026-12-05)."""
+    slid, off, _ = _slides_off_their_drawn_scale(monkeypatch)
+    assert slid.sum() >= 130
+    assert off.sum() <= 0.05 * slid.sum()
 
 
 @pytest.mark.xfail(strict=True, reason="wobbly redraws slide where a shorter overlap fits their wobble better")
