@@ -54,11 +54,11 @@ SLIDE_FOLLOW_MOST = 0.03
 #: chords of Q, and that much is granted back. The looser overlap only drops fits the full rule
 #: rejects anyway: a start that finds no overlap at all (a drawing moved farther than
 #: ``SLIDE_REACH``) weighs no sample and would otherwise leave a residual of 0. Of the starts the
-#: full fit accepts (4,145 among 5,000 random pieces of arcs, spirals and wandering curves lying
+#: full fit accepts (3,906 among 5,000 random pieces of arcs, spirals and wandering curves lying
 #: partly along each other, turned, scaled and noisy, 1,000 of them of 5-40 points, and the
-#: benchmark's drawings), 99.9 % have a coarse residual below 1.5 times their limit and 4 lie
+#: benchmark's drawings), 99.9 % have a coarse residual below 1.5 times their limit and 5 lie
 #: over it; on 12,000 such pairs (seeds 1-8 of the tests' generator, 400 points and 5-40) the
-#: gated fits differ from the full fit's on 12. A start blind at a quarter of the samples is
+#: gated fits differ from the full fit's on 10. A start blind at a quarter of the samples is
 #: judged again with all of them (see :func:`_worth_sliding`). The gate judges each start on its
 #: own, and the full fit runs only from the starts that pass it: the benchmark's wobbly open
 #: strokes mostly pass from one start only, if any (open 400x500: 38 of 658 starts, 13 slides).
