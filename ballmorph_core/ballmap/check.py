@@ -11,6 +11,7 @@ searched again without a window before the verdict.
 import numpy as np
 
 from ..geometry.spatial import CurveTree
+from ..geometry.vectors import norms
 from .lacing import as_rows, contacts, disk_map, full_search, refine, refined, same_lap
 from .report import Violation
 
@@ -156,7 +157,7 @@ def _entered(tree, centres, radii, curves, chain):
     cx, cy = centres.T
     mx, my = (np.add.reduceat(v, starts) / size for v in (cx, cy))
     dx, dy = cx - np.repeat(mx, size), cy - np.repeat(my, size)
-    reach = np.maximum.reduceat(np.sqrt(dx * dx + dy * dy) + radii, starts)
+    reach = np.maximum.reduceat(norms(dx, dy) + radii, starts)
     reach += COVER_SLACK * (reach + np.maximum(np.abs(mx), np.abs(my)))
     hit, _ = tree.within(as_rows(mx, my), reach, np.take(curves, starts, axis=0), first_only=True)
     held = np.zeros(len(starts), dtype=bool)

@@ -15,6 +15,7 @@ import numpy as np
 from .. import tolerances as tol
 from ..geometry.circles import circumcircles
 from ..geometry.ragged import budget_slices
+from ..geometry.vectors import norms
 from .candidates import ON_EDGE, tangent_disks
 from .onemap import OneWayMap
 from .sides import EDGE_BLOCK
@@ -326,7 +327,7 @@ def refine(x, n, dst, chain, pos, r, eps):
         den = 2.0 * (wx * nx + wy * ny) + np.where(inside, 2.0, -2.0) * rad
         r_new = (rad * rad - (wx * wx + wy * wy)) / den
         dx, dy = xx + r_new * nx - ox, xy + r_new * ny - oy
-        d = np.sqrt(dx * dx + dy * dy)
+        d = norms(dx, dy)
         qx, qy = ox + rad * dx / d, oy + rad * dy / d
         t = ((qx - bx) * chord_x + (qy - by) * chord_y) / chord2
         r_safe = np.where(np.isfinite(r), r, 0.0)

@@ -7,6 +7,7 @@ import numpy as np
 
 from ..geometry.ragged import Ragged, ragged_arange
 from ..geometry.spline import densify, needs_subdivision
+from ..geometry.vectors import norms
 
 __all__ = ["Sides", "Side", "EDGE_BLOCK"]
 
@@ -111,7 +112,7 @@ class Sides:
             np.minimum.reduceat(np.minimum(y, by), starts),
             np.maximum.reduceat(np.maximum(x, bx), starts),
             np.maximum.reduceat(np.maximum(y, by), starts),
-            np.maximum.reduceat(np.sqrt(ex * ex + ey * ey), starts),
+            np.maximum.reduceat(norms(ex, ey), starts),
         )
 
     @staticmethod

@@ -13,7 +13,7 @@ import numpy as np
 
 from .. import tolerances as tol
 from .spline import catmull_rom
-from .vectors import unit_left
+from .vectors import norms, unit_left
 
 __all__ = ["Ragged", "ragged_arange", "budget_slices", "group_argmin"]
 
@@ -148,9 +148,7 @@ class Ragged:
         self.edge -= self.pts
         self.edge[last[nonempty & ~self.closed]] = 0.0  # an open curve's last vertex starts no edge
         ex, ey = self.edge[:, 0], self.edge[:, 1]
-        self.length_of_edge = ex * ex
-        self.length_of_edge += ey * ey
-        np.sqrt(self.length_of_edge, out=self.length_of_edge)
+        self.length_of_edge = norms(ex, ey)
         csum = np.cumsum(self.length_of_edge)
         csum -= self.length_of_edge
         base = np.zeros(len(self.n))
