@@ -29,6 +29,12 @@ def batch(*curves):
     return Ragged.from_list(list(curves), [False] * len(curves))
 
 
+def restarted_oval(scale=1.0):
+    """An oval head outline drawn open (330 degrees) and redrawn from 100 degrees on, ``scale``
+    times larger: ``P, Q`` batches of one curve each."""
+    return batch(arc(0, 330, 110) * [1.0, 0.8]), batch(scale * arc(100, 430, 110) * [1.0, 0.8])
+
+
 def test_a_longer_stroke_overhangs_and_the_common_parts_share_their_ends():
     P, Q = batch(arc(0, 180)), batch(arc(0, 240))
     ends = settle_ends(P, Q, np.array([2.0]), np.array([True]))
@@ -127,7 +133,7 @@ def test_end_gaps_are_undone_exactly_at_both_keys():
 def test_an_outline_started_elsewhere_registers_as_itself():
     """An open outline whose start moved 100 degrees along it: the end-to-end fit would turn it
     by about 100 degrees; the sliding fit finds that it did not move."""
-    P, Q = batch(arc(0, 330, 110) * [1.0, 0.8]), batch(arc(100, 430, 110) * [1.0, 0.8])  # an oval head
+    P, Q = restarted_oval()
     fits = fit_pairs(P, Q)
     np.testing.assert_allclose(fits.A[0], np.eye(2), atol=5e-3)
     np.testing.assert_allclose(fits.b[0], 0.0, atol=5e-3)
@@ -159,7 +165,7 @@ def _full_sliding_fits(monkeypatch):
 def test_an_outline_started_elsewhere_passes_the_coarse_gate(monkeypatch):
     """The coarse sliding fit lets a pair that needs sliding through to the full fit."""
     calls = _full_sliding_fits(monkeypatch)
-    P, Q = batch(arc(0, 330, 110) * [1.0, 0.8]), batch(arc(100, 430, 110) * [1.0, 0.8])
+    P, Q = restarted_oval()
     fits = fit_pairs(P, Q)
     assert calls == [1]
     np.testing.assert_allclose(fits.A[0], np.eye(2), atol=5e-3)
@@ -171,7 +177,7 @@ def test_an_outline_started_elsewhere_in_a_drawing_scaled_twice_slides_at_its_sc
     a drawing scaled 2 times, an outline redrawn from another start registers as twice itself.
     At scale 1 its first iterations would place P at the wrong size, and the end-to-end fit
     (turned by 166 degrees) would stay. A drawing motion of no size counts as scale 1."""
-    P, Q = batch(arc(0, 330, 110) * [1.0, 0.8]), batch(2.0 * arc(100, 430, 110) * [1.0, 0.8])
+    P, Q = restarted_oval(2.0)
     fits = fit_pairs(P, Q, scale=2.0)
     np.testing.assert_allclose(fits.A[0], 2.0 * np.eye(2), atol=0.01)
     assert fits.residual[0] < 0.01
@@ -184,7 +190,7 @@ def test_an_outline_started_elsewhere_in_a_drawing_scaled_twice_slides_at_its_sc
 def test_the_carrier_slides_at_the_scale_of_the_drawing_motion():
     """The carrier of that outline reads the scale from the drawing's motion (the stroke
     matching's): twice the outline in a drawing scaled 2 times, turned by it too."""
-    P, Q = batch(arc(0, 330, 110) * [1.0, 0.8]), batch(2.0 * arc(100, 430, 110) * [1.0, 0.8])
+    P, Q = restarted_oval(2.0)
     drawing = DrawingMotion(2.0 + 0j)
     assert (drawing.scale, drawing.turn) == (2.0, 0.0)
     assert DrawingMotion(-2j).scale == 2.0 and DrawingMotion(-2j).turn == -np.pi / 2
