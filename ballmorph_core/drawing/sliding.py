@@ -9,6 +9,8 @@ fits clearly better: free from the start, the closest points shrink P onto some 
 that a smaller copy fits.
 """
 
+from typing import NamedTuple
+
 import numpy as np
 
 from .. import tolerances as tol
@@ -76,6 +78,19 @@ SLIDE_GATE_OVERLAP = 0.1
 SLIDE_COARSE_SHARE = 0.25
 
 
+class _Pose(NamedTuple):
+    """Rows of :func:`_iterate` at one iteration: their indices, similarities ``a``, ``b``
+    (complex, shape (R,)), distances ``d`` and weights ``w`` (shape (R, k)) and arc lengths on
+    Q ``s_q`` (shape (R, k))."""
+
+    rows: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    d: np.ndarray
+    w: np.ndarray
+    s_q: np.ndarray
+
+
 def _weighted_fit(xp, xq, w, a, b, rigid):
     """The least-squares motion ``z -> a' z + b'`` of samples ``xp -> xq`` with weights ``w``
     (all shape (L, k)) from the current one ``(a, b)`` (complex, shape (L,) each): a similarity,
@@ -87,7 +102,9 @@ def _weighted_fit(xp, xq, w, a, b, rigid):
     generator, seeds 1-2), 699 of 1,420 slides came out more than 12 % off the scale they were
     drawn at (spirals and wandering curves). Turned and moved at the drawing's scale first and
     freed for the last iterations, 114 of 1,158 do, and 1,044 slide at about their scale
-    against 721; a ring opened and redrawn 1.2 times larger still slides at 1.19."""
+    against 721; a ring opened and redrawn 1.2 times larger still slides at 1.19. (These are
+    the iterations' own figures; :func:`_iterate` then keeps the freed scale only where it
+    fits clearly better, and gives those after that rule.)"""
     total = np.maximum(w.sum(axis=1), 1e-300)
     cp, cq = (w * xp).sum(axis=1) / total, (w * xq).sum(axis=1) / total
     p, q = xp - cp[:, None], xq - cq[:, None]
@@ -271,7 +288,7 @@ def _iterate(xp, Q, index, search, local, size, a, b):
             blind = w_a.sum(axis=1) < 2
         if step == SLIDE_RIGID_ITERATIONS:
             # The pose the drawing's scale reached, measured (the others stopped moving there).
-            rigid = active, aa, ba, d_a, w_a, s_q.reshape(L, k)[active]
+            rigid = _Pose(active, aa, ba, d_a, w_a, s_q.reshape(L, k)[active])
         target = np.take(Q.pts, edge, axis=0, mode="wrap")
         target += frac[:, None] * np.take(Q.edge, edge, axis=0, mode="wrap")
         target = as_complex(target)
@@ -288,17 +305,16 @@ def _iterate(xp, Q, index, search, local, size, a, b):
 
 def _back_to_the_drawn_scale(rigid, a, b, d, w, s_q):
     """Rows of :func:`_iterate` whose free iterations did not fit clearly better (see there)
-    put back at the pose ``rigid`` (its rows, their ``a``, ``b``, ``d``, ``w`` and arc lengths
-    ``s_q`` then) in place (``s_q`` shape (L, k) here)."""
-    rows, rigid_a, rigid_b, rigid_d, rigid_w, rigid_s = rigid
-    back = ~(_trimmed_rms(d[rows], w[rows]) < SLIDE_FREE_GAIN * _trimmed_rms(rigid_d, rigid_w))
-    rows = rows[back]
+    put back at the pose ``rigid`` (a :class:`_Pose`, the one the drawing's scale reached) in
+    place (``s_q`` shape (L, k) here)."""
+    back = ~(_trimmed_rms(d[rigid.rows], w[rigid.rows]) < SLIDE_FREE_GAIN * _trimmed_rms(rigid.d, rigid.w))
+    rows = rigid.rows[back]
     a[rows], b[rows], d[rows], w[rows], s_q[rows] = (
-        rigid_a[back],
-        rigid_b[back],
-        rigid_d[back],
-        rigid_w[back],
-        rigid_s[back],
+        rigid.a[back],
+        rigid.b[back],
+        rigid.d[back],
+        rigid.w[back],
+        rigid.s_q[back],
     )
 
 

@@ -29,10 +29,10 @@ def batch(*curves):
     return Ragged.from_list(list(curves), [False] * len(curves))
 
 
-def restarted_oval(scale=1.0):
+def restarted_oval(scale=1.0, shift=(0.0, 0.0)):
     """An oval head outline drawn open (330 degrees) and redrawn from 100 degrees on, ``scale``
-    times larger: ``P, Q`` batches of one curve each."""
-    return batch(arc(0, 330, 110) * [1.0, 0.8]), batch(scale * arc(100, 430, 110) * [1.0, 0.8])
+    times larger and moved by ``shift``: ``P, Q`` batches of one curve each."""
+    return batch(arc(0, 330, 110) * [1.0, 0.8]), batch(scale * arc(100, 430, 110) * [1.0, 0.8] + shift)
 
 
 def test_a_longer_stroke_overhangs_and_the_common_parts_share_their_ends():
@@ -389,8 +389,7 @@ def test_the_full_sliding_fit_runs_only_from_the_starts_the_gate_lets_through(mo
             runs.append(run)
         return real(xp, Q, index, search, starts, size, overlap, run)
 
-    oval = [1.0, 0.8]
-    P, Q = batch(arc(0, 330, 110) * oval), batch(arc(100, 430, 110) * oval + [3.0, 0.0])
+    P, Q = restarted_oval(shift=(3.0, 0.0))
     with monkeypatch.context() as ungated:
         _ungate(ungated)
         want = fit_pairs(P, Q)
