@@ -258,6 +258,10 @@ def _lying_partly_along(rng, n_pairs, truth=False):
     return (pairs, np.array(scale), np.array(kinds)) if truth else pairs
 
 
+GATE_MISSES = 0.005  # a fraction of the pairs the coarse gate may fit differently from the full fit
+GATE_MISS_RATIO = 1.25  # ... and then its residual at most this many times the full fit's
+
+
 def _ungate(patch):
     """Every loose pair through to the full sliding fit. (An infinite margin would not do: a
     pair whose coarse fit finds no overlap has an infinite coarse residual, never below it.)"""
@@ -299,8 +303,21 @@ def test_the_coarse_gate_keeps_every_fit_the_full_sliding_fit_makes(monkeypatch,
         ]
     P, Q = batch(*[p for p, _ in pairs]), batch(*[q for _, q in pairs])
     gated, want, end_to_end = _gated_ungated_end_to_end(monkeypatch, P, Q)
-    for name in ("A", "b", "residual"):
-        np.testing.assert_array_equal(getattr(gated, name), getattr(want, name))
+    differ = (
+        (gated.A != want.A).any(axis=(1, 2))
+        | (gated.b != want.b).reshape(count, -1).any(axis=1)
+        | (gated.residual != want.residual)
+    )
+    # The gate is a heuristic: over 12,000 such pairs its fit differs from the full fit's on 10
+    # (sliding.SLIDE_MARGIN's comment), and which ones depends on the BLAS's round-off (seed 1's pair 75 on
+    # one machine: residual 1.36 gated, 1.22 full, 6.44 end to end). So: the same fit on all
+    # but GATE_MISSES of the pairs, and where it differs, still a slide close to the full fit's.
+    assert differ.sum() <= max(1, GATE_MISSES * count), (
+        f"{differ.sum()} of {count} fits differ: {np.nonzero(differ)[0]}"
+    )
+    ratio = gated.residual[differ] / want.residual[differ]
+    assert np.all(ratio <= GATE_MISS_RATIO), f"gated residuals {ratio} x the full fit's"
+    assert np.all(gated.residual[differ] < end_to_end.residual[differ])
     slid = want.residual < end_to_end.residual
     assert slid.sum() >= least
 
