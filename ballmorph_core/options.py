@@ -17,9 +17,9 @@ __all__ = [
     "check_positive",
 ]
 
-#: Carrier motion of a stroke pair (see :mod:`~ballmorph_core.drawing.registration`).
+#: Carrier motion of a stroke pair (see :mod:`~ballmorph_core.drawing.pair_morphs.registration`).
 CARRIERS = ("similarity", "rigid", "none")
-#: How the strokes of two keys are paired (see :mod:`~ballmorph_core.drawing.matching`).
+#: How the strokes of two keys are paired (see :mod:`~ballmorph_core.drawing.pairing.matching`).
 MATCHINGS = ("auto", "index")
 #: What a stroke without a partner does: switch at the middle, hold on every in-between, fade,
 #: shrink along itself, or shrink into its nearest paired stroke (see drawing/unmatched.py).

@@ -29,7 +29,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, ROOT)
 
-from ballmorph_core.drawing.matching import match_strokes  # noqa: E402  (after the path set-up)
+from ballmorph_core.drawing.pairing.matching import match_strokes  # noqa: E402  (after the path set-up)
 
 SIZES = (250, 500, 1000)
 #: The goal: time(1000) / time(500) at most this (the ball-map's bar, bench_ballmap.GROWTH_GOAL).

@@ -132,14 +132,14 @@ STAGES = {
     "core": [("operators.plans", "PlanCache.plan"), ("ballmorph_core.drawing.plan", "InbetweenPlan.evaluate")],
     "match": [("ballmorph_core.drawing.plan", "match_strokes")],
     "ball-map": [
-        ("ballmorph_core.drawing.pipeline", "map_batch"),
+        ("ballmorph_core.drawing.pair_morphs.pipeline", "map_batch"),
         ("ballmorph_core.morphs.ball", "ball_map"),
         ("ballmorph_core.morphs.ball", "ball_maps"),
         ("ballmorph_core.morphs.composite", "dense_map_batch"),
     ],
     "frames": [
-        ("ballmorph_core.drawing.layout", "Layout.__init__"),
-        ("ballmorph_core.drawing.layout", "Layout.evaluate"),
+        ("ballmorph_core.drawing.frames.layout", "Layout.__init__"),
+        ("ballmorph_core.drawing.frames.layout", "Layout.evaluate"),
     ],
     "assemble": [("ballmorph_core.drawing.plan", "assemble_frames")],
     "write": [("operators.writer", "write_all")],

@@ -2,13 +2,13 @@
 the one stroke-pair pipeline, fallbacks, attributes, the plan, timing, how far in-betweens
 stray from their keys, and the path preview."""
 
-from .fallbacks import FALLBACK_METHOD
-from .hints import HINT
+from .frames.preview import PREVIEW_POINTS, PREVIEW_TIMES, PathPreview, pair_colors, path_preview
+from .frames.timing import FAVOR_ODDS, apply_favor, ease, frame_times, parse_timing_chart
+from .keys.hints import HINT
+from .pair_morphs.fallbacks import FALLBACK_METHOD
 from .plan import InbetweenPlan, inbetween, plan_inbetween
-from .preview import PREVIEW_POINTS, PREVIEW_TIMES, PathPreview, pair_colors, path_preview
-from .straying import FALLBACK_MORPHS, ink_lengths, length_deviation
+from .reports.straying import FALLBACK_MORPHS, ink_lengths, length_deviation
 from .strokes import InbetweenResult, Message, PairReport, StrokeSet
-from .timing import FAVOR_ODDS, apply_favor, ease, frame_times, parse_timing_chart
 
 __all__ = [
     "FALLBACK_METHOD",

@@ -14,15 +14,15 @@ from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
 from ..geometry.polyline import reversed_fractions
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
-from .attributes import Extras, FrameValues, Held, Recycled, assemble_frames
-from .fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, point_motion
-from .hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
-from .keys import KeyStroke, ProjectedKey
-from .layout import PairFrames
-from .matching import match_strokes, pair_direction
-from .pipeline import PairCurves, plan_pairs
-from .registration import DrawingMotion
-from .splits import Joined, cut_frame, join_pieces, joined_stroke
+from .frames.attributes import Extras, FrameValues, Held, Recycled, assemble_frames
+from .frames.layout import PairFrames
+from .keys.hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
+from .keys.projected import KeyStroke, ProjectedKey
+from .pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, point_motion
+from .pair_morphs.pipeline import PairCurves, plan_pairs
+from .pair_morphs.registration import DrawingMotion
+from .pairing.matching import match_strokes, pair_direction
+from .pairing.redrawn import Joined, cut_frame, join_pieces, joined_stroke
 from .strokes import InbetweenResult, Message, PairReport, StrokeSet
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
@@ -77,9 +77,9 @@ def plan_inbetween(
         A method of :data:`~ballmorph_core.METHODS`.
     carrier : {'similarity', 'rigid', 'none'}
         Carrier motion for strokes that do not share endpoints (see
-        :mod:`~ballmorph_core.drawing.registration`); 'none' is the paper's pure ball-morph.
+        :mod:`~ballmorph_core.drawing.pair_morphs.registration`); 'none' is the paper's pure ball-morph.
     matching : {'auto', 'index'}
-        How strokes of the two keys are paired (see :mod:`~ballmorph_core.drawing.matching`).
+        How strokes of the two keys are paired (see :mod:`~ballmorph_core.drawing.pairing.matching`).
     unmatched : {'middle', 'hold', 'fade', 'shrink', 'neighbour'}
         What a stroke without a partner does (see :mod:`.unmatched`): appears (or disappears)
         at t = 0.5, is held on every in-between, fades in (or out), grows out of (or shrinks
@@ -96,10 +96,10 @@ def plan_inbetween(
 
     Notes
     -----
-    Strokes are paired by :func:`~ballmorph_core.drawing.matching.match_strokes` (by index when
+    Strokes are paired by :func:`~ballmorph_core.drawing.pairing.matching.match_strokes` (by index when
     the counts agree and the shapes fit, as Blender does; otherwise by an optimal assignment on
     a shape distance); a stroke of the second key running the other way is flipped first. Every
-    pair then goes through :func:`~ballmorph_core.drawing.pipeline.plan_pairs`, all at once. The
+    pair then goes through :func:`~ballmorph_core.drawing.pair_morphs.pipeline.plan_pairs`, all at once. The
     matching, the correspondences and the carriers are computed here, once; the plan's
     :meth:`~InbetweenPlan.evaluate` only moves samples along their paths, which is what lets the
     operator's redo (another frame count or easing) skip the expensive part.
@@ -159,7 +159,7 @@ class InbetweenPlan:
 
     def _join_pieces(self, matched, hinted_strokes):
         """Strokes without a partner that are pieces of a paired stroke's line (see
-        :mod:`.splits`), joined to it: dict pair index -> Joined; they are no longer held."""
+        :mod:`.redrawn`), joined to it: dict pair index -> Joined; they are no longer held."""
         held = [(h.index, h.from_a) for h in self.held]
         free = [
             (k, (i, j, f))

@@ -403,7 +403,7 @@ def _core_inbetween(addon):
 
 def _core_fallbacks(addon):
     """The add-on's own copy of the pipeline's fallback step (which builds the comparison morphs)."""
-    return importlib.import_module(f"{addon.__name__}.ballmorph_core.drawing.fallbacks")
+    return importlib.import_module(f"{addon.__name__}.ballmorph_core.drawing.pair_morphs.fallbacks")
 
 
 def _keys_as_the_addon_reads_them(addon, layer, first=1, last=9):

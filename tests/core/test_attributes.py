@@ -3,7 +3,7 @@ is shared by every frame, what differs is mixed as ``(1 - t) a + t b``."""
 
 import numpy as np
 
-from ballmorph_core.drawing.attributes import _Mix
+from ballmorph_core.drawing.frames.attributes import _Mix
 
 
 def test_mixed_blocks_are_the_blend_bit_for_bit_into_a_buffer_or_not():
@@ -24,7 +24,7 @@ def test_mixed_blocks_are_the_blend_bit_for_bit_into_a_buffer_or_not():
 
 
 def test_recycled_arrays_are_given_again_only_when_nothing_refers_to_them():
-    from ballmorph_core.drawing.attributes import Recycled
+    from ballmorph_core.drawing.frames.attributes import Recycled
 
     recycled = Recycled()
     recycled.begin()
@@ -49,8 +49,8 @@ def test_recycled_arrays_are_given_again_only_when_nothing_refers_to_them():
 def test_recycled_memory_is_bounded(monkeypatch):
     """Only the first RECYCLED_BYTES of an evaluation's arrays are kept for the next: the rest
     are let go with their frames (a big run's peak memory)."""
-    from ballmorph_core.drawing import attributes
-    from ballmorph_core.drawing.attributes import Recycled
+    from ballmorph_core.drawing.frames import attributes
+    from ballmorph_core.drawing.frames.attributes import Recycled
 
     monkeypatch.setattr(attributes, "RECYCLED_BYTES", 2 * 4 * 3 * 8)  # two arrays of (4, 3)
     recycled = Recycled()

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from ballmorph_core.drawing import carrier_choice
-from ballmorph_core.drawing.pipeline import PairMorph
-from ballmorph_core.drawing.registration import Fits
+from ballmorph_core.drawing.pair_morphs import carrier_choice
+from ballmorph_core.drawing.pair_morphs.pipeline import PairMorph
+from ballmorph_core.drawing.pair_morphs.registration import Fits
 from ballmorph_core.geometry.ragged import Ragged
 
 from .shapes import circle, polar_loop
@@ -82,7 +82,7 @@ class _Astray:
 
 @pytest.mark.parametrize("reach, followed", [(0.0, True), (0.2, True), (1.0, False)])
 def test_a_composite_ball_morph_that_strays_far_outside_its_chains_falls_back(monkeypatch, reach, followed):
-    from ballmorph_core.drawing import fallbacks
+    from ballmorph_core.drawing.pair_morphs import fallbacks
 
     P = np.c_[np.linspace(0.0, 1.0, 20), np.zeros(20)]
     Q = np.c_[np.linspace(0.0, 1.0, 20), np.full(20, 0.5)]
@@ -109,7 +109,7 @@ class _Crossing:
 
 
 def test_a_composite_ball_morph_whose_in_between_crosses_itself_falls_back(monkeypatch):
-    from ballmorph_core.drawing import fallbacks
+    from ballmorph_core.drawing.pair_morphs import fallbacks
 
     x = np.linspace(0.0, 1.0, 20)
     P, Q = np.c_[x, np.zeros(20)], np.c_[x, np.full(20, 0.5)]

@@ -16,7 +16,7 @@ import ballmorph_core as bm
 from ballmorph_core.ballmap import candidates
 from ballmorph_core.ballmap.correspondence import dense_map_batch, dense_maps
 from ballmorph_core.ballmap.topology import orient_pair
-from ballmorph_core.drawing import fallbacks, pipeline
+from ballmorph_core.drawing.pair_morphs import fallbacks, pipeline
 from ballmorph_core.drawing.strokes import StrokeSet
 from ballmorph_core.errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from ballmorph_core.morphs import blending, composite

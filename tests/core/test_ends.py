@@ -8,11 +8,11 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from shapes import distance_to_polyline
 
-from ballmorph_core.drawing import ends, sliding
-from ballmorph_core.drawing.carrier_choice import carrier_motions
-from ballmorph_core.drawing.ends import overhang_morph, settle_ends
-from ballmorph_core.drawing.pipeline import PairMorph
-from ballmorph_core.drawing.registration import FIT_SAMPLES, DrawingMotion, fit_pairs
+from ballmorph_core.drawing.pair_morphs import ends, sliding
+from ballmorph_core.drawing.pair_morphs.carrier_choice import carrier_motions
+from ballmorph_core.drawing.pair_morphs.ends import overhang_morph, settle_ends
+from ballmorph_core.drawing.pair_morphs.pipeline import PairMorph
+from ballmorph_core.drawing.pair_morphs.registration import FIT_SAMPLES, DrawingMotion, fit_pairs
 from ballmorph_core.geometry.polyline import pair_scales, resample
 from ballmorph_core.geometry.projection import nearest_within
 from ballmorph_core.geometry.ragged import Ragged
@@ -72,7 +72,7 @@ def test_overhangs_slide_along_their_curves_alone_and_joined():
 def test_an_overhang_keeps_only_the_stretch_of_its_curve_it_slides_along(f0, f1):
     """The plan keeps an overhang's own stretch of its curve (from the vertex at or before its
     start to the one at or after its end), not the whole curve: the same paths to round-off."""
-    from ballmorph_core.drawing.pipeline import _piece
+    from ballmorph_core.drawing.pair_morphs.pipeline import _piece
 
     curves = batch(arc(0, 90, n=30), arc(0, 180))  # the second curve: 90 vertices, 89 equal edges
     s0, s1 = f0 * curves.length[1], f1 * curves.length[1]
@@ -496,7 +496,7 @@ def test_the_full_sliding_fit_searches_its_pairs_curves_only_and_fits_each_as_al
 @given(st.floats(-1e3, 1e3), st.floats(-1e3, 1e3), st.integers(2, 500))
 @example(0.0, 5e-324, 4)  # a subnormal span: its step underflows (numpy divides, then scales)
 def test_overhang_samples_are_numpys_linspace_bit_for_bit(start, stop, count):
-    from ballmorph_core.drawing.ends import _even
+    from ballmorph_core.drawing.pair_morphs.ends import _even
 
     np.testing.assert_array_equal(_even(start, stop, count), np.linspace(start, stop, count))
     np.testing.assert_array_equal(_even(start, start, count), np.linspace(start, start, count))

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from shapes import circle
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.exact import exact_fit, may_be_exact
+from ballmorph_core.drawing.pair_morphs.exact_fit import exact_fit, may_be_exact
 
 HOUSE = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.5, 1.5), (0.0, 1.0)])
 
@@ -71,7 +71,7 @@ def test_a_copy_far_from_the_origin_is_exact_to_float32_rounding():
 
 
 def test_a_bug_in_the_own_points_road_sends_its_pairs_down_the_ball_road(monkeypatch):
-    roads = importlib.import_module("ballmorph_core.drawing.point_roads")
+    roads = importlib.import_module("ballmorph_core.drawing.pair_morphs.point_routes")
 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("simulated core bug")

@@ -7,7 +7,7 @@ import pytest
 from shapes import circle
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.hints import HINT
+from ballmorph_core.drawing.keys.hints import HINT
 
 TIMES = np.linspace(0.0, 1.0, 9)
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from ballmorph_core import StrokeSet
-from ballmorph_core.drawing.keys import ProjectedKey
+from ballmorph_core.drawing.keys.projected import ProjectedKey
 from ballmorph_core.geometry.plane import fit_plane
 
 

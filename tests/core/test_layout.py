@@ -8,7 +8,7 @@ import pytest
 from golden_cases import cases
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.layout import _fractions
+from ballmorph_core.drawing.frames.layout import _fractions
 
 _CASES = {name: (a, b, options) for name, a, b, options in cases()}
 

@@ -11,9 +11,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 from shapes import circle
 
-from ballmorph_core.drawing import matching
-from ballmorph_core.drawing.assignment import SparseCosts, solve_assignment
-from ballmorph_core.drawing.matching import (
+from ballmorph_core.drawing.pairing import matching
+from ballmorph_core.drawing.pairing.assignment import SparseCosts, solve_assignment
+from ballmorph_core.drawing.pairing.matching import (
     _assign_within,
     _backwards,
     _least_total,

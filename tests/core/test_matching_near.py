@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ballmorph_core.drawing import matching
-from ballmorph_core.drawing.matching import match_strokes
+from ballmorph_core.drawing.pairing import matching
+from ballmorph_core.drawing.pairing.matching import match_strokes
 
 
 def _keys(seed, count=None):

@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 from shapes import circle
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.polylines import FEW, RUN_OFF, STRAIGHT, corners, corners_of
+from ballmorph_core.drawing.pair_morphs.polylines import FEW, RUN_OFF, STRAIGHT, corners, corners_of
 
 HOUSE = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.5, 1.5), (0.0, 1.0)])
 HOUSE_B = np.array([(0.0, 0.0), (1.0, 0.0), (1.05, 1.0), (0.6, 1.65), (0.0, 1.0)])

@@ -5,7 +5,7 @@ import pytest
 from shapes import circle, distance_to_polyline
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.preview import PathPreview
+from ballmorph_core.drawing.frames.preview import PathPreview
 
 
 def _xz(points):

@@ -7,10 +7,10 @@ import pytest
 from shapes import circle, distance_to_polyline
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.layout import _carry
-from ballmorph_core.drawing.pipeline import PairMorph
-from ballmorph_core.drawing.registration import Fits, endpoint_similarity, fit_similarity, motions
-from ballmorph_core.drawing.splitting import split_pair
+from ballmorph_core.drawing.frames.layout import _carry
+from ballmorph_core.drawing.pair_morphs.crossings import split_pair
+from ballmorph_core.drawing.pair_morphs.pipeline import PairMorph
+from ballmorph_core.drawing.pair_morphs.registration import Fits, endpoint_similarity, fit_similarity, motions
 from ballmorph_core.geometry.intersections import crossings, is_simple
 from ballmorph_core.geometry.polyline import curve_length, orient_clockwise
 from ballmorph_core.geometry.ragged import Ragged
@@ -279,8 +279,8 @@ def test_a_plan_evaluates_to_what_inbetween_gives_at_any_times(method, monkeypat
     key_a = bm.StrokeSet.concatenate([key_a, extra_a])
     key_b = bm.StrokeSet.concatenate([key_b, extra_b])
     plan = bm.plan_inbetween(key_a, key_b, method)
-    pipeline = importlib.import_module("ballmorph_core.drawing.pipeline")
-    fallbacks = importlib.import_module("ballmorph_core.drawing.fallbacks")
+    pipeline = importlib.import_module("ballmorph_core.drawing.pair_morphs.pipeline")
+    fallbacks = importlib.import_module("ballmorph_core.drawing.pair_morphs.fallbacks")
     planned = []
     for times in ([0.5], np.linspace(0, 1, 9), [0.1, 0.9, 0.3], [-1.0, 2.0]):
         with monkeypatch.context() as patch:
@@ -316,7 +316,7 @@ def test_a_pair_alone_is_morphed_as_in_its_drawing(method, carrier):
 def test_ball_mapping_in_batches_changes_nothing(monkeypatch):
     """A huge drawing's lenses are ball-mapped in batches (pipeline.BALLMAP_BATCH_POINTS):
     cutting the same drawing into one batch per pair gives the same in-betweens."""
-    pipeline = importlib.import_module("ballmorph_core.drawing.pipeline")
+    pipeline = importlib.import_module("ballmorph_core.drawing.pair_morphs.pipeline")
 
     key_a, key_b = _drawing_4_and_5()
     times = np.linspace(0, 1, 5)
@@ -332,7 +332,7 @@ def test_ball_mapping_in_batches_changes_nothing(monkeypatch):
 def test_a_bug_in_the_batched_road_stops_only_its_pair(monkeypatch):
     """The ball road runs every pair at once; if it raises (a bug), the pairs are planned one by
     one, so only the failing pair falls back, and its report names the error."""
-    pipeline = importlib.import_module("ballmorph_core.drawing.pipeline")
+    pipeline = importlib.import_module("ballmorph_core.drawing.pair_morphs.pipeline")
     key_a, key_b = _drawing_4_and_5()
     # The second key's loop squashed: not a similar copy, so it takes the ball road.
     loop = key_b.points(2)
@@ -405,7 +405,7 @@ def test_a_plan_reads_its_samples_on_the_keys_once_and_stays_exact(monkeypatch):
     import golden_cases
 
     plan_module = importlib.import_module("ballmorph_core.drawing.plan")
-    keys_module = importlib.import_module("ballmorph_core.drawing.keys")
+    keys_module = importlib.import_module("ballmorph_core.drawing.keys.projected")
     real, sampled = keys_module.ProjectedKey.sample, []
     later = [0.9, 0.15, 0.5, 0.0]
     for _name, key_a, key_b, options in golden_cases.cases():

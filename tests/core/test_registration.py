@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from ballmorph_core.drawing import registration
-from ballmorph_core.drawing.layout import _carry
+from ballmorph_core.drawing.frames.layout import _carry
+from ballmorph_core.drawing.pair_morphs import registration
 
 
 def test_the_carriers_closed_form_inverses_are_inverses():

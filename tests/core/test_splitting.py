@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from ballmorph_core.drawing.splitting import _open_area, cross, find_events
+from ballmorph_core.drawing.pair_morphs.crossings import _open_area, cross, find_events
 from ballmorph_core.geometry.ragged import Ragged
 
 from .shapes import circle

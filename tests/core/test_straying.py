@@ -95,7 +95,7 @@ def test_each_pair_is_measured_on_its_own_stroke_whatever_the_drawing_order():
 def test_work_buffers_shared_by_drawings_of_any_size_give_each_its_own_lengths():
     """length_deviation measures every frame with one set of work buffers: a drawing measured
     after a bigger or a smaller one gets exactly the lengths it gets alone."""
-    from ballmorph_core.drawing.straying import _ink_lengths, _Work
+    from ballmorph_core.drawing.reports.straying import _ink_lengths, _Work
 
     rng = np.random.default_rng(6)
     drawings = [
@@ -110,7 +110,7 @@ def test_work_buffers_shared_by_drawings_of_any_size_give_each_its_own_lengths()
 def test_edge_lengths_are_the_steps_norms_over_any_magnitudes():
     """_edge_lengths is each step's Euclidean length to round-off, over 60 orders of magnitude
     (its order of summation is not pinned: no numpy internals are)."""
-    from ballmorph_core.drawing.straying import _edge_lengths
+    from ballmorph_core.drawing.reports.straying import _edge_lengths
 
     rng = np.random.default_rng(8)
     points = rng.normal(size=(20_001, 3)) * np.exp(rng.uniform(-30, 30, size=(20_001, 3)))

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidCurveError
+from ...errors import InvalidCurveError
 
 __all__ = ["SparseCosts", "solve_assignment"]
 

@@ -11,8 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidCurveError
-from ..options import check_positive
+from ...errors import InvalidCurveError
+from ...options import check_positive
 
 __all__ = ["PREVIEW_POINTS", "PREVIEW_TIMES", "PathPreview", "path_preview", "pair_colors"]
 

@@ -31,10 +31,10 @@ from functools import cached_property
 
 import numpy as np
 
-from .. import tolerances as tol
-from ..geometry.polyline import signed_area
-from ..geometry.ragged import Ragged
-from ..geometry.similarity import Similarity, as_complex, from_complex
+from ... import tolerances as tol
+from ...geometry.polyline import signed_area
+from ...geometry.ragged import Ragged
+from ...geometry.similarity import Similarity, as_complex, from_complex
 from .sliding import slide
 
 __all__ = [

@@ -10,7 +10,7 @@ Ball-morph methods::
 2. *register* (:mod:`.registration`, paper section 1.4): a similarity takes P onto Q; the
    ball-morph runs between the registered P and Q and the carrier undoes the registration
    progressively.
-3. *find events* (:mod:`.splitting`): where the registered curves cross or overlap.
+3. *find events* (:mod:`.crossings`): where the registered curves cross or overlap.
 4. *choose roads*: registered curves that coincide are the carrier alone; curves within
    ``NEAR`` of each other that cross (the same stroke redrawn) are matched by arc length on the
    carrier; nested loops and
@@ -18,7 +18,7 @@ Ball-morph methods::
    pairs no ball-morph can follow take aligned interpolation when their curves lie over each
    other (tangled crossings, a stroke crossing itself), else linear interpolation (loops side
    by side, strokes that do not share their endpoints without a carrier); the report says why.
-5. *cut chains* (:mod:`.splitting`): the lenses, overlaps and whole pairs the ball-maps run on.
+5. *cut chains* (:mod:`.crossings`): the lenses, overlaps and whole pairs the ball-maps run on.
 6. *map chains*: the ball-maps of every chain of every pair, in batches of about
    ``BALLMAP_BATCH_POINTS`` input points.
 7. *fall back* (:mod:`.fallbacks`): a chain that is not b-compatible gets the composite
@@ -34,12 +34,12 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-from .. import tolerances as tol
-from ..ballmap.correspondence import map_batch
-from ..ballmap.onemap import OneWayMap
-from ..errors import InvalidCurveError
-from ..geometry.intersections import simple_curves
-from ..geometry.polyline import (
+from ... import tolerances as tol
+from ...ballmap.correspondence import map_batch
+from ...ballmap.onemap import OneWayMap
+from ...errors import InvalidCurveError
+from ...geometry.intersections import simple_curves
+from ...geometry.polyline import (
     already_clean,
     as_curve,
     coarsen,
@@ -48,8 +48,10 @@ from ..geometry.polyline import (
     pair_scales,
     resolve_spacing,
 )
-from ..geometry.ragged import Ragged
+from ...geometry.ragged import Ragged
+from ..frames.layout import BallRows
 from .carrier_choice import carrier_motions, note_shape_changes
+from .crossings import cross, cut_chains, find_events
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
@@ -61,11 +63,9 @@ from .fallbacks import (
     point_motion,
     unsplittable,
 )
-from .layout import BallRows
-from .pairplans import PairPlans
-from .point_roads import guarded, own_points_road, polyline_road
+from .pair_plans import PairPlans
+from .point_routes import guarded, own_points_road, polyline_road
 from .registration import Motions, identity_residual
-from .splitting import cross, cut_chains, find_events
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 

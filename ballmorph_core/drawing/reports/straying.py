@@ -9,7 +9,7 @@ the one asked for cannot follow it (they appear in :attr:`PairReport.method
 
 import numpy as np
 
-from .fallbacks import ALIGNED_METHOD, FALLBACK_METHOD
+from ..pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD
 
 __all__ = ["FALLBACK_MORPHS", "ink_lengths", "length_deviation"]
 
@@ -32,7 +32,7 @@ def ink_lengths(strokes):
 
     Examples
     --------
-    >>> from .strokes import StrokeSet
+    >>> from ..strokes import StrokeSet
     >>> square = [[0, 0], [1, 0], [1, 1], [0, 1]]
     >>> ink_lengths(StrokeSet.from_strokes([square, square], cyclic=[False, True])).tolist()
     [3.0, 4.0]

@@ -6,7 +6,7 @@ from dataclasses import fields
 
 import numpy as np
 
-from .layout import BallRows, Layout, PairFrames, Segment
+from ..frames.layout import BallRows, Layout, PairFrames, Segment
 
 __all__ = ["PairPlans"]
 

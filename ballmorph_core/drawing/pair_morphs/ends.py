@@ -21,10 +21,10 @@ from functools import cached_property
 
 import numpy as np
 
-from .. import tolerances as tol
-from ..geometry.projection import nearest_within
-from ..geometry.ragged import Ragged, ragged_arange
-from ..morphs.base import PathMorph
+from ... import tolerances as tol
+from ...geometry.projection import nearest_within
+from ...geometry.ragged import Ragged, ragged_arange
+from ...morphs.base import PathMorph
 
 __all__ = ["ALONG", "Ends", "settle_ends", "overhang_morph"]
 

@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .hints import HINT
-from .strokes import StrokeSet
+from ..keys.hints import HINT
+from ..strokes import StrokeSet
 from .unmatched import Anchors, shown_strokes
 
 __all__ = ["Held", "Extras", "FrameValues", "Recycled", "assemble_frames"]

@@ -17,10 +17,10 @@ follows two kinds of pairs as they are drawn, and they get none:
 
 import numpy as np
 
-from .. import tolerances as tol
-from ..geometry.intersections import batch_crossings
-from ..geometry.projection import NearestEdges
-from ..geometry.ragged import Ragged
+from ... import tolerances as tol
+from ...geometry.intersections import batch_crossings
+from ...geometry.projection import NearestEdges
+from ...geometry.ragged import Ragged
 from .registration import Motions, fit_pairs, identity_residual, motions
 
 __all__ = [

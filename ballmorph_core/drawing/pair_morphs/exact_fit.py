@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.similarity import as_complex
+from ...geometry.similarity import as_complex
 
 __all__ = ["EXACT", "ExactFit", "exact_fit", "may_be_exact"]
 

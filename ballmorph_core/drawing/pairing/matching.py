@@ -61,12 +61,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import tolerances as tol
-from ..errors import InvalidCurveError
-from ..geometry.polyline import as_curve, curve_length, resample
-from ..geometry.ragged import Ragged, budget_slices, ragged_arange
-from ..geometry.spatial import box_pairs
-from ..options import MATCHINGS, check_option
+from ... import tolerances as tol
+from ...errors import InvalidCurveError
+from ...geometry.polyline import as_curve, curve_length, resample
+from ...geometry.ragged import Ragged, budget_slices, ragged_arange
+from ...geometry.spatial import box_pairs
+from ...options import MATCHINGS, check_option
 from .assignment import SparseCosts, solve_assignment
 
 __all__ = ["Matching", "match_strokes", "pair_direction"]
@@ -739,7 +739,7 @@ class _CostTable:
         """Pair costs with key A moved by ``z -> a z + b`` (complex), shape (S_a, S_b): exact
         where below ``MATCH_MAX_COST``, elsewhere at least that (those of pairs not fitted,
         bounds from the other terms); with ``rows`` and ``cols`` (shapes (K,)) the costs of
-        pairs ``(rows[k], cols[k])`` only, shape (K,), exact (or, with ``exact`` False, as
+        pairs ``(rows[k], cols[k])`` only, shape (K,), exact (or, with ``exact_fit`` False, as
         the whole table's). Elementwise: a pair's cost is the same whichever pairs are asked,
         once the whole table's open fits are made (:meth:`_fit_whole`, which the whole table
         makes).

@@ -5,8 +5,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.polyline import reversal_order, reversed_fractions
-from ..geometry.ragged import Ragged
+from ...geometry.polyline import reversal_order, reversed_fractions
+from ...geometry.ragged import Ragged
 
 __all__ = ["KeyStroke", "ProjectedKey"]
 

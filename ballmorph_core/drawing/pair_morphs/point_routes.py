@@ -1,17 +1,17 @@
 """The roads that keep the keys' own points (before the ball road): pairs whose points match one
-for one under a similarity (:mod:`.exact`) and polylines with as many corners
+for one under a similarity (:mod:`.exact_fit`) and polylines with as many corners
 (:mod:`.polylines`), each on its carrier, each guarded so that a failure sends its pairs on."""
 
 import numpy as np
 
-from .. import tolerances as tol
-from ..geometry.polyline import pair_scales
-from ..geometry.ragged import Ragged
-from ..geometry.similarity import from_complex
-from ..morphs.base import PathMorph
-from ..morphs.paths import LinearPaths
+from ... import tolerances as tol
+from ...geometry.polyline import pair_scales
+from ...geometry.ragged import Ragged
+from ...geometry.similarity import from_complex
+from ...morphs.base import PathMorph
+from ...morphs.paths import LinearPaths
 from .carrier_choice import carrier_motions, note_shape_changes
-from .exact import exact_fit, may_be_exact
+from .exact_fit import exact_fit, may_be_exact
 from .polylines import corners_of, polyline_morph
 from .registration import Fits, motions, similarity_matrices
 
@@ -62,7 +62,7 @@ def polyline_road(plans, pairs, ready, carrier, drawing):
 
 
 def own_points_road(plans, pairs, ready, carrier, drawing):
-    """Pairs whose points match one for one under a similarity (see :mod:`.exact`): the key's
+    """Pairs whose points match one for one under a similarity (see :mod:`.exact_fit`): the key's
     own points, moved by the carrier. Returns the other ready pairs."""
     rest, found = [], []
     turn = 0.0 if drawing is None else drawing.turn

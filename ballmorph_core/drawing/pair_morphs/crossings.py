@@ -15,13 +15,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import tolerances as tol
-from ..ballmap.topology import PairSetup
-from ..errors import IncompatibleCurvesError
-from ..geometry.intersections import batch_crossings, matched_hits
-from ..geometry.polyline import scale_of
-from ..geometry.projection import nearest_within
-from ..geometry.ragged import Ragged
+from ... import tolerances as tol
+from ...ballmap.topology import PairSetup
+from ...errors import IncompatibleCurvesError
+from ...geometry.intersections import batch_crossings, matched_hits
+from ...geometry.polyline import scale_of
+from ...geometry.projection import nearest_within
+from ...geometry.ragged import Ragged
 
 __all__ = ["Events", "Chains", "find_events", "cross", "cut_chains", "Piece", "split_pair", "MAX_HITS_PER_POINT"]
 

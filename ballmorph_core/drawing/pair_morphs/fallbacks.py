@@ -12,16 +12,16 @@ fallback says why, for the animator's report.
 
 import numpy as np
 
-from ..errors import BallMorphError, IncompatibleCurvesError
-from ..geometry.intersections import is_simple, simple_curves
-from ..geometry.polyline import as_curve
-from ..morphs import make_morph
-from ..morphs.aligned import METHOD as ALIGNED_METHOD
-from ..morphs.aligned import aligned_morphs
-from ..morphs.base import PathMorph
-from ..morphs.composite import build_composites
-from ..morphs.linear import sample_counts, uniform_correspondences
-from ..morphs.paths import LinearPaths
+from ...errors import BallMorphError, IncompatibleCurvesError
+from ...geometry.intersections import is_simple, simple_curves
+from ...geometry.polyline import as_curve
+from ...morphs import make_morph
+from ...morphs.aligned import METHOD as ALIGNED_METHOD
+from ...morphs.aligned import aligned_morphs
+from ...morphs.base import PathMorph
+from ...morphs.composite import build_composites
+from ...morphs.linear import sample_counts, uniform_correspondences
+from ...morphs.paths import LinearPaths
 
 __all__ = [
     "FALLBACK_METHOD",

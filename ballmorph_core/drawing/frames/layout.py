@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..geometry.ragged import ragged_arange
-from ..morphs.base import PathMorph, morph_time
-from ..morphs.paths import BallPaths, LinearPaths
+from ...geometry.ragged import ragged_arange
+from ...morphs.base import PathMorph, morph_time
+from ...morphs.paths import BallPaths, LinearPaths
 
 __all__ = ["BallRows", "Segment", "PairFrames", "Layout"]
 

@@ -16,7 +16,7 @@ second key *comes*. ``unmatched`` says how (:data:`~ballmorph_core.options.UNMAT
 
 import numpy as np
 
-from ..geometry.spatial import PointTree
+from ...geometry.spatial import PointTree
 
 __all__ = ["Anchors", "unmatched_at", "shown_strokes"]
 

@@ -13,10 +13,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .. import tolerances as tol
-from ..geometry.projection import FollowedQueries, NearestEdges
-from ..geometry.ragged import Ragged
-from ..geometry.similarity import as_complex
+from ... import tolerances as tol
+from ...geometry.projection import FollowedQueries, NearestEdges
+from ...geometry.ragged import Ragged
+from ...geometry.similarity import as_complex
 
 __all__ = ["slide"]
 

@@ -16,8 +16,8 @@ import re
 
 import numpy as np
 
-from ..errors import InvalidCurveError
-from ..options import EASING_MODES, EASING_TYPES, check_option
+from ...errors import InvalidCurveError
+from ...options import EASING_MODES, EASING_TYPES, check_option
 
 __all__ = ["ease", "frame_times", "apply_favor", "parse_timing_chart", "FAVOR_ODDS"]
 

@@ -20,12 +20,12 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..geometry.polyline import curve_length, subcurve
-from ..geometry.ragged import Ragged
-from ..geometry.similarity import as_complex, from_complex
-from .layout import PairFrames
-from .registration import Fits, Motions, motions, similarity_matrices
-from .strokes import Message
+from ...geometry.polyline import curve_length, subcurve
+from ...geometry.ragged import Ragged
+from ...geometry.similarity import as_complex, from_complex
+from ..frames.layout import PairFrames
+from ..pair_morphs.registration import Fits, Motions, motions, similarity_matrices
+from ..strokes import Message
 
 __all__ = [
     "HINT",

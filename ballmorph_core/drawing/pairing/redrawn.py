@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.polyline import curve_length, resample
-from .strokes import StrokeSet
+from ...geometry.polyline import curve_length, resample
+from ..strokes import StrokeSet
 
 __all__ = ["GAP", "LENGTHS", "Joined", "join_pieces", "cut_frame"]
 

@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.ragged import Ragged, ragged_arange
-from ..morphs.base import PathMorph
-from ..morphs.paths import LinearPaths
+from ...geometry.ragged import Ragged, ragged_arange
+from ...morphs.base import PathMorph
+from ...morphs.paths import LinearPaths
 
 __all__ = ["STRAIGHT", "RUN_OFF", "FEW", "Corners", "corners", "corners_of", "polyline_morph"]
 

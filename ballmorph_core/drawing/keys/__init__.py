@@ -1,0 +1,1 @@
+"""The keys: both keys projected into the drawing plane, and the hints read and checked."""

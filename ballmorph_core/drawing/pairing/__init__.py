@@ -1,0 +1,1 @@
+"""Which strokes pair: matching by motion and shape, the assignment, lines redrawn in pieces."""

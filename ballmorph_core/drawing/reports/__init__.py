@@ -1,0 +1,1 @@
+"""What the reports measure: each pair's ink against the keys' blend."""
