@@ -10,7 +10,6 @@ in-betweens stray from what the keys suggest, each with the frame where a breakd
 help most.
 """
 
-import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -324,12 +323,9 @@ class Stray:
     frame: int
 
 
-@functools.lru_cache(maxsize=64)
 def _fallbacks_used(used, method):
-    """The fallback morphs in a pair's ``used`` ('circular-ball+linear-interpolation on a rigid
-    carrier'), a tuple: read once per text (a drawing's hundreds of pairs share a few)."""
-    morphs = used.split(" on a ")[0].split("+")
-    return tuple(m for m in morphs if m in FALLBACK_MORPHS and m != method)
+    """The fallback morphs among a pair's morphs (``PairReport.used``), a tuple."""
+    return tuple(m for m in used.morphs if m in FALLBACK_MORPHS and m != method)
 
 
 def _middle(times):
@@ -353,7 +349,7 @@ def _stray(pair, method, off, size, worst, middle):
         )
         return f"stroke {index} of the {key} key", f"no partner in the {other} key", middle, (0, 0.0)
     whys = []
-    fallbacks = _fallbacks_used(pair.method, method)
+    fallbacks = _fallbacks_used(pair.used, method)
     if fallbacks:
         whys.append(f"made with {' and '.join(fallbacks)} (a fallback)")
     if size > LENGTH_STRAY:
@@ -394,8 +390,9 @@ def strays(pairs, method, deviation, times, frames):
 
     Examples
     --------
-    >>> from ballmorph_core import PairReport
-    >>> pairs = [PairReport(0, 0, "circular-ball"), PairReport(1, 1, "circular-ball+linear-interpolation")]
+    >>> from ballmorph_core import PairMorphs, PairReport
+    >>> ball, fell_back = PairMorphs(("circular-ball",)), PairMorphs(("circular-ball", "linear-interpolation"))
+    >>> pairs = [PairReport(0, 0, str(ball), used=ball), PairReport(1, 1, str(fell_back), used=fell_back)]
     >>> deviation = [[0.05, -0.3, 0.1], [0.0, 0.02, 0.0]]
     >>> for s in strays(pairs, "circular-ball", deviation, [0.25, 0.5, 0.75], [3, 5, 7]):
     ...     print(s.what, "|", s.why, "|", s.frame)

@@ -8,7 +8,7 @@ from .keys.hints import HINT
 from .pair_morphs.fallbacks import FALLBACK_METHOD
 from .plan import InbetweenPlan, inbetween, plan_inbetween
 from .reports.straying import FALLBACK_MORPHS, ink_lengths, length_deviation
-from .strokes import InbetweenResult, Message, PairReport, StrokeSet
+from .strokes import InbetweenResult, Message, PairMorphs, PairOutcome, PairReport, StrokeSet
 
 __all__ = [
     "FALLBACK_METHOD",
@@ -20,6 +20,8 @@ __all__ = [
     "Message",
     "PREVIEW_POINTS",
     "PREVIEW_TIMES",
+    "PairMorphs",
+    "PairOutcome",
     "PairReport",
     "PathPreview",
     "StrokeSet",

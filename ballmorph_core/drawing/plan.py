@@ -18,12 +18,12 @@ from .frames.attributes import Extras, FrameValues, Held, Recycled, assemble_fra
 from .frames.layout import PairFrames
 from .keys.hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
 from .keys.projected import KeyStroke, ProjectedKey
-from .pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, point_motion
+from .pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, STRAIGHT_POINT_MOTION, point_motion
 from .pair_morphs.pipeline import PairCurves, plan_pairs
 from .pair_morphs.registration import DrawingMotion
 from .pairing.matching import match_strokes, pair_direction
 from .pairing.redrawn import Joined, cut_frame, join_pieces, joined_stroke
-from .strokes import InbetweenResult, Message, PairReport, StrokeSet
+from .strokes import InbetweenResult, Message, PairMorphs, PairOutcome, PairReport, StrokeSet
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
 
@@ -366,7 +366,11 @@ class InbetweenPlan:
                 for piece in joined.strokes[1:]:
                     stroke_a, stroke_b = (piece, None) if joined.side == "a" else (None, piece)
                     whole = b.index if joined.side == "a" else a.index
-                    result.pairs.append(PairReport(stroke_a, stroke_b, f"piece of the line of stroke {whole}"))
+                    result.pairs.append(
+                        PairReport(
+                            stroke_a, stroke_b, f"piece of the line of stroke {whole}", outcome=PairOutcome.PIECE
+                        )
+                    )
         for h in self.held:
             _report_unmatched(result, h.index, h.from_a, self.unmatched)
         result.messages.extend(self.planarity)
@@ -447,7 +451,7 @@ def _finite(parts, strokes, times):
         if not np.all(np.isfinite(f)):
             morph = point_motion(a.xy, a.u, b.xy, b.u)
             f, ua, ub = morph.frames(times), morph.u_p, morph.u_q
-            closed[k], used[k] = False, "straight point motion"
+            closed[k], used[k] = False, PairMorphs((STRAIGHT_POINT_MOTION,))
             notes[k].append("the morph produced non-finite points")
         frames.append(f), u_a.append(ua), u_b.append(ub)
     offsets = np.concatenate([[0], np.cumsum([f.shape[1] for f in frames])])
@@ -501,10 +505,11 @@ def _check_key(name, key):
 
 
 def _report_pair(result, a, b, flipped, used, notes):
-    result.pairs.append(PairReport(a.index, b.index, used, "; ".join(notes)))
+    result.pairs.append(PairReport(a.index, b.index, str(used), "; ".join(notes), used=used))
     if flipped:
         notes = ["the second key's stroke runs the other way: flipped", *notes]
-    fell_back = used.startswith((FALLBACK_METHOD, ALIGNED_METHOD)) or used == "straight point motion"
+    first = used.morphs[0] if used.morphs else ""
+    fell_back = first in (FALLBACK_METHOD, ALIGNED_METHOD) or used == PairMorphs((STRAIGHT_POINT_MOTION,))
     for note in notes:
         level = "WARNING" if fell_back and note is notes[-1] else "INFO"
         result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {note}"))
@@ -523,8 +528,10 @@ _UNMATCHED_WORDS = {
 def _report_unmatched(result, index, from_a, unmatched):
     key = "first" if from_a else "second"
     what = _UNMATCHED_WORDS[unmatched][0 if from_a else 1]
-    method = "hold" if unmatched == "hold" else ("disappear" if from_a else "appear")
-    result.pairs.append(PairReport(index if from_a else None, None if from_a else index, method))
+    outcome = PairOutcome.HOLD if unmatched == "hold" else (PairOutcome.DISAPPEAR if from_a else PairOutcome.APPEAR)
+    result.pairs.append(
+        PairReport(index if from_a else None, None if from_a else index, outcome.value, outcome=outcome)
+    )
     result.messages.append(Message("WARNING", f"stroke {index} of the {key} key has no partner: {what}"))
 
 

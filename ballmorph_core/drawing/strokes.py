@@ -6,12 +6,13 @@ never loops over points in Python.
 """
 
 from dataclasses import dataclass, field
+from enum import Enum
 
 import numpy as np
 
 from ..errors import InvalidCurveError
 
-__all__ = ["StrokeSet", "Message", "PairReport", "InbetweenResult"]
+__all__ = ["StrokeSet", "Message", "PairMorphs", "PairOutcome", "PairReport", "InbetweenResult"]
 
 
 @dataclass
@@ -199,6 +200,50 @@ class Message:
     text: str
 
 
+@dataclass(frozen=True)
+class PairMorphs:
+    """What made one pair's in-betweens: the morphs its chains used and the carrier moving them.
+
+    Attributes
+    ----------
+    morphs : tuple of str
+        The morphs' names, sorted ('circular-ball', 'linear-interpolation', 'static',
+        'polyline', 'straight point motion', ...).
+    carrier : str
+        The kind of the carrier moving the pair ('rigid', 'similarity', ...), '' for none.
+
+    Examples
+    --------
+    >>> str(PairMorphs(("circular-ball", "linear-interpolation"), "rigid"))
+    'circular-ball+linear-interpolation on a rigid carrier'
+    """
+
+    morphs: tuple = ()
+    carrier: str = ""
+
+    def __str__(self):
+        text = "+".join(self.morphs)
+        return f"{text} on a {self.carrier} carrier" if self.carrier else text
+
+    @classmethod
+    def union(cls, parts):
+        """The morphs of several pieces of one pair (the pieces cut at its hints), one carrier."""
+        parts = list(parts)
+        morphs = sorted({m for part in parts for m in part.morphs})
+        return cls(tuple(morphs), next((p.carrier for p in parts if p.carrier), ""))
+
+
+class PairOutcome(Enum):
+    """What became of a stroke of a key: morphed with its partner, a piece of a line drawn in
+    pieces (morphed with the line), or without a partner (appears, disappears, is held)."""
+
+    MORPHED = "morphed"
+    PIECE = "piece"
+    APPEAR = "appear"
+    DISAPPEAR = "disappear"
+    HOLD = "hold"
+
+
 @dataclass
 class PairReport:
     """What happened to one stroke pair.
@@ -208,15 +253,20 @@ class PairReport:
     stroke_a, stroke_b : int or None
         Stroke indices in the two keys (None for a stroke with no partner).
     method : str
-        The morph actually used (or 'appear' / 'disappear' / 'hold').
+        The morph actually used, in words (or 'appear' / 'disappear' / 'hold').
     reason : str
         Why a fallback was used ('' when the requested morph worked).
+    outcome : PairOutcome
+    used : PairMorphs
+        The morphs and carrier, as fields (``method`` words them): read these, never the text.
     """
 
     stroke_a: int
     stroke_b: int
     method: str
     reason: str = ""
+    outcome: PairOutcome = PairOutcome.MORPHED
+    used: PairMorphs = PairMorphs()
 
 
 @dataclass

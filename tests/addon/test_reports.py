@@ -180,8 +180,14 @@ def test_a_malformed_chart_says_what_is_wrong_and_what_a_chart_looks_like():
 TIMES, FRAMES = np.array([0.25, 0.5, 0.75]), np.array([3, 5, 7])
 
 
-def pair(a, b, method="circular-ball"):
-    return core.PairReport(a, b, method)
+def pair(a, b, morphs=("circular-ball",), carrier=""):
+    """A pair's report made with ``morphs`` on a ``carrier`` (a stroke without a partner when
+    ``a`` or ``b`` is None)."""
+    if a is None or b is None:
+        outcome = core.PairOutcome.APPEAR if a is None else core.PairOutcome.DISAPPEAR
+        return core.PairReport(a, b, outcome.value, outcome=outcome)
+    used = core.PairMorphs(tuple(morphs), carrier)
+    return core.PairReport(a, b, str(used), used=used)
 
 
 @pytest.mark.parametrize(
@@ -202,24 +208,28 @@ def test_a_pair_strays_when_its_length_is_off_the_blend_by_more_than_a_fifth(row
 
 
 @pytest.mark.parametrize(
-    ("used", "asked", "why"),
+    ("morphs", "carrier", "asked", "why"),
     [
-        ("circular-ball+linear-interpolation on a similarity carrier", "circular-ball", "linear-interpolation"),
-        ("composite-ball+static", "circular-ball", "composite-ball"),
-        ("straight point motion", "linear-ball", "straight point motion"),
-        ("composite-ball+linear-interpolation", "parabolic-ball", "composite-ball and linear-interpolation"),
-        ("linear-interpolation", "linear-interpolation", None),  # asked for: no fallback
-        ("arc-length on a rigid carrier", "circular-ball", None),
-        ("circular-ball+static on a similarity carrier", "circular-ball", None),
+        (("circular-ball", "linear-interpolation"), "similarity", "circular-ball", "linear-interpolation"),
+        (("composite-ball", "static"), "", "circular-ball", "composite-ball"),
+        (("straight point motion",), "", "linear-ball", "straight point motion"),
+        (("composite-ball", "linear-interpolation"), "", "parabolic-ball", "composite-ball and linear-interpolation"),
+        (("linear-interpolation",), "", "linear-interpolation", None),  # asked for: no fallback
+        (("arc-length",), "rigid", "circular-ball", None),
+        (("circular-ball", "static"), "similarity", "circular-ball", None),
     ],
 )
-def test_a_pair_strays_when_it_fell_back_and_its_worst_frame_is_the_middle_when_its_length_is_fine(used, asked, why):
-    found = reports.strays([pair(2, 2, used)], asked, [[0.0, 0.0, 0.0]], TIMES, FRAMES)
+def test_a_pair_strays_when_it_fell_back_and_its_worst_frame_is_the_middle_when_its_length_is_fine(
+    morphs, carrier, asked, why
+):
+    found = reports.strays([pair(2, 2, morphs, carrier)], asked, [[0.0, 0.0, 0.0]], TIMES, FRAMES)
     assert found == ([] if why is None else [reports.Stray("stroke 2 -> 2", f"made with {why} (a fallback)", 5)])
 
 
 def test_a_fallback_that_also_strays_in_length_says_both_at_its_worst_frame():
-    found = reports.strays([pair(0, 0, "linear-interpolation")], "circular-ball", [[-0.2, -0.1, -0.3]], TIMES, FRAMES)
+    found = reports.strays(
+        [pair(0, 0, ("linear-interpolation",))], "circular-ball", [[-0.2, -0.1, -0.3]], TIMES, FRAMES
+    )
     assert found == [
         reports.Stray(
             "stroke 0 -> 0",
@@ -234,7 +244,7 @@ def test_a_fallback_that_also_strays_in_length_says_both_at_its_worst_frame():
     [([0.25, 0.5, 0.75], [3, 5, 7], 5), ([0.2, 0.4, 0.6, 0.8], [2, 3, 4, 5], 4), ([0.1, 0.2], [2, 3], 3)],
 )
 def test_a_stroke_without_a_partner_strays_where_it_switches(times, frames, middle):
-    pairs = [pair(3, None, "disappear"), pair(None, 1, "appear")]
+    pairs = [pair(3, None), pair(None, 1)]
     found = reports.strays(pairs, "circular-ball", np.full((2, len(times)), np.nan), times, frames)
     assert found == [
         reports.Stray("stroke 3 of the first key", "no partner in the second key", middle),
@@ -243,7 +253,7 @@ def test_a_stroke_without_a_partner_strays_where_it_switches(times, frames, midd
 
 
 def test_strays_come_worst_first_fallbacks_and_lost_partners_before_lengths():
-    pairs = [pair(0, 0), pair(1, 1), pair(2, 2, "linear-interpolation"), pair(3, 3), pair(None, 4, "appear")]
+    pairs = [pair(0, 0), pair(1, 1), pair(2, 2, ("linear-interpolation",)), pair(3, 3), pair(None, 4)]
     rows = [[0.25, 0, 0], [0, 0.6, 0], [0, 0, 0], [0.01, 0, 0], [np.nan] * 3]
     found = reports.strays(pairs, "circular-ball", rows, TIMES, FRAMES)
     assert [s.what for s in found] == ["stroke 2 -> 2", "stroke 4 of the second key", "stroke 1 -> 1", "stroke 0 -> 0"]

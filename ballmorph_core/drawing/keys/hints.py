@@ -25,7 +25,7 @@ from ...geometry.ragged import Ragged
 from ...geometry.similarity import as_complex, from_complex
 from ..frames.layout import PairFrames
 from ..pair_morphs.registration import Fits, Motions, motions, similarity_matrices
-from ..strokes import Message
+from ..strokes import Message, PairMorphs
 
 __all__ = [
     "HINT",
@@ -315,7 +315,7 @@ class Pieces:
             frames.append(f)
             u_a.append(np.mod(np.concatenate(ua_all), 1.0) if loop and cut else np.concatenate(ua_all))
             u_b.append(np.mod(np.concatenate(ub_all), 1.0) if loop and cut else np.concatenate(ub_all))
-            used.append(" + ".join(dict.fromkeys(parts.used[g.first + i] for i in range(g.count))))
+            used.append(PairMorphs.union(parts.used[g.first + i] for i in range(g.count)))
             notes.append(list(dict.fromkeys(n for i in range(g.count) for n in parts.notes[g.first + i])))
             closed.append(loop)
             start += f.shape[1]

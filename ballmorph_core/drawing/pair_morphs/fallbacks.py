@@ -26,6 +26,7 @@ from ...morphs.paths import LinearPaths
 __all__ = [
     "FALLBACK_METHOD",
     "ALIGNED_METHOD",
+    "STRAIGHT_POINT_MOTION",
     "BALL_METHODS",
     "short",
     "chain_fallback",
@@ -40,6 +41,9 @@ __all__ = [
 
 #: The last resort: uniform arc-length correspondence and straight paths never fail.
 FALLBACK_METHOD = "linear-interpolation"
+
+#: The name of the point-by-point motion of strokes too short (or too broken) to morph.
+STRAIGHT_POINT_MOTION = "straight point motion"
 
 #: A composite ball-morph whose in-betweens (at ``CHECK_TIMES``) leave the box of its two
 #: chains by more than this fraction of the box's diagonal is not followed: a ball-morph's paths
@@ -264,4 +268,4 @@ def point_motion(xy_a, u_a, xy_b, u_b):
             return np.repeat(xy, k, axis=0)
         return np.column_stack([np.interp(u, frac, xy[:, c]) for c in range(2)])
 
-    return PathMorph("straight point motion", False, LinearPaths(along(xy_a, u_a), along(xy_b, u_b)), u, u.copy())
+    return PathMorph(STRAIGHT_POINT_MOTION, False, LinearPaths(along(xy_a, u_a), along(xy_b, u_b)), u, u.copy())

@@ -7,6 +7,7 @@ from dataclasses import fields
 import numpy as np
 
 from ..frames.layout import BallRows, Layout, PairFrames, Segment
+from ..strokes import PairMorphs
 
 __all__ = ["PairPlans"]
 
@@ -18,7 +19,7 @@ class PairPlans:
 
     Attributes
     ----------
-    used : list of str
+    used : list of PairMorphs
         The morphs each pair's chains used, and its carrier.
     notes : list of list of str
         What each pair's report says (fallbacks, splits).
@@ -27,7 +28,7 @@ class PairPlans:
 
     def __init__(self, pairs):
         n = len(pairs)
-        self.segments, self.ball, self.used, self.notes = [], [], [""] * n, [list(p.notes) for p in pairs]
+        self.segments, self.ball, self.used, self.notes = [], [], [PairMorphs()] * n, [list(p.notes) for p in pairs]
         self.closed, self.joined = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
         self.lengths = np.ones((n, 2))
         self.motions, self.layout = None, None
@@ -56,9 +57,8 @@ class PairPlans:
         for c, static in zip(ball.pair, ball.static):
             methods[c].add("static" if static else f"{kind}-ball")
         for c, names in enumerate(methods):
-            self.used[c] = "+".join(sorted(names))
-            if self.motions is not None and self.motions.moving[c]:
-                self.used[c] += f" on a {self.motions.kind} carrier"
+            moving = self.motions is not None and self.motions.moving[c]
+            self.used[c] = PairMorphs(tuple(sorted(names)), self.motions.kind if moving else "")
         self.layout = Layout(ball, self.segments, self.closed, self.joined, self.lengths, kind)
         self.segments = self.ball = None
         return self

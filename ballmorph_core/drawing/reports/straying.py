@@ -9,13 +9,13 @@ the one asked for cannot follow it (they appear in :attr:`PairReport.method
 
 import numpy as np
 
-from ..pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD
+from ..pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, STRAIGHT_POINT_MOTION
 
 __all__ = ["FALLBACK_MORPHS", "ink_lengths", "length_deviation"]
 
 #: The morphs a pair falls back to (``drawing.fallbacks``): the composite ball-morph, linear
 #: and aligned interpolation, and the straight point motion of strokes too short to morph.
-FALLBACK_MORPHS = ("composite-ball", FALLBACK_METHOD, ALIGNED_METHOD, "straight point motion")
+FALLBACK_MORPHS = ("composite-ball", FALLBACK_METHOD, ALIGNED_METHOD, STRAIGHT_POINT_MOTION)
 
 
 def ink_lengths(strokes):
