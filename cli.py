@@ -36,7 +36,8 @@ import traceback
 
 import bpy
 
-from .operators import options, pairing, reports, service
+from .addon_logic import pairing, reports
+from .operators import options, service
 
 __all__ = ["COMMAND", "main", "register", "unregister"]
 

@@ -17,8 +17,8 @@ drawings and layers, not the data-block's custom properties), so after undoing a
 frames it replaced must still be recognised. Undo in Object or Draw Mode restores both.
 """
 
+from ..addon_logic.id_keys import id_key
 from . import grease_pencil
-from .id_keys import id_key
 
 __all__ = ["is_generated", "mark", "save", "restore"]
 

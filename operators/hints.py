@@ -13,8 +13,9 @@ from dataclasses import replace
 import bpy
 import numpy as np
 
+from ..addon_logic import hint_numbers, pairing
 from ..ballmorph_core import HINT
-from . import grease_pencil, hint_numbers, keys, pairing
+from . import grease_pencil, keys
 
 __all__ = ["BALLMORPH_OT_hint_add", "BALLMORPH_OT_hint_clear", "active_key", "HintMarks", "MARKS"]
 

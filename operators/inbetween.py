@@ -11,7 +11,8 @@ from functools import partial
 
 import bpy
 
-from . import keys, options, pairing, reports, service
+from ..addon_logic import pairing, reports
+from . import keys, options, service
 
 __all__ = ["BALLMORPH_OT_inbetween"]
 

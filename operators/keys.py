@@ -5,7 +5,8 @@ to write, what to say) are bpy-free, in :mod:`.pairing` and :mod:`.reports`; thi
 reads what they need from Blender.
 """
 
-from . import generated, pairing, reports
+from ..addon_logic import pairing, reports
+from . import generated
 
 __all__ = ["grease_pencil_object", "target_layers", "layer_blocker", "layer_keys"]
 

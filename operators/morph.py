@@ -11,8 +11,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..addon_logic import reports
 from ..ballmorph_core import StrokeSet, apply_favor, ease, length_deviation
-from . import grease_pencil, reports
+from . import grease_pencil
 from .plans import PLANS
 
 __all__ = ["IntervalKeys", "Morphed", "morph_interval", "plan_options", "read_keys"]

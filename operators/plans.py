@@ -9,7 +9,7 @@ keys and options it was computed from, and evaluates it at the new times.
 A plan is reused only for keys equal, array by array, to the ones it was made from (every
 array the core receives is compared: a memory comparison, ~20 times faster than hashing them)
 and the same options; its evaluation is then exactly what a fresh computation gives
-(``tests/core/test_real_drawings.py``). Only the plans of the last run are kept, which bounds
+(``tests/scenarios/test_real_drawings.py``). Only the plans of the last run are kept, which bounds
 the memory to one run's correspondences (the plans hold the keys anyway).
 """
 

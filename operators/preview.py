@@ -17,8 +17,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..addon_logic import pairing
 from ..ballmorph_core import BallMorphError, path_preview, plan_inbetween
-from . import keys, morph, options, pairing
+from . import keys, morph, options
 from .plans import PLANS, same_key
 
 __all__ = ["PreviewCache", "PREVIEW"]

@@ -21,8 +21,9 @@ reports itself, so both callers say the same things.
 
 from dataclasses import dataclass, field
 
+from ..addon_logic import charts, pairing, reports
 from ..ballmorph_core import FALLBACK_METHOD, BallMorphError, apply_favor, parse_timing_chart
-from . import charts, keys, morph, options, pairing, reports, writer
+from . import keys, morph, options, writer
 from .plans import PLANS
 
 __all__ = ["LayerResult", "ObjectResult", "Progress", "check_options", "inbetween_object"]

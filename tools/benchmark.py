@@ -127,7 +127,7 @@ OURS_OPTIONS = {
 # Stages of one operator run: stage -> (module under the add-on, attribute path) to wrap. Names
 # that are missing (the core is being reworked) are skipped and the stage shows "n/a".
 STAGES = {
-    "keys": [("operators.keys", "layer_keys"), ("operators.pairing", "intervals")],
+    "keys": [("operators.keys", "layer_keys"), ("addon_logic.pairing", "intervals")],
     "read": [("operators.grease_pencil", "read_strokes")],
     "core": [("operators.plans", "PlanCache.plan"), ("ballmorph_core.drawing.plan", "InbetweenPlan.evaluate")],
     "match": [("ballmorph_core.drawing.plan", "match_strokes")],

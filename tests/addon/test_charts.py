@@ -5,11 +5,11 @@ A dict stands in for the Grease Pencil data-block: the module uses only what bot
 
 import numpy as np
 import pytest
-from bpy_free import load
+from addon_package import load
 
-charts = load("operators.charts")
-pairing = load("operators.pairing")
-id_keys = load("operators.id_keys")
+charts = load("addon_logic.charts")
+pairing = load("addon_logic.pairing")
+id_keys = load("addon_logic.id_keys")
 
 
 def written(chart, layer="Ink", a=1, b=9):

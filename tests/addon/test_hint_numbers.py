@@ -2,9 +2,9 @@
 
 import numpy as np
 import pytest
-from bpy_free import load
+from addon_package import load
 
-hn = load("operators.hint_numbers")
+hn = load("addon_logic.hint_numbers")
 
 
 def test_selected_points_get_the_next_free_numbers_in_drawing_order():

@@ -1,4 +1,4 @@
-"""The add-on's decisions (which keys pair up, what the reports say) never import bpy."""
+"""The add-on's Blender-free logic (addon_logic: which keys pair up, what the reports say) never imports bpy."""
 
 import doctest
 import os
@@ -6,14 +6,14 @@ import subprocess
 import sys
 
 import pytest
-from bpy_free import MODULES, load
+from addon_package import MODULES, load
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 SCRIPT = f"""
 import sys
 sys.path.insert(0, {HERE!r})
-from bpy_free import MODULES, load
+from addon_package import MODULES, load
 for name in MODULES:
     load(name)
 print(sorted(n for n in sys.modules if n == "bpy" or n.startswith(("bpy.", "_bpy"))))

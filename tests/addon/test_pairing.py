@@ -1,10 +1,10 @@
-"""Which keys pair up and which frames get in-betweens (operators/pairing.py), in plain CPython."""
+"""Which keys pair up and which frames get in-betweens (addon_logic/pairing.py), in plain CPython."""
 
 import numpy as np
 import pytest
-from bpy_free import load
+from addon_package import load
 
-pairing = load("operators.pairing")
+pairing = load("addon_logic.pairing")
 LayerKeys = pairing.LayerKeys
 
 

@@ -1,7 +1,7 @@
 """The plans kept from the last run (operators/plans.py), in plain CPython."""
 
 import numpy as np
-from bpy_free import load
+from addon_package import load
 
 plans = load("operators.plans")
 core = load("ballmorph_core")

@@ -2,10 +2,10 @@
 
 import numpy as np
 import pytest
-from bpy_free import load
+from addon_package import load
 
-reports = load("operators.reports")
-pairing = load("operators.pairing")
+reports = load("addon_logic.reports")
+pairing = load("addon_logic.pairing")
 core = load("ballmorph_core")
 
 
