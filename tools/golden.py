@@ -1,7 +1,7 @@
-"""Write the golden in-betweens (tests/core/golden/) from the current core.
+"""Write the golden in-betweens (tests/scenarios/golden/) from the current core.
 
 Run it only in a commit that changes behaviour on purpose and says why: the golden test
-(tests/core/test_golden.py) holds every later change to these frames.
+(tests/scenarios/test_golden.py) holds every later change to these frames.
 
     python tools/golden.py --write             # every case
     python tools/golden.py --write CASE ...    # only these
@@ -15,7 +15,7 @@ import time
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path[:0] = [ROOT, os.path.join(ROOT, "tests", "core")]
+sys.path[:0] = [ROOT, os.path.join(ROOT, "tests", "fixtures")]
 
 import golden_cases  # noqa: E402
 
@@ -32,7 +32,7 @@ def main(argv=None):
     if unknown:
         parser.error(f"unknown case(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}")
     if not args.write:
-        parser.error("nothing to do: pass --write to overwrite tests/core/golden/")
+        parser.error("nothing to do: pass --write to overwrite tests/scenarios/golden/")
     os.makedirs(golden_cases.DIRECTORY, exist_ok=True)
     for name, key_a, key_b, options in golden_cases.cases():
         if args.cases and name not in args.cases:

@@ -13,7 +13,7 @@ echo "== lint (ruff)"
 "$bin/ruff" format --check .
 
 echo "== core and add-on decision tests (plain CPython, no bpy imported), with the fuzz target's short profile"
-timeout 1200 "$py" -m pytest -q tests/core tests/addon tests/fuzz
+timeout 1200 "$py" -m pytest -q tests/core tests/scenarios tests/tools tests/addon tests/fuzz
 
 echo "== extension: validate and build with Blender's own tool"
 tools/build_extension.sh

@@ -12,14 +12,14 @@ A figure is about *what the animator sees*: it never looks at how the in-between
 sampled, except the pairing figure, which detects a stroke shown unmoved on a key's position
 (what a stroke without a partner does, under 'MIDDLE' or 'HOLD') geometrically.
 
-Pure numpy plus the core's public API; importable from tests/core, tests/blender and tools
+Pure numpy plus the core's public API; importable from tests/scenarios, tests/blender and tools
 (put this directory on ``sys.path``). ``tools/scenes_report.py`` prints every figure.
 
 Choices a checker has to make, and the ones made here:
 
 * Which stroke a figure looks at: the longest (open or closed) stroke of each frame, never the
   in-betweener's stroke order or its ``origin``; pairing is measured geometrically
-  (:func:`figure_unpaired`; ``tests/core/test_scenes.py`` checks it agrees with
+  (:func:`figure_unpaired`; ``tests/scenarios/test_scenes.py`` checks it agrees with
   ``result.pairs``).
 * Timing: the in-between at t should sit at the *linear* blend of the keys (radius 0.75 halfway
   from 0.5 to 1; scale interpolated linearly about the similarity's fixed point, see

@@ -5,7 +5,7 @@
 
 Prints ``scene | figure | ours | baseline | goal | ok`` (ok: the core meets the goal; ``info``
 for an informative figure; ``xfail`` marks a scene the tests expect to fail today) and a
-summary line. Always exits 0: this is a measuring stick, not a test (tests/core/test_scenes.py
+summary line. Always exits 0: this is a measuring stick, not a test (tests/scenarios/test_scenes.py
 asserts the figures). ``--messages`` adds the core's pairs and messages under each scene;
 ``--xfail-table`` prints ``scenes.XFAIL_TODAY`` as today's core would have it.
 """

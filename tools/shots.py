@@ -2,7 +2,7 @@
 front canvas.
 
 Shared by the demo (tools/demo.py, inside Blender) and the core's golden test
-(tests/core/test_golden.py, plain CPython), so both see the same drawings.
+(tests/scenarios/test_golden.py, plain CPython), so both see the same drawings.
 """
 
 import numpy as np

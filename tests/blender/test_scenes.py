@@ -3,7 +3,7 @@
 Each scene's keys are written on frames 1 and 9 with plain ``foreach_set`` (gp_data), the real
 operator fills frames 2..8 (7 in-betweens, linear timing, the scene's options), the frames are
 read back with plain ``foreach_get`` and judged by the same figure functions as the core's
-output (tests/core/test_scenes.py), with the same ``xfail(strict=True)`` markers.
+output (tests/scenarios/test_scenes.py), with the same ``xfail(strict=True)`` markers.
 
 Blender stores float32, so the float64 twins of the turn scenes are left out (their float32
 twins run), and so are the tangent-ball scenes: the operator does not offer that morph.

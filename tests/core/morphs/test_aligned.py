@@ -4,11 +4,10 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
+from shapes import circle
 
 from ballmorph_core.morphs.aligned import align, aligned_morph
 from ballmorph_core.morphs.linear import uniform_correspondence
-
-from .shapes import circle
 
 
 def test_a_sequence_aligns_with_itself_one_to_one():

@@ -2,13 +2,12 @@
 
 import numpy as np
 import pytest
+from shapes import circle, polar_loop
 
 from ballmorph_core.drawing.pair_morphs import carrier_choice
 from ballmorph_core.drawing.pair_morphs.pipeline import PairMorph
 from ballmorph_core.drawing.pair_morphs.registration import Fits
 from ballmorph_core.geometry.ragged import Ragged
-
-from .shapes import circle, polar_loop
 
 
 def _lumpy(n=300):

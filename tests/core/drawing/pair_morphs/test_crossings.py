@@ -1,11 +1,10 @@
 """Crossing pairs (drawing/splitting.py): the near road's one question."""
 
 import numpy as np
+from shapes import circle
 
 from ballmorph_core.drawing.pair_morphs.crossings import _open_area, cross, find_events
 from ballmorph_core.geometry.ragged import Ragged
-
-from .shapes import circle
 
 
 def test_cross_says_which_pairs_meet_as_find_events_counts_them():
