@@ -79,7 +79,3 @@ class Similarity:
         """``S^s`` along the steady (log-spiral) interpolation; ``S^0`` is the identity."""
         a_s, b_s = power(self.a, self.b, s)
         return Similarity(complex(a_s), complex(b_s))
-
-    def is_identity(self, scale, slack=tol.IDENTITY):
-        """True when it moves no point of a drawing of size ``scale`` by more than slack*scale."""
-        return abs(self.a - 1) <= slack and abs(self.b) <= slack * scale

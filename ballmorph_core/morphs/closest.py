@@ -37,9 +37,6 @@ PROJECTION_REVERSAL = 0.01
 PROJECTION_BULGE = 0.25
 #: At most this many places are listed in an incompatibility message.
 DEFECTS_LISTED = 3
-#: Closest projection: three dense vertices with |2 cross| below this times their squared span
-#: are straight: the foot on the chord is kept instead of the foot on their circle.
-PROJECTION_STRAIGHT = 1e-9
 
 
 @dataclass

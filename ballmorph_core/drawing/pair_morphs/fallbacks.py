@@ -29,7 +29,6 @@ __all__ = [
     "STRAIGHT_POINT_MOTION",
     "BALL_METHODS",
     "short",
-    "chain_fallback",
     "chain_fallbacks",
     "linear_fallback",
     "aligned_fallbacks",
@@ -66,37 +65,16 @@ def short(text, limit=160):
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
-def chain_fallback(P, Q, closed, kind, spacing, where, reason):
-    """The composite ball-morph of a chain that is not b-compatible, else aligned interpolation.
-
-    Parameters
-    ----------
-    P, Q : ndarray, shape (N, 2), (M, 2)
-    closed : bool
-    kind : str
-        The ball-morph path ('circular', ...).
-    spacing : float
-    where : str
-        Which chain, for the note ('lens 2/4', 'loops', 'stroke').
-    reason : str
-        Why the ball-morph did not apply.
-
-    Returns
-    -------
-    morph : Morph
-    note : str
-    """
-    return chain_fallbacks([(P, Q, closed, spacing, where, reason)], kind)[0]
-
-
 def chain_fallbacks(chains, kind):
-    """:func:`chain_fallback` of many chains: their composite ball-morphs built together
+    """The composite ball-morph of each chain that is not b-compatible, else aligned
+    interpolation: their composite ball-morphs built together
     (:func:`composite_morphs`), and those not followed aligned together.
 
     Parameters
     ----------
     chains : list of (ndarray, ndarray, bool, float, str, str)
-        Each chain's ``P, Q, closed, spacing, where, reason`` (see :func:`chain_fallback`).
+        Each chain's ``P, Q, closed, spacing, where, reason``: its curves, the sample spacing, which
+        chain it is for the note ('lens 2/4', 'loops', 'stroke') and why the ball-morph did not apply.
     kind : str
 
     Returns

@@ -156,7 +156,7 @@ def _jagged(n, seed, points=60):
 
 def test_the_fallback_step_builds_every_failing_chain_together_as_it_would_alone(monkeypatch):
     """A plan hands all its failing chains (of every pair) to one chain_fallbacks call, and each
-    chain gets what chain_fallback gives it alone: the same note and morph."""
+    chain gets what it gets alone: the same note and morph."""
     seen = []
     real = fallbacks.chain_fallbacks
 
@@ -172,7 +172,7 @@ def test_the_fallback_step_builds_every_failing_chain_together_as_it_would_alone
     composites = [m for m, note in outcomes if "composite ball-morph used" in note]
     assert composites and len(composites) < len(outcomes)  # some chains followed, some aligned
     for chain, (morph, note) in zip(seen[0], outcomes):
-        alone_morph, alone_note = fallbacks.chain_fallback(*chain[:3], "circular", *chain[3:])
+        alone_morph, alone_note = fallbacks.chain_fallbacks([chain], "circular")[0]
         assert note == alone_note
         _assert_same(morph, alone_morph)
     assert len(plan.evaluate([0.5]).frames[0]) == 6
@@ -295,7 +295,7 @@ def test_chains_are_checked_together_each_as_alone(monkeypatch):
     alone = []
     for k, chain in enumerate(chains):
         monkeypatch.setattr(fallbacks, "composite_morphs", lambda pairs, kind, k=k: [stands[k]])
-        alone.append(fallbacks.chain_fallback(*chain[:3], "circular", *chain[3:])[1])
+        alone.append(fallbacks.chain_fallbacks([chain], "circular")[0][1])
     assert together == alone
     assert "leave the chains' box" in alone[0] and "cross themselves" in alone[1]
     assert "composite ball-morph used" in alone[2] and "no disk bridges P" in alone[3]
