@@ -11,16 +11,11 @@ from hypothesis import given
 from hypothesis import strategies as st
 from shapes import circle
 
-from ballmorph_core.drawing.pairing import matching
+from ballmorph_core.drawing.pairing import certified, costs, descriptors, matching, motion_search, shape_fits
 from ballmorph_core.drawing.pairing.assignment import SparseCosts, solve_assignment
-from ballmorph_core.drawing.pairing.matching import (
-    _assign_within,
-    _backwards,
-    _least_total,
-    _loop_shapes,
-    _padded_total,
-    match_strokes,
-)
+from ballmorph_core.drawing.pairing.certified import _assign_within, _least_total, padded_total
+from ballmorph_core.drawing.pairing.matching import match_strokes
+from ballmorph_core.drawing.pairing.shape_fits import _backwards, _loop_shapes
 from ballmorph_core.errors import InvalidCurveError
 from ballmorph_core.geometry.polyline import resample, reverse, signed_area
 from ballmorph_core.geometry.ragged import Ragged
@@ -89,7 +84,7 @@ def test_loop_in_opposite_orientation_from_another_vertex():
     assert m.pairs[0] == (0, 0, True)
     assert all(not r for _, _, r in m.pairs[1:])
     # Started between two of B's samples: the cost is at most about half a sample spacing.
-    half_spacing = 0.5 * 7.0 / matching.MATCH_SAMPLES / np.hypot(2.0, 2.4)  # perimeter ~6.9
+    half_spacing = 0.5 * 7.0 / descriptors.MATCH_SAMPLES / np.hypot(2.0, 2.4)  # perimeter ~6.9
     assert 0 < m.costs[0] < half_spacing
     # The flag means opposite orientation: reversing B's loop restores A's.
     assert np.sign(signed_area(backwards)) != np.sign(signed_area(head))
@@ -196,7 +191,7 @@ def test_mixed_cyclic_pair_pays_the_penalty():
     loop = circle(1.0, 40)
     m = match_strokes([loop], [loop], [True], [False])
     assert m.pairs == [(0, 0, False)]
-    assert m.costs[0] == pytest.approx(matching.MATCH_CYCLIC_PENALTY, abs=1e-3)
+    assert m.costs[0] == pytest.approx(costs.MATCH_CYCLIC_PENALTY, abs=1e-3)
 
 
 def test_degenerate_strokes_and_empty_keys():
@@ -305,11 +300,11 @@ def test_a_sparse_table_solves_as_the_dense_table_it_stands_for(data):
 
 @given(st.data())
 def test_thresholded_assignment_agrees_with_brute_force(data):
-    limit = matching.MATCH_MAX_COST
+    limit = costs.MATCH_MAX_COST
     cost = _matrix(data, 0, 1) * 2 * limit
     rows, cols = _assign_within(cost)
     assert np.all(cost[rows, cols] < limit)
-    got = _padded_total(cost[rows, cols], *cost.shape)
+    got = padded_total(cost[rows, cols], *cost.shape)
     # Every partial matching: each row takes a column or nobody (None).
     r, c = cost.shape
     best = np.inf
@@ -317,7 +312,7 @@ def test_thresholded_assignment_agrees_with_brute_force(data):
         taken = [j for j in choice if j is not None]
         if len(taken) != len(set(taken)) or any(j is not None and cost[i, j] >= limit for i, j in enumerate(choice)):
             continue
-        best = min(best, _padded_total([cost[i, j] for i, j in enumerate(choice) if j is not None], r, c))
+        best = min(best, padded_total([cost[i, j] for i, j in enumerate(choice) if j is not None], r, c))
     assert got == pytest.approx(best, abs=1e-9)
     # The bound the matching skips a last solve by: never above the best matching.
     assert _least_total(cost) <= best + 1e-12
@@ -326,9 +321,9 @@ def test_thresholded_assignment_agrees_with_brute_force(data):
 def test_least_total_is_reached_where_strokes_pick_each_other():
     # Every stroke's cheapest pair is its own diagonal one (or none under the limit): the
     # bound is that matching's total, the unmatched strokes paying half the limit each.
-    limit = matching.MATCH_MAX_COST
+    limit = costs.MATCH_MAX_COST
     cost = np.array([[0.2, 0.9, 5.0], [0.7, 0.4, 3.0], [9.0, 2.0, 1.6], [2.0, 2.0, 2.0]])
-    assert _least_total(cost) == pytest.approx(_padded_total([0.2, 0.4], 4, 3))
+    assert _least_total(cost) == pytest.approx(padded_total([0.2, 0.4], 4, 3))
     assert _least_total(np.zeros((0, 3))) == pytest.approx(1.5 * limit)
 
 
@@ -336,7 +331,7 @@ def test_a_guess_s_last_solve_is_skipped_only_where_it_cannot_win(monkeypatch):
     # The drawing order fitted to reordered look-alike strokes crowds key A together (tried
     # here whatever it accounts for): its guess's tables are far behind the best matching,
     # and the last of them is not solved.
-    monkeypatch.setattr(matching, "MATCH_ORDER_EXPLAINS", -np.inf)
+    monkeypatch.setattr(motion_search, "MATCH_ORDER_EXPLAINS", -np.inf)
     a, b, perm = bench_matching.reordered_hatching(60, 4)
     flags = [False] * 60
     solves = []
@@ -345,13 +340,13 @@ def test_a_guess_s_last_solve_is_skipped_only_where_it_cannot_win(monkeypatch):
         solves.append(np.shape(cost))
         return solve_assignment(cost, **options)
 
-    monkeypatch.setattr(matching, "solve_assignment", counted)
+    monkeypatch.setattr(certified, "solve_assignment", counted)
     m = match_strokes(a, b, flags, flags)
     skipped = len(solves)
     assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
     solves.clear()
-    monkeypatch.setattr(matching, "_least_total", lambda cost: -np.inf)
-    monkeypatch.setattr(matching._Priced, "least_total", lambda priced: -np.inf)
+    monkeypatch.setattr(certified, "_least_total", lambda cost: -np.inf)
+    monkeypatch.setattr(costs._Priced, "least_total", lambda priced: -np.inf)
     unbounded = match_strokes(a, b, flags, flags)
     assert skipped < len(solves)
     assert (unbounded.pairs, unbounded.costs, unbounded.method) == (m.pairs, m.costs, m.method)
@@ -405,7 +400,7 @@ def test_turned_and_scaled_strokes_pair_whatever_the_angle():
         turned.append(centre + 1.5 * (s - centre) @ rot.T)
     m = match_strokes(strokes, turned, closed, closed)
     assert [p[:2] for p in m.pairs] == [p[:2] for p in identity_pairs(len(strokes))]
-    assert max(m.costs) < matching.MATCH_INDEX_MAX_COST + matching.W_TURN
+    assert max(m.costs) < matching.MATCH_INDEX_MAX_COST + costs.W_TURN
 
 
 def test_flipped_arch_is_not_a_half_turn():
@@ -479,10 +474,10 @@ def test_the_batched_key_descriptors_are_the_stroke_by_stroke_ones(seed):
     sizes = rng.choice([0, 1, 2, 5, 9], size=rng.integers(1, 6))
     strokes = [np.cumsum(rng.normal(size=(n, 2)), axis=0) for n in sizes]
     closed = rng.random(len(sizes)) < 0.5
-    batched = matching._Key(strokes, closed, "s", "c", 8)
+    batched = descriptors.KeyDescriptors(strokes, closed, "s", "c", 8)
     with pytest.MonkeyPatch.context() as one_by_one:
-        one_by_one.setattr(matching._Key, "_batched", lambda *args: False)
-        single = matching._Key(strokes, closed, "s", "c", 8)
+        one_by_one.setattr(descriptors.KeyDescriptors, "_batched", lambda *args: False)
+        single = descriptors.KeyDescriptors(strokes, closed, "s", "c", 8)
     for name in ("valid", "open", "ring", "length", "diagonal"):
         np.testing.assert_allclose(getattr(batched, name), getattr(single, name), rtol=1e-12, atol=1e-12)
 
@@ -517,8 +512,8 @@ def test_a_ragged_batch_with_a_bad_point_is_named_stroke_by_stroke():
 
 def _table(keys):
     (sa, ca), (sb, cb) = keys
-    key = [matching._Key(st, c, "k", "c", matching.MATCH_SAMPLES) for st, c in ((sa, ca), (sb, cb))]
-    return matching._CostTable(*key)
+    key = [descriptors.KeyDescriptors(st, c, "k", "c", descriptors.MATCH_SAMPLES) for st, c in ((sa, ca), (sb, cb))]
+    return costs.CostTable(*key)
 
 
 @pytest.mark.parametrize("seed", range(8))
@@ -537,9 +532,9 @@ def test_costs_and_directions_of_some_pairs_are_those_of_the_whole_table(seed):
     assert not table.whole
     whole = table.costs(*motion)
     assert table.whole
-    low = some < matching.MATCH_MAX_COST
+    low = some < costs.MATCH_MAX_COST
     np.testing.assert_allclose(whole[rows[pick], cols[pick]][low], some[low], rtol=0, atol=1e-7)
-    assert np.all(whole[rows[pick], cols[pick]][~low] >= matching.MATCH_MAX_COST - 1e-7)
+    assert np.all(whole[rows[pick], cols[pick]][~low] >= costs.MATCH_MAX_COST - 1e-7)
     every = table.costs(*motion, rows, cols)
     assert np.array_equal(table.costs(*motion, rows[pick], cols[pick]), every[pick])
     assert np.array_equal(np.minimum(whole, 9.0).ravel(), np.minimum(every, 9.0))
@@ -563,30 +558,30 @@ def test_table_costs_and_open_shapes_are_the_plain_formulas_bit_for_bit(seed):
     place = np.abs(za - zb) / np.maximum(scale * ra + rb, table.dot_spread)
     ratio = np.maximum(rb, 1e-300) / np.maximum(scale * ra, 1e-300)
     size = np.where((ra > 0) & (rb > 0), np.abs(np.log(ratio)) / np.log(4.0), 0.0)
-    want = matching.W_SHAPE * table.shape + matching.W_PLACE * place + matching.W_SCALE * size
+    want = costs.W_SHAPE * table.shape + costs.W_PLACE * place + costs.W_SCALE * size
     (_, ca), (_, cb) = keys
     valid = np.array([len(p) > 0 for p in keys[0][0]])[:, None] & np.array([len(p) > 0 for p in keys[1][0]])[None, :]
-    want = want + matching.MATCH_CYCLIC_PENALTY * (ca[:, None] != cb[None, :])
-    want = np.where(valid, want + matching.W_TURN * abs(np.angle(a * np.exp(-0.3j))) / np.pi, np.inf)
+    want = want + costs.MATCH_CYCLIC_PENALTY * (ca[:, None] != cb[None, :])
+    want = np.where(valid, want + costs.W_TURN * abs(np.angle(a * np.exp(-0.3j))) / np.pi, np.inf)
     assert np.array_equal(got, want)
     rng = np.random.default_rng(seed)
     oa, ob = (rng.normal(size=(n, 16)) + 1j * rng.normal(size=(n, 16)) for n in (7, 5))
     oa[0] = 0.0  # a dot: no fit
     oa, ob = oa - oa.mean(axis=1)[:, None], ob - ob.mean(axis=1)[:, None]
     norms = np.maximum(np.sum(np.abs(oa) ** 2, axis=1)[:, None] * np.sum(np.abs(ob) ** 2, axis=1)[None, :], 1e-300)
-    e_f, e_r, turn_f, turn_r = matching._open_shapes(oa, ob)
+    e_f, e_r, turn_f, turn_r = shape_fits.open_shapes(oa, ob)
     for d, e, turn in zip((np.conj(oa) @ ob.T, np.conj(oa) @ ob[:, ::-1].T), (e_f, e_r), (turn_f, turn_r)):
         assert np.array_equal(e, np.clip(1.0 - np.abs(d) ** 2 / norms, 0.0, 1.0))
         assert np.array_equal(turn, np.angle(d))
     # Pair by pair: each pair's own dot products, the matrix products' values to round-off.
     i, j = (g.ravel() for g in np.meshgrid(np.arange(7), np.arange(5), indexing="ij"))
-    pairs = matching._pair_shapes(oa[i], ob[j])
+    pairs = shape_fits.pair_shapes(oa[i], ob[j])
     reads = (np.sum(np.conj(oa[i]) * ob[j], axis=1), np.sum(np.conj(oa[i]) * ob[j][:, ::-1], axis=1))
     for d, e, turn, whole in zip(reads, pairs[:2], pairs[2:], (e_f, e_r)):
         assert np.array_equal(e, np.clip(1.0 - np.abs(d) ** 2 / norms[i, j], 0.0, 1.0))
         assert np.array_equal(turn, np.angle(d))
         np.testing.assert_allclose(e, whole[i, j], rtol=0, atol=1e-12)
-    np.testing.assert_array_equal(matching._pair_shapes(oa[i[::3]], ob[j[::3]])[0], pairs[0][::3])
+    np.testing.assert_array_equal(shape_fits.pair_shapes(oa[i[::3]], ob[j[::3]])[0], pairs[0][::3])
 
 
 @given(st.integers(0, 2**32 - 1))
@@ -597,7 +592,7 @@ def test_loop_fits_of_some_pairs_are_those_of_every_pair(seed):
     sign_a, sign_b = rng.integers(-1, 2, la).astype(float), rng.integers(-1, 2, lb).astype(float)
     every = _loop_shapes(a, b, sign_a, sign_b)
     i, j = rng.integers(0, la, 5), rng.integers(0, lb, 5)
-    assert np.array_equal(matching._LoopFits(a, b, sign_a, sign_b).residuals(i, j), every[i, j])
+    assert np.array_equal(shape_fits.LoopFits(a, b, sign_a, sign_b).residuals(i, j), every[i, j])
 
 
 @pytest.mark.parametrize("shape", [(150, 150), (90, 200), (200, 90)])
@@ -646,8 +641,8 @@ def test_a_drawing_turned_and_redrawn_in_another_order_pairs_right(degrees):
 
 def test_the_turn_guess_reads_the_turn_and_scale_without_pairing():
     a, b, _ = _turned_arcs(60, 70.0, 1.25)
-    keys = [matching._Key(k, [False] * len(k), "k", "c", matching.MATCH_SAMPLES) for k in (a, b)]
-    turn, _ = matching._turn_guess(matching._CostTable(*keys), *keys)
+    keys = [descriptors.KeyDescriptors(k, [False] * len(k), "k", "c", descriptors.MATCH_SAMPLES) for k in (a, b)]
+    turn, _ = motion_search._turn_guess(costs.CostTable(*keys), *keys)
     # The arcs of key B are key A's redrawn, each a little turned (up to 8 degrees) and scaled.
     assert abs(np.degrees(np.angle(turn)) - 70.0) < 4.0
     assert abs(abs(turn) / 1.25 - 1.0) < 0.05

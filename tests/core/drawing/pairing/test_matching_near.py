@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ballmorph_core.drawing.pairing import matching
+from ballmorph_core.drawing.pairing import certified, costs, descriptors, matching, motion_search
 from ballmorph_core.drawing.pairing.matching import match_strokes
 
 
@@ -60,8 +60,8 @@ def _many_small_keys(seed):
 
 def _table(keys):
     (sa, ca), (sb, cb) = keys
-    key = [matching._Key(st, c, "k", "c", matching.MATCH_SAMPLES) for st, c in ((sa, ca), (sb, cb))]
-    return matching._CostTable(*key)
+    key = [descriptors.KeyDescriptors(st, c, "k", "c", descriptors.MATCH_SAMPLES) for st, c in ((sa, ca), (sb, cb))]
+    return costs.CostTable(*key)
 
 
 @settings(max_examples=40, deadline=None)
@@ -84,7 +84,7 @@ def test_no_pair_left_out_of_the_near_ones_costs_less_than_the_level(seed, level
 
 
 def _whole_only(monkeypatch):
-    monkeypatch.setattr(matching, "_assign_near", lambda *args, **kwargs: matching._UNSETTLED)
+    monkeypatch.setattr(certified, "_assign_near", lambda *args, **kwargs: certified._UNSETTLED)
 
 
 @pytest.mark.parametrize("draw", [_keys, _many_small_keys])
@@ -93,17 +93,17 @@ def test_the_near_pairs_match_as_the_whole_table(draw, monkeypatch):
     # same pairs; their costs are the same to the round-off of the open fits' sums. Drawings
     # of many small strokes are mostly settled by the near pairs, the others mostly not.
     settled = []
-    real = matching._assign_near
+    real = certified._assign_near
 
     def spy(*args, **kwargs):
         out = real(*args, **kwargs)
-        settled.append(out is not matching._UNSETTLED)
+        settled.append(out is not certified._UNSETTLED)
         return out
 
     for seed in range(12):
         (sa, ca), (sb, cb) = draw(seed)
         with monkeypatch.context() as spied:
-            spied.setattr(matching, "_assign_near", spy)
+            spied.setattr(certified, "_assign_near", spy)
             near = match_strokes(sa, sb, ca, cb)
         with monkeypatch.context() as whole_only:
             _whole_only(whole_only)
@@ -122,7 +122,7 @@ def _hatching_matched_without_the_whole_table(monkeypatch, n, move=(0.0, 0.0)):
     b = [s + move for s in b]
     flags = [False] * n
     made = []
-    monkeypatch.setattr(matching._CostTable, "_fit_whole", lambda table: made.append(table))
+    monkeypatch.setattr(costs.CostTable, "_fit_whole", lambda table: made.append(table))
     m = match_strokes(a, b, flags, flags)
     return m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm)), made == []
 
@@ -142,16 +142,16 @@ def test_a_stroke_whose_partner_is_far_gets_all_its_pairs_priced(monkeypatch):
     b[far] = b[far] + [0.9, 0.6]
     flags = [False] * 120
     widened = []
-    real = matching._CostTable.widened
+    real = costs.CostTable.widened
 
     def counted(table, priced, *args):
         out = real(table, priced, *args)
         widened.append((int(args[-2].sum()), int(args[-1].sum())))
         return out
 
-    monkeypatch.setattr(matching._CostTable, "widened", counted)
+    monkeypatch.setattr(costs.CostTable, "widened", counted)
     m = match_strokes(a, b, flags, flags)
-    assert widened and all(0 < sa + sb <= 120 * 2 * matching.MATCH_NEAR_SHARE for sa, sb in widened)
+    assert widened and all(0 < sa + sb <= 120 * 2 * certified.MATCH_NEAR_SHARE for sa, sb in widened)
     with monkeypatch.context() as whole_only:
         _whole_only(whole_only)
         whole = match_strokes(a, b, flags, flags)
@@ -164,13 +164,13 @@ def test_a_drawing_far_from_its_near_pairs_is_priced_whole(monkeypatch):
     (sa, ca), (sb, cb) = _keys(7, count=30)
     sb = [s[::-1] * [1.0, -0.5] for s in sb]
     solves = []
-    real = matching.solve_assignment
+    real = certified.solve_assignment
 
     def counted(cost, **options):
         solves.append(options.get("duals", False))
         return real(cost, **options)
 
-    monkeypatch.setattr(matching, "solve_assignment", counted)
+    monkeypatch.setattr(certified, "solve_assignment", counted)
     match_strokes(sa, sb, ca, cb)
     assert solves and not any(solves)
 
@@ -179,13 +179,13 @@ def _tried_turns(monkeypatch):
     """The turns and scales (complex ``a``) of every motion the matching solves at, as a list
     filled while it runs."""
     tried = []
-    real = matching._assign_at
+    real = certified.assign_at
 
     def counted(table, motion, beat=None):
         tried.append(motion[0])
         return real(table, motion, beat)
 
-    monkeypatch.setattr(matching, "_assign_at", counted)
+    monkeypatch.setattr(motion_search, "assign_at", counted)
     return tried
 
 
@@ -209,7 +209,7 @@ def test_the_drawing_order_guess_is_tried_where_the_order_accounts_for_the_motio
     perm = np.random.default_rng(0).permutation(len(sa))
     shuffled = _table(((sa, ca), ([sb[p] for p in perm], ca)))
     order = shuffled.fit_motion(index, index)
-    assert shuffled.explained(index, index, order) < matching.MATCH_ORDER_EXPLAINS
+    assert shuffled.explained(index, index, order) < motion_search.MATCH_ORDER_EXPLAINS
     tried.clear()
     match_strokes(sa, [sb[p] for p in perm], ca, ca)
     assert tried and all(abs(a - order[0]) > 1e-9 for a in tried)
@@ -228,11 +228,11 @@ def test_a_few_strokes_always_try_the_drawing_order_guess(monkeypatch):
     tried = _tried_turns(monkeypatch)
     match_strokes(sa, sb, ca, cb)
     assert any(abs(a - order[0]) < 1e-12 for a in tried)
-    monkeypatch.setattr(matching, "MATCH_ORDER_GATE", 0)
+    monkeypatch.setattr(motion_search, "MATCH_ORDER_GATE", 0)
     tried.clear()
     match_strokes(sa, sb, ca, cb)
     explained = table.explained(index, index, order)
-    assert (explained >= matching.MATCH_ORDER_EXPLAINS) == any(abs(a - order[0]) < 1e-12 for a in tried)
+    assert (explained >= motion_search.MATCH_ORDER_EXPLAINS) == any(abs(a - order[0]) < 1e-12 for a in tried)
 
 
 def _candidates_per_stroke(n):
@@ -253,8 +253,8 @@ def test_a_hatch_line_reaches_as_many_candidates_however_many_lines_are_drawn():
     # ... and up to that count, the floor is the drawing's share, as it always was.
     a, b, _ = bench_matching.reordered_hatching(100, 3)
     table = _table(((a, [False] * 100), (b, [False] * 100)))
-    keys = [matching._Key(k, [False] * 100, "a", "c", matching.MATCH_SAMPLES) for k in (a, b)]
-    assert table.dot_spread == matching.DOT_SPREAD * max(k.diagonal for k in keys)
+    keys = [descriptors.KeyDescriptors(k, [False] * 100, "a", "c", descriptors.MATCH_SAMPLES) for k in (a, b)]
+    assert table.dot_spread == descriptors.DOT_SPREAD * max(k.diagonal for k in keys)
 
 
 def _moved_hatching(n, seed, far, angle, turn=0.0):
@@ -273,18 +273,18 @@ def test_every_pair_that_may_form_solves_as_the_whole_table(seed, far, angle, tu
     # grid, another assignment may tie within the round-off of the pairs' fits).
     n = int(np.random.default_rng(seed).integers(450, 650))
     table, motion = _moved_hatching(n, seed, far, angle, turn)
-    solved = matching._assign_every(table, motion)
-    if solved is matching._UNSETTLED:
+    solved = certified._assign_every(table, motion)
+    if solved is certified._UNSETTLED:
         return
-    whole = matching._assign_within(table.costs(*motion))
-    totals = [matching._padded_total(table.costs(*motion, *pairs), n, n) for pairs in (solved, whole)]
-    assert totals[0] == pytest.approx(totals[1], rel=0, abs=matching.MATCH_ROUNDOFF * n)
+    whole = certified._assign_within(table.costs(*motion))
+    totals = [certified.padded_total(table.costs(*motion, *pairs), n, n) for pairs in (solved, whole)]
+    assert totals[0] == pytest.approx(totals[1], rel=0, abs=motion_search.MATCH_ROUNDOFF * n)
 
 
 def test_every_pair_that_may_form_is_often_few_across_a_drawing():
     # (The property above would hold vacuously if the pairs were never few.)
     settled = [
-        matching._assign_every(*_moved_hatching(500, seed, 1.0, seed)) is not matching._UNSETTLED for seed in range(6)
+        certified._assign_every(*_moved_hatching(500, seed, 1.0, seed)) is not certified._UNSETTLED for seed in range(6)
     ]
     assert sum(settled) >= 3
 
@@ -301,14 +301,14 @@ def test_where_most_pairs_may_form_they_are_not_listed_before_the_whole_table(mo
     # priced without listing them first.
     key_a, key_b = bench_drawings.make_keys("open", 400, 50)
     levels = []
-    real = matching._CostTable.near
+    real = costs.CostTable.near
 
-    def spy(table, a, b, level=matching.MATCH_MAX_COST, only_a=None, only_b=None):
+    def spy(table, a, b, level=costs.MATCH_MAX_COST, only_a=None, only_b=None):
         if only_a is None and only_b is None:  # (a widening lists a few strokes' pairs)
             levels.append(level)
         return real(table, a, b, level, only_a, only_b)
 
-    monkeypatch.setattr(matching._CostTable, "near", spy)
+    monkeypatch.setattr(costs.CostTable, "near", spy)
     flags = [False] * 400
     match_strokes(key_a, key_b, flags, flags)
-    assert matching.MATCH_NEAR_COST in levels and matching.MATCH_MAX_COST not in levels
+    assert certified.MATCH_NEAR_COST in levels and costs.MATCH_MAX_COST not in levels
