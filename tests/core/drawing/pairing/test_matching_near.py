@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ballmorph_core.drawing.pairing import certified, costs, descriptors, matching, motion_search
+from ballmorph_core.drawing.pairing import certified, costs, descriptors, motion_search
 from ballmorph_core.drawing.pairing.matching import match_strokes
 
 
