@@ -24,7 +24,7 @@ from ...geometry.polyline import curve_length, subcurve
 from ...geometry.ragged import Ragged
 from ...geometry.similarity import as_complex, from_complex
 from ..frames.layout import PairFrames
-from ..pair_morphs.registration import Fits, Motions, motions, similarity_matrices
+from ..pair_morphs.registration import FIT_SAMPLES, Fits, Motions, motions, similarity_matrices
 from ..strokes import Message, PairMorphs
 
 __all__ = [
@@ -42,9 +42,6 @@ __all__ = [
 
 #: The point attribute holding hint numbers (a contract: outside checks write and read it).
 HINT = "ballmorph_hint"
-
-#: Samples of the hinted registration fit.
-FIT_SAMPLES = 128
 
 
 @dataclass

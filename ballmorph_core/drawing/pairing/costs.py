@@ -31,7 +31,7 @@ DIRECTION_TURN = 0.45
 
 
 #: Directions whose costs differ by less than this are equally good: the drawn one is kept.
-EQUAL_FIT = 1e-4
+DIRECTION_TIE = 1e-4
 
 
 #: Cost of each pair per half turn of the keys' overall motion: between motions that fit
@@ -226,7 +226,7 @@ class CostTable:
         e_f, e_r, *turns = self._pair_fits(rows, cols)
         away = [np.angle(np.exp(1j * (t - turn))) / np.pi for t in turns]
         cost_f, cost_r = e_f + DIRECTION_TURN * away[0] ** 2, e_r + DIRECTION_TURN * away[1] ** 2
-        reverse = cost_r < cost_f - EQUAL_FIT
+        reverse = cost_r < cost_f - DIRECTION_TIE
         open_a, open_b = self._open
         shared_f, shared_r = shared_ends(open_a[rows], open_b[cols], self.ra[rows] + self.rb[cols])
         reverse = np.where(shared_f > shared_r, False, np.where(shared_r > shared_f, True, reverse))
