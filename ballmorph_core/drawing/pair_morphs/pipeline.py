@@ -5,7 +5,7 @@ Ball-morph methods::
     prepare -> register -> find events -> choose roads -> cut chains -> map chains
             -> fall back -> lay out
 
-1. *prepare*: validate each pair's curves; strokes with fewer than two distinct points move
+1. *prepare* (:mod:`.curves`): validate each pair's curves; strokes with fewer than two distinct points move
    straight, point by point; a loop paired with an open stroke is morphed as two open strokes.
 2. *register* (:mod:`.registration`, paper section 1.4): a similarity takes P onto Q; the
    ball-morph runs between the registered P and Q and the carrier undoes the registration
@@ -30,18 +30,15 @@ step works on all pairs at once (a single pair is a batch of one), and nothing h
 the in-between times: :class:`PairPlans` is the plan, :meth:`PairPlans.frames` its evaluation.
 """
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, fields
 
 import numpy as np
 
 from ... import tolerances as tol
 from ...ballmap.correspondence import map_batch
 from ...ballmap.onemap import OneWayMap
-from ...errors import InvalidCurveError
 from ...geometry.intersections import simple_curves
 from ...geometry.polyline import (
-    already_clean,
-    as_curve,
     coarsen,
     curve_length,
     default_spacings,
@@ -52,6 +49,7 @@ from ...geometry.ragged import Ragged
 from ..frames.layout import BallRows
 from .carrier_choice import carrier_motions, note_shape_changes
 from .crossings import cross, cut_chains, find_events
+from .curves import PairCurves, prepare_pairs
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
@@ -78,86 +76,6 @@ BALLMAP_BATCH_POINTS = 60_000
 #: redrawn: their points are matched by arc length and the carrier does the motion. A ball-map
 #: of two curves this close would only follow the redrawing's jitter, cut at its many crossings.
 NEAR = 0.01
-
-
-@dataclass
-class PairCurves:
-    """One stroke pair as the pipeline receives it, and what *prepare* made of it.
-
-    Attributes
-    ----------
-    xy_a, xy_b : ndarray, shape (N, 2), (M, 2)
-        The strokes' points (the second running the same way as the first).
-    u_a, u_b : ndarray, shape (N,), (M,)
-        Their points' arc-length fractions.
-    closed_a, closed_b : bool
-    P, Q : ndarray or None
-        Validated curves (None: too few distinct points).
-    closed : bool
-        Whether the pair is morphed as loops.
-    notes : list of str
-    """
-
-    xy_a: np.ndarray
-    u_a: np.ndarray
-    closed_a: bool
-    xy_b: np.ndarray
-    u_b: np.ndarray
-    closed_b: bool
-    P: np.ndarray = None
-    Q: np.ndarray = None
-    closed: bool = False
-    notes: list = field(default_factory=list)
-    #: Set for the pieces of a pair cut at its hints (:mod:`.hints`): the pair's own carrier
-    #: (Motions of one pair), shared by its pieces so they stay joined, and ends that are the
-    #: hinted points (moved, never trimmed).
-    motion: object = None
-
-    @property
-    def lengths(self):
-        """Lengths of P and Q, shape (2,)."""
-        return np.array([_length(self.P, self.closed), _length(self.Q, self.closed)])
-
-
-def _length(curve, closed):
-    return curve_length(curve, closed)
-
-
-def prepare(pair, method, spacing, clean=False):
-    """Step 1: validate a pair's curves (in place); False when it can only move point by point.
-
-    ``clean``: both curves are known to be valid as they are (:func:`prepare_pairs`): copied.
-    """
-    pair.closed = pair.closed_a and pair.closed_b
-    if pair.closed_a != pair.closed_b:
-        pair.notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
-    try:
-        if clean:
-            pair.P, pair.Q = (np.array(xy, dtype=np.float64, copy=True) for xy in (pair.xy_a, pair.xy_b))
-        else:
-            pair.P, pair.Q = as_curve(pair.xy_a, "P", pair.closed), as_curve(pair.xy_b, "Q", pair.closed)
-    except InvalidCurveError as exc:
-        pair.notes.append(f"too few distinct points ({exc})")
-        pair.P = pair.Q = None
-        return False
-    if spacing is not None:
-        try:
-            resolve_spacing(pair.P, pair.Q, pair.closed, spacing)
-        except InvalidCurveError as exc:
-            pair.notes.append(f"{method} failed ({exc})")
-            pair.P = pair.Q = None
-            return False
-    return True
-
-
-def prepare_pairs(pairs, method, spacing):
-    """Step 1 for every pair: the pairs that are ready (list of int).
-
-    Curves a drawing's batch shows need no cleaning skip the per-curve validation.
-    """
-    closed = [p.closed_a and p.closed_b for p in pairs]
-    clean = already_clean([p.xy_a for p in pairs], closed) & already_clean([p.xy_b for p in pairs], closed)
-    return [c for c, pair in enumerate(pairs) if prepare(pair, method, spacing, bool(clean[c]))]
 
 
 @dataclass
@@ -608,7 +526,7 @@ class PairMorph:
 
     def __init__(self, P, Q, closed, method="circular-ball", carrier="similarity", spacing=None):
         P, Q = np.asarray(P, dtype=np.float64), np.asarray(Q, dtype=np.float64)
-        u_p, u_q = (Ragged.from_list([c], [closed]).s / max(_length(c, closed), 1e-300) for c in (P, Q))
+        u_p, u_q = (Ragged.from_list([c], [closed]).s / max(curve_length(c, closed), 1e-300) for c in (P, Q))
         self.plans = plan_pairs([PairCurves(P, u_p, closed, Q, u_q, closed)], method, carrier, spacing)
         self.used, self.notes = self.plans.used[0], self.plans.notes[0]
         parts = self.plans.frames([0.0])
