@@ -2,6 +2,7 @@
 the one stroke-pair pipeline, fallbacks, attributes, the plan, timing, how far in-betweens
 stray from their keys, and the path preview."""
 
+from .arcs import PathCorrection, chain_corrections
 from .fallbacks import FALLBACK_METHOD
 from .hints import HINT
 from .plan import InbetweenPlan, inbetween, plan_inbetween
@@ -21,9 +22,11 @@ __all__ = [
     "PREVIEW_POINTS",
     "PREVIEW_TIMES",
     "PairReport",
+    "PathCorrection",
     "PathPreview",
     "StrokeSet",
     "apply_favor",
+    "chain_corrections",
     "ease",
     "frame_times",
     "parse_timing_chart",

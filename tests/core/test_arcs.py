@@ -1,0 +1,150 @@
+"""Arcs through keys (ballmorph_core/drawing/arcs.py): intervals joined C1 at inner keys."""
+
+import numpy as np
+import pytest
+
+import ballmorph_core as bm
+from ballmorph_core.drawing.arcs import (
+    DERIVATIVE_STEP,
+    IntervalEnds,
+    hermite_bumps,
+    interval_ends,
+    key_velocities,
+    smooth_chain,
+)
+
+S = np.linspace(0.0, 1.0, 11)
+
+
+def test_hermite_bumps_vanish_at_both_keys_with_unit_slopes():
+    h = hermite_bumps([0.0, 1.0])
+    assert np.array_equal(h, np.zeros((2, 2))), h  # exactly: the keys stay the keys
+    e = 1e-6
+    slopes = (hermite_bumps([e, 1.0]) - hermite_bumps([0.0, 1.0 - e])) / e  # forward at 0, backward at 1
+    assert np.allclose(slopes, [[1.0, 0.0], [0.0, 1.0]], atol=1e-5), slopes
+
+
+def _chord(p0, p1, frames):
+    """IntervalEnds of one straight path from p0 to p1 (each (K, 3))."""
+    return IntervalEnds(p0, p1, p1 - p0, p1 - p0, float(frames))
+
+
+def _corrected(ends, correction, s):
+    """The chord paths of ``ends`` plus the correction, at times s: (T, K, 3)."""
+    straight = ends.start + s[:, None, None] * (ends.end - ends.start)
+    return straight + (0.0 if correction is None else correction.offsets(s))
+
+
+@pytest.mark.parametrize("frames", [(6, 6), (4, 8), (10, 3)])
+def test_three_keys_on_a_parabola_in_time_are_joined_on_it_exactly(frames):
+    # Two samples on quadratic paths (a thrown ball's centre and a point beside it), keyed at
+    # frames 0, f0, f0 + f1: straight chords become the parabola, whatever the spacing.
+    f0, f1 = frames
+
+    def at(frame):
+        return np.array([[0.5 * frame, 0.0, 2.0 - 0.03 * (frame - 5) ** 2], [0.5 * frame + 1, 0.0, 1.0]])
+
+    ends = [_chord(at(0), at(f0), f0), _chord(at(f0), at(f0 + f1), f1)]
+    corrections = smooth_chain(ends, [True])
+    worst = 0.0
+    for e, c, start, length in zip(ends, corrections, (0, f0), frames):
+        got = _corrected(e, c, S)
+        want = np.stack([at(start + s * length) for s in S])
+        worst = max(worst, float(np.abs(got - want).max()))
+    assert worst < 1e-12, f"frames {frames}: {worst:.3g} off the parabola"
+
+
+def test_a_corner_or_a_lone_interval_is_left_as_it_is():
+    p = [np.array([[x, 0.0, x * x]]) for x in (-1.0, 0.0, 1.0)]
+    ends = [_chord(p[0], p[1], 6), _chord(p[1], p[2], 6)]
+    assert smooth_chain(ends, [False]) == [None, None]
+    assert smooth_chain(ends[:1], []) == [None]
+    assert smooth_chain([ends[0], None], [True]) == [None, None]  # the neighbour cannot be corrected
+    with pytest.raises(ValueError, match="inner keys"):
+        smooth_chain(ends, [])
+
+
+def test_samples_are_matched_across_a_key_by_their_nearest():
+    # The next interval samples the key more densely and in another order; a translation
+    # carried by the nearest sample is exact.
+    key = np.c_[np.linspace(0, 1, 5), np.zeros(5), np.zeros(5)]
+    dense = np.c_[np.linspace(1, 0, 9), np.zeros(9), np.zeros(9)]
+    up, right = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
+    arriving = _chord(key - 6 * up, key, 6)
+    leaving = _chord(dense, dense + 6 * right, 6)
+    at_end, at_start = key_velocities(arriving, leaving)
+    want = 0.5 * (up + right)
+    assert np.allclose(at_end, want, atol=1e-15) and np.allclose(at_start, want, atol=1e-15), (at_end, at_start)
+
+
+def _arc_keys(degrees=(110.0, 90.0, 70.0), radius=5.0):
+    """A ball (a ring of radius 0.2) keyed on a circular arc: keys and centres (x, z)."""
+    t = np.linspace(0.0, 2.0 * np.pi, 24, endpoint=False)
+    ring = 0.2 * np.c_[np.cos(t), np.sin(t)]
+    angles = np.radians(degrees)
+    centres = radius * np.c_[np.cos(angles), np.sin(angles)]
+    return [bm.StrokeSet.from_strokes([ring + c], cyclic=[True]) for c in centres], centres
+
+
+def _centres(plans, corrections, steps=6):
+    """The ball's centre (x, z) on every frame of both intervals (6 frames each), keys included."""
+    s = np.arange(steps) / steps
+    out = [f.positions.mean(axis=0) for p, c in zip(plans, corrections) for f in p.evaluate(s, c).frames]
+    out.append(plans[-1].evaluate([1.0]).frames[0].positions.mean(axis=0))
+    return np.array(out)[:, [0, 2]]
+
+
+def _turn(a, b):
+    return float(np.degrees(np.arccos(np.clip(a @ b / np.linalg.norm(a) / np.linalg.norm(b), -1, 1))))
+
+
+def test_a_ball_keyed_on_an_arc_runs_on_it_through_the_middle_key():
+    keys, centres = _arc_keys()
+    plans = [bm.plan_inbetween(keys[0], keys[1]), bm.plan_inbetween(keys[1], keys[2])]
+    size = float(np.ptp(centres, axis=0).max())
+    figures = {}
+    for motion in ("per-interval", "smooth"):
+        corrections = bm.chain_corrections(plans, [6, 6], [True], motion)
+        c = _centres(plans, corrections)
+        off = float(np.abs(np.linalg.norm(c, axis=1) - 5.0).max()) / size
+        before, after = c[6] - c[5], c[7] - c[6]
+        ratio = float(np.linalg.norm(after) / np.linalg.norm(before))
+        figures[motion] = (off, ratio, _turn(before, after))
+    off, ratio, turn = figures["smooth"]
+    message = f"(off the arc, step ratio, turn at the key) {figures}"
+    # On the circle itself each frame turns 40/12 = 3.33 degrees.
+    assert off < 0.002 and abs(ratio - 1) < 0.01 and turn < 3.5, message
+    assert figures["per-interval"][0] > 0.02 and figures["per-interval"][2] > 19, message
+
+
+def test_per_interval_and_the_keys_are_bit_for_bit_unchanged():
+    keys, _ = _arc_keys()
+    plans = [bm.plan_inbetween(keys[0], keys[1]), bm.plan_inbetween(keys[1], keys[2])]
+    assert bm.chain_corrections(plans, [6, 6], [True], "PER_INTERVAL") == [None, None]
+    corrections = bm.chain_corrections(plans, [6, 6], [True])
+    assert all(c is not None for c in corrections)
+    for plan, correction in zip(plans, corrections):
+        plain = plan.evaluate([0.0, 1.0]).frames
+        moved = plan.evaluate([0.0, 1.0], correction).frames
+        for a, b in zip(plain, moved):
+            assert np.array_equal(a.positions, b.positions), np.abs(a.positions - b.positions).max()
+
+
+def test_interval_ends_measure_derivatives_and_refuse_non_finite_paths():
+    def samples(times):
+        s = np.asarray(times)[:, None, None]
+        return np.concatenate([s * s, np.sin(s), s], axis=2)  # one sample, (T, 1, 3)
+
+    ends = interval_ends(samples, 4)
+    assert np.allclose(ends.d_start, [[[0.0, 1.0, 1.0]]], atol=DERIVATIVE_STEP**2), ends.d_start
+    assert np.allclose(ends.d_end, [[[2.0, np.cos(1.0), 1.0]]], atol=DERIVATIVE_STEP**2), ends.d_end
+    assert interval_ends(lambda times: samples(times) + np.nan, 4) is None
+
+
+def test_bad_options_are_refused_by_name():
+    keys, _ = _arc_keys()
+    plans = [bm.plan_inbetween(keys[0], keys[1])] * 2
+    with pytest.raises(bm.InvalidCurveError, match="key_motion='curvy'"):
+        bm.chain_corrections(plans, [6, 6], [True], "curvy")
+    with pytest.raises(bm.InvalidCurveError, match="lengths"):
+        bm.chain_corrections(plans, [6, 0], [True])
