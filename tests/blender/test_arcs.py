@@ -149,3 +149,18 @@ def test_two_keys_are_the_same_either_way(addon, capfd, key_motion):
     other = ball_on_an_arc(selected=(1, 7))
     assert run(capfd, key_motion="PER_INTERVAL")[0] == {"FINISHED"}
     assert frames_bytes(other) == raw
+
+
+@pytest.mark.parametrize(("key_motion", "corner"), [("smooth", False), ("per-interval", True)])
+def test_the_command_line_takes_the_same_option(addon, tmp_path, key_motion, corner):
+    import importlib
+
+    ball_on_an_arc(selected=())  # the command line in-betweens every key pair
+    source, output = tmp_path / "arc.blend", tmp_path / "out.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(source))
+    cli = importlib.import_module(f"{MODULE}.cli")
+    assert cli.main([str(source), "--output", str(output), "--key-motion", key_motion]) == 0
+    bpy.ops.wm.open_mainfile(filepath=str(output))
+    off, ratio, turn = figures(centres(bpy.data.objects["Drawing"]))
+    message = f"{key_motion}: off the arc {off:.3%}, step ratio {ratio:.3f}, turn {turn:.2f} degrees at frame 7"
+    assert (turn > 19.0) if corner else (off < ON_ARC and turn < STEP_TURN), message
