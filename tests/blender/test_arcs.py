@@ -164,3 +164,29 @@ def test_the_command_line_takes_the_same_option(addon, tmp_path, key_motion, cor
     off, ratio, turn = figures(centres(bpy.data.objects["Drawing"]))
     message = f"{key_motion}: off the arc {off:.3%}, step ratio {ratio:.3f}, turn {turn:.2f} degrees at frame 7"
     assert (turn > 19.0) if corner else (off < ON_ARC and turn < STEP_TURN), message
+
+
+@pytest.mark.parametrize("key_motion", ["SMOOTH", "PER_INTERVAL"])
+def test_the_path_preview_shows_the_paths_the_frames_follow(addon, key_motion):
+    import importlib
+
+    cache = importlib.import_module(f"{MODULE}.operators.preview").PREVIEW
+    cache.clear()
+    obj = ball_on_an_arc(selected=())
+    bpy.context.scene.ballmorph_inbetween.key_motion = key_motion
+    tracks = []
+    for frame in (3, 9):  # the playhead in each interval
+        bpy.context.scene.frame_current = frame
+        tracks.append(cache.world(bpy.context).points.mean(axis=0)[:, [0, 2]])  # the ball's centre
+    preview = np.concatenate(tracks)
+    size = float(np.ptp(preview, axis=0).max())
+    off = float(np.abs(np.hypot(preview[:, 0], preview[:, 1]) - RADIUS).max()) / size
+    # The frames the operator writes with the same option lie on the previewed paths.
+    for number in KEYS:
+        gp_data.frame_at(obj.data.layers["Ink"], number).select = True
+    assert bpy.ops.ballmorph.inbetween(key_motion=key_motion) == {"FINISHED"}
+    # Preview times k / 16, frames k / 6 of each interval: they meet at the keys and halfway.
+    written = centres(obj)[[0, 3, 6, 9, 12]]
+    gap = float(np.abs(written - preview[[0, 8, 16, 25, 33]]).max()) / size
+    message = f"{key_motion}: preview {off:.3%} of the path off the arc; written frames {gap:.2e} from the preview"
+    assert ((off < ON_ARC) if key_motion == "SMOOTH" else (off > 0.02)) and gap < 1e-6, message
