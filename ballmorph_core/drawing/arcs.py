@@ -20,8 +20,8 @@ there (``2 chord - velocity at the smooth key``), so a chain of three keys runs 
 per sample; an interval between two corners is left as it is.
 
 A sample of one interval is matched to the samples of the next at their shared key by its
-nearest one there (the two plans sample the key differently), offset by their distance, a
-first-order transfer that is exact for strokes that move without deforming.
+nearest one there on the same key stroke (the two plans sample the key differently), offset by
+their distance: a first-order transfer, exact for strokes that move without deforming.
 
 Timing (easing, favor, charts) still applies per interval: the correction is a function of the
 morph time, so a velocity per frame is continuous across a key when both intervals are timed
@@ -92,6 +92,9 @@ class IntervalEnds:
         The paths' derivatives there, per unit of morph time.
     frames : float
         The interval's length in frames (> 0).
+    stroke_start, stroke_end : ndarray of int, shape (K,), optional
+        The key stroke each sample leaves and reaches (samples are matched across a key within
+        their stroke); None: any sample matches any.
     """
 
     start: np.ndarray
@@ -99,6 +102,8 @@ class IntervalEnds:
     d_start: np.ndarray
     d_end: np.ndarray
     frames: float
+    stroke_start: np.ndarray = None
+    stroke_end: np.ndarray = None
 
     @property
     def chord(self):
@@ -106,7 +111,7 @@ class IntervalEnds:
         return (self.end - self.start) / self.frames
 
 
-def interval_ends(samples, frames):
+def interval_ends(samples, frames, strokes=(None, None)):
     """The :class:`IntervalEnds` of an interval, from its sample paths.
 
     Parameters
@@ -117,6 +122,9 @@ def interval_ends(samples, frames):
         :meth:`InbetweenPlan.samples <.plan.InbetweenPlan.samples>`.
     frames : float
         The interval's length in frames.
+    strokes : (ndarray of int, ndarray of int), optional
+        The key strokes the samples leave and reach, shapes (K,) (e.g.
+        :meth:`InbetweenPlan.sample_strokes <.plan.InbetweenPlan.sample_strokes>`).
 
     Returns
     -------
@@ -129,7 +137,7 @@ def interval_ends(samples, frames):
     h = DERIVATIVE_STEP
     d_start = (-3.0 * f[0] + 4.0 * f[1] - f[2]) / (2.0 * h)
     d_end = (3.0 * f[5] - 4.0 * f[4] + f[3]) / (2.0 * h)
-    return IntervalEnds(f[0], f[5], d_start, d_end, float(frames))
+    return IntervalEnds(f[0], f[5], d_start, d_end, float(frames), *strokes)
 
 
 @dataclass
@@ -158,14 +166,36 @@ class PathCorrection:
         return h[:, 0, None, None] * self.start + h[:, 1, None, None] * self.end
 
 
-def _nearest(points, among):
-    """Index of the nearest point of ``among`` (M, 3) to each of ``points`` (K, 3), shape (K,)."""
+def _nearest_any(points, among):
+    """Index of the nearest point of ``among`` (M, 3), M > 0, to each of ``points`` (K, 3): (K,)."""
     out = np.empty(len(points), dtype=np.int64)
-    step = max(1, NEAREST_BUDGET // max(len(among), 1))
+    step = max(1, NEAREST_BUDGET // len(among))
     for lo in range(0, len(points), step):
         chunk = points[lo : lo + step]
         d2 = np.square(chunk[:, None, :] - among[None, :, :]).sum(axis=2)
         out[lo : lo + step] = np.argmin(d2, axis=1)
+    return out
+
+
+def _nearest(points, among, groups=None, among_groups=None):
+    """Index of the nearest point of ``among`` (M, 3) to each of ``points`` (K, 3), shape (K,),
+    within the same group (a key stroke) when groups (K,) and (M,) are given; a point whose
+    group has no point in ``among`` takes the nearest of all."""
+    if groups is None or among_groups is None:
+        return _nearest_any(points, among)
+    out = np.empty(len(points), dtype=np.int64)
+    lonely = np.ones(len(points), dtype=bool)
+    order = np.argsort(among_groups, kind="stable")
+    for group in np.unique(groups):
+        lo, hi = np.searchsorted(among_groups[order], [group, group + 1])
+        if lo == hi:
+            continue
+        mine = np.flatnonzero(groups == group)
+        candidates = order[lo:hi]
+        out[mine] = candidates[_nearest_any(points[mine], among[candidates])]
+        lonely[mine] = False
+    if lonely.any():
+        out[lonely] = _nearest_any(points[lonely], among)
     return out
 
 
@@ -193,10 +223,10 @@ def key_velocities(arriving, leaving):
         Those of the leaving interval's samples at its start.
     """
     x, y = arriving.end, leaving.start
-    k = _nearest(x, y)
+    k = _nearest(x, y, arriving.stroke_end, leaving.stroke_start)
     after = leaving.end[k] + (x - y[k])
     at_end = _key_velocity(arriving.start, x, after, arriving.frames, leaving.frames)
-    n = _nearest(y, x)
+    n = _nearest(y, x, leaving.stroke_start, arriving.stroke_end)
     before = arriving.start[n] + (y - x[n])
     at_start = _key_velocity(before, y, leaving.end, arriving.frames, leaving.frames)
     return at_end, at_start
@@ -235,7 +265,8 @@ def smooth_chain(ends, smooth):
     wanted = [[None, None] for _ in range(n)]
     for j, passes in enumerate(smooth):
         left, right = ends[j], ends[j + 1]
-        if passes and left is not None and right is not None:
+        # (A key with no paired sample on one side has nothing to pass through.)
+        if passes and left is not None and right is not None and len(left.end) and len(right.start):
             wanted[j][1], wanted[j + 1][0] = key_velocities(left, right)
     out = []
     for e, (v_start, v_end) in zip(ends, wanted):
@@ -284,5 +315,8 @@ def chain_corrections(plans, lengths, smooth, key_motion="smooth"):
         check_positive("lengths", length)
     if key_motion == "per-interval" or len(plans) < 2:
         return [None] * len(plans)
-    ends = [None if plan is None else interval_ends(plan.samples, length) for plan, length in zip(plans, lengths)]
+    ends = [
+        None if plan is None else interval_ends(plan.samples, length, plan.sample_strokes())
+        for plan, length in zip(plans, lengths)
+    ]
     return smooth_chain(ends, smooth)

@@ -193,3 +193,33 @@ def test_a_turning_growing_stroke_keeps_its_shape_and_turns_and_grows_smoothly_t
     assert abs(turn_out - turn_in) < 0.15 * abs(turn_in) and abs(grow_out - grow_in) < 0.15 * abs(grow_in), message
     _, turn_in, turn_out, _, _ = figures["per-interval"]
     assert turn_out > 1.8 * turn_in, message
+
+
+def test_samples_are_matched_within_their_key_stroke():
+    # Two strokes lying on each other at the key, one going up, one going right afterwards:
+    # each sample takes its own stroke's motion, not its nearest neighbour's on the other.
+    key = np.c_[np.linspace(0, 1, 6), np.zeros(6), np.zeros(6)]
+    both = np.concatenate([key, key + 1e-9])
+    groups = np.repeat([0, 1], 6)
+    up, right = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
+    motion = np.repeat([up, right], 6, axis=0)
+    arriving = IntervalEnds(both, both, 0 * both, 0 * both, 6.0, groups, groups)
+    leaving = IntervalEnds(both, both + 6 * motion, 6 * motion, 6 * motion, 6.0, groups[::-1], groups)
+    at_end, _ = key_velocities(arriving, leaving)
+    # Arriving stroke 0 continues as leaving samples 6..11 (stroke 0 there, moving right).
+    assert np.allclose(at_end, 0.5 * np.repeat([right, up], 6, axis=0), atol=1e-9), at_end
+    no_strokes = IntervalEnds(both, both, 0 * both, 0 * both, 6.0)
+    assert smooth_chain([no_strokes, IntervalEnds(*(np.zeros((0, 3)),) * 4, 6.0)], [True]) == [None, None]
+
+
+def test_a_plan_says_which_key_stroke_each_sample_leaves_and_reaches():
+    t = np.linspace(0.0, 2.0 * np.pi, 30, endpoint=False)
+    ring, line = np.c_[np.cos(t), np.sin(t)], np.c_[np.linspace(2, 4, 20), np.zeros(20)]
+    key_a = bm.StrokeSet.from_strokes([ring, line], cyclic=[True, False])
+    key_b = bm.StrokeSet.from_strokes([line + 0.5, 1.2 * ring], cyclic=[False, True])  # swapped order
+    plan = bm.plan_inbetween(key_a, key_b)
+    stroke_a, stroke_b = plan.sample_strokes()
+    k = plan.samples([0.0]).shape[1]
+    assert stroke_a.shape == stroke_b.shape == (k,)
+    assert np.array_equal(stroke_b, 1 - stroke_a), (stroke_a, stroke_b)  # the ring is stroke 1 of B
+    assert sorted(set(stroke_a.tolist())) == [0, 1]
