@@ -167,13 +167,18 @@ class PathCorrection:
 
 
 def _nearest_any(points, among):
-    """Index of the nearest point of ``among`` (M, 3), M > 0, to each of ``points`` (K, 3): (K,)."""
+    """Index of the nearest point of ``among`` (M, 3), M > 0, to each of ``points`` (K, 3): (K,).
+
+    By ``|b|^2 - 2 a.b`` (one matrix product per chunk), about the points' mean so that the
+    squares stay small next to the distances."""
+    centre = among.mean(axis=0)
+    among = among - centre
+    square = np.einsum("ij,ij->i", among, among)
     out = np.empty(len(points), dtype=np.int64)
     step = max(1, NEAREST_BUDGET // len(among))
     for lo in range(0, len(points), step):
-        chunk = points[lo : lo + step]
-        d2 = np.square(chunk[:, None, :] - among[None, :, :]).sum(axis=2)
-        out[lo : lo + step] = np.argmin(d2, axis=1)
+        chunk = points[lo : lo + step] - centre
+        out[lo : lo + step] = np.argmin(square - 2.0 * (chunk @ among.T), axis=1)
     return out
 
 
@@ -185,13 +190,15 @@ def _nearest(points, among, groups=None, among_groups=None):
         return _nearest_any(points, among)
     out = np.empty(len(points), dtype=np.int64)
     lonely = np.ones(len(points), dtype=bool)
-    order = np.argsort(among_groups, kind="stable")
+    # Both sides sorted by group once: each group is then one range of each.
+    mine_order, their_order = np.argsort(groups, kind="stable"), np.argsort(among_groups, kind="stable")
+    mine_sorted, their_sorted = groups[mine_order], among_groups[their_order]
     for group in np.unique(groups):
-        lo, hi = np.searchsorted(among_groups[order], [group, group + 1])
+        lo, hi = np.searchsorted(their_sorted, [group, group + 1])
         if lo == hi:
             continue
-        mine = np.flatnonzero(groups == group)
-        candidates = order[lo:hi]
+        mine = mine_order[slice(*np.searchsorted(mine_sorted, [group, group + 1]))]
+        candidates = their_order[lo:hi]
         out[mine] = candidates[_nearest_any(points[mine], among[candidates])]
         lonely[mine] = False
     if lonely.any():
