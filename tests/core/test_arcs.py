@@ -223,3 +223,23 @@ def test_a_plan_says_which_key_stroke_each_sample_leaves_and_reaches():
     assert stroke_a.shape == stroke_b.shape == (k,)
     assert np.array_equal(stroke_b, 1 - stroke_a), (stroke_a, stroke_b)  # the ring is stroke 1 of B
     assert sorted(set(stroke_a.tolist())) == [0, 1]
+
+
+def test_a_bouncing_ball_runs_on_one_parabola_per_bounce_with_its_contacts_as_corners():
+    # Contacts on frames 0, 12, 24 (typed Extreme: corners), apexes on 6 and 18: each bounce
+    # through contact, apex, contact is the parabola a thrown ball follows, exactly.
+    t = np.linspace(0.0, 2.0 * np.pi, 24, endpoint=False)
+    ring = 0.2 * np.c_[np.cos(t), np.sin(t)]
+
+    def centre(frame):
+        return np.array([0.25 * frame, 2.0 * (1.0 - ((frame % 12) - 6.0) ** 2 / 36.0)])
+
+    keys = [bm.StrokeSet.from_strokes([ring + centre(f)], cyclic=[True]) for f in (0, 6, 12, 18, 24)]
+    plans = [bm.plan_inbetween(a, b) for a, b in zip(keys[:-1], keys[1:])]
+    corrections = bm.chain_corrections(plans, [6] * 4, [True, False, True])
+    s = np.arange(7) / 6
+    frames = [f for p, c in zip(plans, corrections) for f in p.evaluate(s, c).frames]
+    got = np.array([f.positions.mean(axis=0)[[0, 2]] for f in frames])
+    want = np.array([centre(6 * (k + x)) for k in range(4) for x in s])
+    off = float(np.abs(got - want).max())
+    assert off < 1e-9, f"{off:.3g} off the bounces' parabolas"
