@@ -28,7 +28,16 @@ import numpy as np
 from ..ballmorph_core import frame_times
 from . import reports
 
-__all__ = ["LayerKeys", "Chart", "Interval", "interval_name", "selected_or_current", "every_pair", "intervals"]
+__all__ = [
+    "LayerKeys",
+    "Chart",
+    "Interval",
+    "interval_name",
+    "selected_or_current",
+    "every_pair",
+    "intervals",
+    "chains",
+]
 
 
 @dataclass(frozen=True)
@@ -45,12 +54,16 @@ class LayerKeys:
         The keys selected in the Dope Sheet, ascending.
     made : tuple of int
         Frames this add-on made (unchanged since), ascending.
+    corners : tuple of int
+        The keys typed Extreme in the Dope Sheet, ascending: with Smooth key motion the paths
+        still turn a corner there (a contact, a sharp change of direction).
     """
 
     name: str
     keys: tuple = ()
     selected: tuple = ()
     made: tuple = ()
+    corners: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -273,3 +286,37 @@ def intervals(layer, pairs, frame_count, charts=None):
             )
         )
     return out
+
+
+def chains(found, corners=()):
+    """Runs of consecutive intervals that share their keys, to be joined smoothly there.
+
+    Parameters
+    ----------
+    found : sequence of Interval
+        One layer's intervals, in frame order.
+    corners : collection of int
+        Keys that keep their corner (typed Extreme).
+
+    Returns
+    -------
+    list of (list of int, list of bool)
+        Each run of two or more intervals sharing keys: the indices into ``found``, and for each
+        inner key whether it is passed smoothly (False: a corner).
+
+    Examples
+    --------
+    >>> ivs = [Interval("Ink", a, b, np.arange(a + 1, b), np.zeros(0)) for a, b in ((1, 7), (7, 13), (20, 30))]
+    >>> chains(ivs)
+    [([0, 1], [True])]
+    >>> chains(ivs, corners=(7,))
+    [([0, 1], [False])]
+    """
+    out, run = [], []
+    for k, interval in enumerate(found):
+        if run and found[run[-1]].frame_b != interval.frame_a:
+            out.append(run)
+            run = []
+        run.append(k)
+    out.append(run)
+    return [(run, [found[k].frame_b not in corners for k in run[:-1]]) for run in out if len(run) >= 2]

@@ -38,6 +38,8 @@ __all__ = [
     "invalid_coordinates",
     "fell_back",
     "morph_failed",
+    "joined_smoothly",
+    "not_joined",
     "interval_reports",
     "nothing_to_do",
     "write_failed",
@@ -233,6 +235,23 @@ def morph_failed(interval_name, failed):
     return (
         f"{interval_name}: the morph failed ({failed}): nothing was written between these keys; "
         "try another morph, or simplify the strokes, and please report this drawing"
+    )
+
+
+def joined_smoothly(smooth, corners):
+    """An interval's in-betweens were joined smoothly to its neighbours' at the keys ``smooth``
+    (frame numbers); ``corners`` are its inner keys typed Extreme, which kept their corner."""
+    text = f"arcs through the keys: joined smoothly at frame {frames_text(smooth)}" if smooth else ""
+    if corners:
+        kept = f"the Extreme key at frame {frames_text(corners)} keeps its corner"
+        text = f"{text}; {kept}" if text else f"arcs through the keys: {kept}"
+    return text
+
+
+def not_joined(failed):
+    """Joining intervals smoothly failed (see :func:`failure`): each kept its own in-betweens."""
+    return (
+        f"could not join the intervals smoothly ({failed}): each keeps its own in-betweens, with a corner at the keys"
     )
 
 

@@ -23,9 +23,11 @@ from .drawing import (
     PairMorphs,
     PairOutcome,
     PairReport,
+    PathCorrection,
     PathPreview,
     StrokeSet,
     apply_favor,
+    chain_corrections,
     ease,
     frame_times,
     inbetween,
@@ -39,7 +41,7 @@ from .drawing import (
 from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from .morphs import METHODS, Morph, make_morph
 from .morphs.paths import BallPaths, midpoint_locus
-from .options import CARRIERS, EASING_MODES, EASING_TYPES, MATCHINGS, UNMATCHED
+from .options import CARRIERS, EASING_MODES, EASING_TYPES, KEY_MOTIONS, MATCHINGS, UNMATCHED
 from .study import measure
 
 __all__ = [
@@ -47,6 +49,7 @@ __all__ = [
     "CARRIERS",
     "MATCHINGS",
     "UNMATCHED",
+    "KEY_MOTIONS",
     "FALLBACK_METHOD",
     "FALLBACK_MORPHS",
     "EASING_TYPES",
@@ -54,6 +57,8 @@ __all__ = [
     "FAVOR_ODDS",
     "ease",
     "apply_favor",
+    "chain_corrections",
+    "PathCorrection",
     "frame_times",
     "parse_timing_chart",
     "InbetweenPlan",

@@ -13,6 +13,7 @@ __all__ = [
     "PATH_KINDS",
     "EASING_TYPES",
     "EASING_MODES",
+    "KEY_MOTIONS",
     "check_option",
     "check_positive",
 ]
@@ -31,6 +32,9 @@ PATH_KINDS = ("hat", "linear", "tangent", "circular", "parabolic")
 #: Easing types and modes, as Blender's Grease Pencil interpolation names them.
 EASING_TYPES = ("linear", "sine", "quad", "cubic", "quart", "quint", "expo", "circ", "back", "bounce", "elastic")
 EASING_MODES = ("auto", "ease-in", "ease-out", "ease-in-out")
+#: How in-betweens pass through the inner keys of three or more: joined smoothly (C1, arcs
+#: through the keys) or each interval on its own, with a corner at every key (see drawing/arcs.py).
+KEY_MOTIONS = ("smooth", "per-interval")
 
 
 def _canonical(value):

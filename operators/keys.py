@@ -35,8 +35,9 @@ def layer_blocker(layer):
 
 
 def layer_keys(grease_pencil_data, layer):
-    """A layer's keys, selected keys and the frames this add-on made, for :mod:`.pairing`."""
-    keys, selected, made = [], [], []
+    """A layer's keys, selected keys, the frames this add-on made and the keys typed Extreme (they
+    keep their corner), for :mod:`.pairing`."""
+    keys, selected, made, corners = [], [], [], []
     for frame in layer.frames:
         number = frame.frame_number
         if generated.is_generated(grease_pencil_data, layer, frame):
@@ -45,4 +46,8 @@ def layer_keys(grease_pencil_data, layer):
             keys.append(number)
             if frame.select:
                 selected.append(number)
-    return pairing.LayerKeys(layer.name, tuple(sorted(keys)), tuple(sorted(selected)), tuple(sorted(made)))
+            if frame.keyframe_type == "EXTREME":
+                corners.append(number)
+    return pairing.LayerKeys(
+        layer.name, tuple(sorted(keys)), tuple(sorted(selected)), tuple(sorted(made)), tuple(sorted(corners))
+    )

@@ -16,7 +16,7 @@ from ..ballmorph_core import StrokeSet, apply_favor, ease, length_deviation
 from . import grease_pencil
 from .plans import PLANS
 
-__all__ = ["IntervalKeys", "Morphed", "morph_interval", "plan_options", "read_keys"]
+__all__ = ["IntervalKeys", "Morphed", "morph_interval", "plan_options", "read_keys", "corrected"]
 
 # A layer transform whose 3x3 part has a smaller determinant cannot be inverted to write back.
 _SINGULAR_DETERMINANT = 1e-12
@@ -39,6 +39,11 @@ class Morphed:
         The core method that made the frames.
     strays : list of reports.Stray
         The stroke pairs that stray from their keys, worst first.
+    plan : ballmorph_core.InbetweenPlan
+        The plan the frames were evaluated from, at ``times`` (the morph's fractions).
+    keys : IntervalKeys
+        The keys as the core received them.
+    times : ndarray, shape (T,)
     """
 
     layer: object
@@ -47,6 +52,9 @@ class Morphed:
     messages: list = field(default_factory=list)
     method: str = ""
     strays: list = field(default_factory=list)
+    plan: object = None
+    keys: object = None
+    times: object = None
 
 
 def _frame(layer, number):
@@ -175,7 +183,6 @@ def morph_interval(layer, interval, values, method):
     keys = read_keys(layer, interval, values)
     if keys is None:
         return None
-    messages, held = keys.messages, keys.held
     if interval.chart is None:
         times = ease(interval.fractions, values["easing_type"], values["easing"])
     else:  # a chart gives the morph's own fractions: not eased
@@ -184,10 +191,38 @@ def morph_interval(layer, interval, values, method):
     # The times only enter at the evaluation: a redo with another frame count or easing reuses
     # the plan (matching, ball-maps, carriers) of the same keys and options.
     plan = PLANS.plan(keys.key_a, keys.key_b, **plan_options(values, method))
-    result = plan.evaluate(times)
-    messages.extend((message.level, message.text) for message in result.messages)
-    deviation = length_deviation(keys.key_a, keys.key_b, result, times, PLANS.key_lengths(plan))
-    strays = reports.strays(result.pairs, method, deviation, times, interval.targets)
+    item = Morphed(layer, interval, [], list(keys.messages), method, plan=plan, keys=keys, times=times)
+    result = _evaluate(item)
+    item.messages.extend((message.level, message.text) for message in result.messages)
+    return item
+
+
+def _evaluate(item, correction=None):
+    """Fill ``item``'s frames and strays from its plan (moved by ``correction``, see
+    :func:`corrected`); the core's InbetweenResult."""
+    keys, times = item.keys, item.times
+    result = item.plan.evaluate(times, correction)
+    deviation = length_deviation(keys.key_a, keys.key_b, result, times, PLANS.key_lengths(item.plan))
+    item.strays = reports.strays(result.pairs, item.method, deviation, times, item.interval.targets)
+    held = keys.held
     frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
-    frames = [_to_layer_space(frame, keys.to_layer) for frame in frames]
-    return Morphed(layer, interval, frames, messages, method, strays)
+    item.frames = [_to_layer_space(frame, keys.to_layer) for frame in frames]
+    return result
+
+
+def corrected(item, correction):
+    """``item`` (a Morphed) evaluated again with its paths moved by ``correction`` (a
+    :class:`ballmorph_core.PathCorrection`: the interval joined smoothly to its neighbours);
+    its messages are kept. Nothing is changed if the evaluation fails."""
+    again = Morphed(
+        item.layer,
+        item.interval,
+        [],
+        list(item.messages),
+        item.method,
+        plan=item.plan,
+        keys=item.keys,
+        times=item.times,
+    )
+    _evaluate(again, correction)
+    return again

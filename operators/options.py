@@ -214,6 +214,30 @@ OPTIONS = (
         max=1.0,
     ),
     Option(
+        "key_motion",
+        "ENUM",
+        "Through Keys",
+        "How in-betweens pass through the inner keys of three or more (selected, or every key from the "
+        "command line); a key typed Extreme in the Dope Sheet always keeps its corner",
+        "smooth",
+        (
+            Item(
+                "SMOOTH",
+                "smooth",
+                "Smooth",
+                "Arcs through the keys: every point's path and speed join smoothly at inner keys",
+                "IPO_BEZIER",
+            ),
+            Item(
+                "PER_INTERVAL",
+                "per-interval",
+                "Per Interval",
+                "Each pair of keys in-betweened on its own: paths turn a corner at every key",
+                "IPO_LINEAR",
+            ),
+        ),
+    ),
+    Option(
         "layers",
         "ENUM",
         "Layers",
@@ -375,6 +399,7 @@ def draw_options(layout, data, compact=False):
     sub.active = data.easing_type != "LINEAR"
     sub.prop(data, "easing")
     col.prop(data, "favor", slider=True)
+    col.prop(data, "key_motion")
     col = layout.column()
     col.prop(data, "layers")
     col.prop(data, "selected_only")

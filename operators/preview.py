@@ -5,7 +5,9 @@ active layer, its keys around the current frame (the operator's rule, :func:`.pa
 selected_or_current`, without the Dope Sheet selection: the preview follows the playhead), read
 as the operator reads them (:func:`.morph.read_keys`), their plan (the operator's kept plan when
 it matches, :data:`.plans.PLANS`), and the core's :func:`ballmorph_core.path_preview` of it,
-moved to world space.
+moved to world space. With Smooth key motion the keys before and after them are read and
+planned too, so the preview shows the paths joined smoothly to the neighbouring intervals', as
+the operator writes them over three or more keys (:func:`ballmorph_core.chain_corrections`).
 
 :data:`PREVIEW` keeps the result. The viewport redraws far more often than anything changes, so
 a redraw only compares a few values (object, layer, frame, options, matrices, an edit counter
@@ -18,7 +20,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..addon_logic import pairing
-from ..ballmorph_core import BallMorphError, path_preview, plan_inbetween
+from ..ballmorph_core import BallMorphError, chain_corrections, path_preview, plan_inbetween
 from . import keys, morph, options
 from .plans import PLANS, same_key
 
@@ -48,7 +50,8 @@ class PreviewCache:
     def clear(self):
         """Forget everything (the keys, the plan's trajectories, the edit counter)."""
         self._state, self._world = None, None
-        self._source = None  # (plan options, key_a, key_b, PathPreview in morph space)
+        # (plan options, which interval, [(key_a, key_b) per interval], PathPreview in morph space)
+        self._source = None
         self._edits = 0
 
     def edited(self):
@@ -90,27 +93,67 @@ class PreviewCache:
         pairs, _ = pairing.selected_or_current(found, frame)
         if not pairs:
             return None
-        try:
-            read = morph.read_keys(layer, pairing.intervals(found, pairs, 0)[0], values)
-        except ValueError:  # the keys cannot be in-betweened: the operator says why
+        chain, middle = _chain(found, pairs[0], values["key_motion"])
+        read = []
+        for k, interval in enumerate(pairing.intervals(found, chain, 0)):
+            try:
+                read.append(morph.read_keys(layer, interval, values))
+            except ValueError:  # the keys cannot be in-betweened: the operator says why
+                if k == middle:
+                    return None
+                read.append(None)
+        if read[middle] is None:
             return None
-        if read is None:
-            return None
+        # A neighbour that cannot be read (or has no strokes) is left out: no arc through it.
+        kept_ones = [k for k, r in enumerate(read) if r is not None]
+        middle = kept_ones.index(middle)
+        chain, read = [chain[k] for k in kept_ones], [read[k] for k in kept_ones]
+        smooth = [True] * (len(chain) - 1)
         wanted = morph.plan_options(values, values["method"])
         kept = self._source
-        if kept is not None and kept[0] == wanted and same_key(kept[1], read.key_a) and same_key(kept[2], read.key_b):
+        if kept is not None and kept[:2] == (wanted, middle) and _same_keys(kept[2], read):
             return kept[3]
-        plan = PLANS.find(read.key_a, read.key_b, **wanted)
         try:
-            if plan is None:
-                self.planned += 1
-                plan = plan_inbetween(read.key_a, read.key_b, **wanted)
-            local = path_preview(plan)
+            plans = [self._plan(r, wanted) for r in read]
+            corrections = chain_corrections(plans, [b - a for a, b in chain], smooth, values["key_motion"])
+            local = path_preview(plans[middle], correction=corrections[middle])
         except BallMorphError:
             return None
         self.computed += 1
-        self._source = (wanted, read.key_a, read.key_b, local)
+        self._source = (wanted, middle, [(r.key_a, r.key_b) for r in read], local)
         return local
+
+    def _plan(self, read, wanted):
+        """The plan of keys read (IntervalKeys): the operator's when it kept one, else a new one."""
+        plan = PLANS.find(read.key_a, read.key_b, **wanted)
+        if plan is None:
+            self.planned += 1
+            plan = plan_inbetween(read.key_a, read.key_b, **wanted)
+        return plan
+
+
+def _chain(found, pair, key_motion):
+    """The intervals whose plans the preview of ``pair`` needs: the pair, and with Smooth key
+    motion the intervals with a frame between their keys on each side of it whose shared key
+    is passed smoothly (not typed Extreme). Returns ``(pairs, index of pair)``."""
+    a, b = pair
+    chain, middle = [pair], 0
+    if key_motion == "per-interval":
+        return chain, middle
+    earlier = [n for n in found.keys if n < a]
+    later = [n for n in found.keys if n > b]
+    if earlier and a - earlier[-1] >= 2 and a not in found.corners:
+        chain, middle = [(earlier[-1], a), *chain], 1
+    if later and later[0] - b >= 2 and b not in found.corners:
+        chain = [*chain, (b, later[0])]
+    return chain, middle
+
+
+def _same_keys(kept, read):
+    """Whether the kept intervals' keys are the ones read now, interval by interval."""
+    return len(kept) == len(read) and all(
+        same_key(ka, r.key_a) and same_key(kb, r.key_b) for (ka, kb), r in zip(kept, read)
+    )
 
 
 #: The add-on's one preview (module state, like the plans).

@@ -9,7 +9,9 @@ layers:
    the one kept from an earlier run on the same keys);
 2. computes every interval with the core (:mod:`.morph`), writing nothing yet; an interval whose
    morph fails unexpectedly is redone whole with the core's fallback morph, and one that still
-   fails is left out, never the others;
+   fails is left out, never the others; with Smooth key motion, consecutive intervals of a layer
+   are then joined smoothly at the keys they share (:func:`ballmorph_core.chain_corrections`),
+   except at keys typed Extreme, and should that fail they keep their own in-betweens;
 3. writes all frames at once, all or nothing (:mod:`.writer`), and keeps each written
    interval's timing chart with it;
 4. returns what happened per layer (:class:`ObjectResult`): the reports the operator passes to
@@ -22,7 +24,15 @@ reports itself, so both callers say the same things.
 from dataclasses import dataclass, field
 
 from ..addon_logic import charts, pairing, reports
-from ..ballmorph_core import FALLBACK_METHOD, BallMorphError, apply_favor, parse_timing_chart
+from ..ballmorph_core import (
+    FALLBACK_METHOD,
+    KEY_MOTIONS,
+    BallMorphError,
+    apply_favor,
+    chain_corrections,
+    parse_timing_chart,
+)
+from ..ballmorph_core.options import check_option
 from . import keys, morph, options, writer
 from .plans import PLANS
 
@@ -108,11 +118,12 @@ class Progress:
 
 def check_options(values):
     """Why these option values cannot run at all ('' when they can): an unavailable morph, a
-    favor out of range, a timing chart that is not one."""
+    favor out of range, an unknown key motion, a timing chart that is not one."""
     if not options.method_available(values["method"]):
         return reports.method_unavailable(options.label("method", values["method"]))
     try:
         apply_favor([], values["favor"])
+        check_option("key_motion", values["key_motion"], KEY_MOTIONS)
     except ValueError as exc:
         return str(exc)
     try:
@@ -152,7 +163,7 @@ def inbetween_object(obj, values, rule, progress=None):
     # With every layer chosen, a layer that has nothing to pair is normal; on the one layer
     # the animator chose, it is worth a warning.
     problem_level = reports.INFO if values["layers"] == "all" else reports.WARNING
-    work = []
+    work, corners = [], {}
     for layer in layers:
         layer_result = LayerResult(layer.name)
         result.layers.append(layer_result)
@@ -161,6 +172,7 @@ def inbetween_object(obj, values, rule, progress=None):
             layer_result.reports.append((reports.WARNING, blocker))
             continue
         found = keys.layer_keys(data, layer)
+        corners[layer.name] = found.corners
         pairs, problems = rule(found)
         layer_result.reports.extend((problem_level, text) for text in problems)
         try:
@@ -172,7 +184,7 @@ def inbetween_object(obj, values, rule, progress=None):
         found_intervals = pairing.intervals(found, pairs, values["frame_count"], layer_charts)
         work.extend((layer, layer_result, interval) for interval in found_intervals)
 
-    outcomes = _compute(work, values, progress)
+    outcomes = _compute(work, values, progress, corners)
     morphed = [item for _, _, item, _ in outcomes if item is not None]
     if morphed:
         try:
@@ -191,8 +203,9 @@ def inbetween_object(obj, values, rule, progress=None):
     return result
 
 
-def _compute(work, values, progress):
-    """Morph every interval (nothing written): ``(layer result, interval, Morphed or None, problem)``."""
+def _compute(work, values, progress, corners):
+    """Morph every interval (nothing written): ``(layer result, interval, Morphed or None, problem)``;
+    ``corners`` are each layer's keys typed Extreme (dict layer name -> frames)."""
     outcomes = []
     progress.begin(len(work))
     PLANS.begin()
@@ -200,6 +213,8 @@ def _compute(work, values, progress):
         for done, (layer, layer_result, interval) in enumerate(work):
             progress.step(done, interval)
             outcomes.append((layer_result, interval, *_morph(layer, interval, values)))
+        if values["key_motion"] != "per-interval":
+            _join_smoothly(outcomes, values["key_motion"], corners)
     finally:
         PLANS.end()
         progress.end()
@@ -241,3 +256,35 @@ def _fall_back(layer, interval, values, exc):
             item.messages.insert(0, (reports.WARNING, text))
             return item, None
     return None, (reports.WARNING, reports.morph_failed(interval.name, failed))
+
+
+def _join_smoothly(outcomes, key_motion, corners):
+    """Join each layer's consecutive computed intervals smoothly at the keys they share (not at
+    its ``corners``): their Morphed items are replaced in ``outcomes`` by ones evaluated with the
+    core's corrections. A chain whose joining fails keeps its items (and says why)."""
+    by_layer = {}
+    for k, (layer_result, _, item, _) in enumerate(outcomes):
+        if item is not None:
+            by_layer.setdefault(id(layer_result), []).append(k)
+    for indices in by_layer.values():
+        items = [outcomes[k][2] for k in indices]
+        layer_corners = corners.get(items[0].layer.name, ())
+        for run, smooth in pairing.chains([item.interval for item in items], layer_corners):
+            chain = [items[i] for i in run]
+            try:
+                lengths = [item.interval.frame_b - item.interval.frame_a for item in chain]
+                corrections = chain_corrections([item.plan for item in chain], lengths, smooth, key_motion)
+                joined = [item if c is None else morph.corrected(item, c) for item, c in zip(chain, corrections)]
+            except Exception as exc:  # a bug: the intervals keep their own in-betweens, nothing is lost
+                chain[0].messages.append((reports.WARNING, reports.not_joined(reports.failure(exc))))
+                continue
+            inner = [item.interval.frame_b for item in chain[:-1]]
+            for i, (k, item) in enumerate(zip((indices[r] for r in run), joined)):
+                ends = [n for n in (i - 1, i) if 0 <= n < len(inner)]
+                text = reports.joined_smoothly(
+                    [inner[n] for n in ends if smooth[n]], [inner[n] for n in ends if not smooth[n]]
+                )
+                if text:
+                    item.messages.append((reports.INFO, text))
+                layer_result, interval, _, problem = outcomes[k]
+                outcomes[k] = (layer_result, interval, item, problem)

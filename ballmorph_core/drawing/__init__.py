@@ -2,6 +2,7 @@
 the one stroke-pair pipeline, fallbacks, attributes, the plan, timing, how far in-betweens
 stray from their keys, and the path preview."""
 
+from .frames.arcs import PathCorrection, chain_corrections
 from .frames.preview import PREVIEW_POINTS, PREVIEW_TIMES, PathPreview, pair_colors, path_preview
 from .frames.timing import FAVOR_ODDS, apply_favor, ease, frame_times, parse_timing_chart
 from .keys.hints import HINT
@@ -23,9 +24,11 @@ __all__ = [
     "PairMorphs",
     "PairOutcome",
     "PairReport",
+    "PathCorrection",
     "PathPreview",
     "StrokeSet",
     "apply_favor",
+    "chain_corrections",
     "ease",
     "frame_times",
     "parse_timing_chart",

@@ -258,9 +258,30 @@ class InbetweenPlan:
             self.messages.append(Message("INFO", f"{len(forced)} stroke pair(s) joined by hints"))
         return sorted(matched), drawing
 
-    def _frames(self, times, finite_only=True):
+    def samples(self, times):
+        """Every sample of every pair at morph ``times`` (T,), lifted to 3D: shape (T, K, 3).
+
+        The samples the in-betweens are made of, the same at every time, before any pair not
+        finite somewhere is moved point by point (for :mod:`.arcs`, which joins intervals)."""
+        times = _check_times(times)
+        frames = self.pieces.merge(self.pairs.frames(times))[0].frames
+        if len(times) == 0:
+            return np.zeros((0, frames.shape[1], 3))
+        return np.stack([self.plane.to_3d(frame) for frame in frames])
+
+    def sample_strokes(self):
+        """The key strokes every sample (:meth:`samples`) leaves and reaches: stroke indices
+        into ``key_a`` and ``key_b`` (a line drawn in pieces: its piece), shapes (K,) and (K,)."""
+        parts = self.pieces.merge(self.pairs.frames([0.0]))[0]
+        # As an evaluation reads them (the fractions copied first: they may be the layout's own).
+        parts.u_a, parts.u_b = parts.u_a.copy(), _as_drawn(parts, self.strokes)
+        self._sources(parts)
+        return parts.stroke_a, parts.stroke_b
+
+    def _frames(self, times, finite_only=True, correction=None):
         """The pairs' frames at ``times`` (PairFrames) and the in-betweens (list of StrokeSet);
-        ``(None, None)`` if some pair is not finite there and ``finite_only``.
+        ``(None, None)`` if some pair is not finite there and ``finite_only``. A ``correction``
+        (:class:`.arcs.PathCorrection`) moves the samples first.
 
         The pairs' 2D frames never leave an evaluation (the in-betweens are lifted out of them),
         so every chunk of every evaluation stages them in one buffer the plan keeps (at most
@@ -273,6 +294,8 @@ class InbetweenPlan:
                 self._staged = np.empty(size)
             staged = self._staged[: size[0]]
         raw, marks = self.pieces.merge(self.pairs.frames(times, out=staged))
+        if correction is not None:  # in the plane: the offsets' parts along its axes
+            raw.frames += correction.offsets(times) @ np.stack([self.plane.u, self.plane.v], axis=1)
         parts = _finite(raw, self.strokes, times)
         if finite_only and parts is not raw:
             return None, None
@@ -333,13 +356,16 @@ class InbetweenPlan:
             out[k] = ranges
         return out
 
-    def evaluate(self, times):
+    def evaluate(self, times, correction=None):
         """The in-betweens at ``times``.
 
         Parameters
         ----------
         times : array_like, shape (T,)
             Morph times in [0, 1] (already eased; values outside are clamped).
+        correction : arcs.PathCorrection, optional
+            Offsets of every sample (:meth:`samples`) along its path, zero at both keys: the
+            paths joined smoothly to the neighbouring intervals' (:func:`.arcs.smooth_chain`).
 
         Returns
         -------
@@ -354,9 +380,9 @@ class InbetweenPlan:
         step = max(1, EVALUATE_SAMPLES // max(self.pairs.layout.offsets[-1], 1))
         chunks = [times[i : i + step] for i in range(0, len(times), step)] or [times]
         for chunk in chunks:
-            parts, frames = self._frames(chunk)
+            parts, frames = self._frames(chunk, correction=correction)
             if parts is None:
-                parts, result.frames = self._frames(times, finite_only=False)
+                parts, result.frames = self._frames(times, finite_only=False, correction=correction)
                 break
             result.frames += frames
         for k, (a, b, flip) in enumerate(self.strokes):

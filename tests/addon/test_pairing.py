@@ -190,3 +190,13 @@ def test_a_chart_with_more_fractions_than_frames_between_the_keys_is_an_error():
 def test_a_chart_spells_itself_as_the_option_does():
     assert pairing.Chart((0.1, 0.25, 0.9)).text == "0.1 0.25 0.9"
     assert pairing.Chart((1 / 3,)).text == repr(1 / 3)  # kept exactly
+
+
+# -- chains: consecutive intervals joined smoothly at the keys they share (issue 39) ---------------
+
+
+def test_chains_are_runs_of_intervals_sharing_keys_with_extreme_keys_as_corners():
+    found = pairing.intervals(ink(keys=(1, 7, 13, 20, 30, 40)), [(1, 7), (7, 13), (20, 30), (30, 40)], 0)
+    assert pairing.chains(found) == [([0, 1], [True]), ([2, 3], [True])]
+    assert pairing.chains(found, corners=(7, 40)) == [([0, 1], [False]), ([2, 3], [True])]
+    assert pairing.chains(found[:1]) == [] and pairing.chains([]) == []

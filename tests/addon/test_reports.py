@@ -283,3 +283,10 @@ def test_what_was_written_ends_with_the_strays():
     found = [reports.Stray("stroke 0 -> 0", "no partner", 5)]
     got = reports.interval_reports(interval(), "Circular Ball-morph", [("INFO", "note")], found)
     assert got[-1] == reports.stray_reports("Ink 1\u21929", found)[0] and got[-2] == ("INFO", "Ink 1\u21929: note")
+
+
+def test_joined_smoothly_names_the_smooth_keys_and_the_corners():
+    assert reports.joined_smoothly([7], []) == "arcs through the keys: joined smoothly at frame 7"
+    assert reports.joined_smoothly([], [7]) == "arcs through the keys: the Extreme key at frame 7 keeps its corner"
+    assert reports.joined_smoothly([13], [7]).endswith("frame 13; the Extreme key at frame 7 keeps its corner")
+    assert reports.joined_smoothly([], []) == ""

@@ -250,6 +250,7 @@ def test_options_from_the_operators_table(saved, tmp_path, capfd):
         "carrier": "rigid",
         "matching": "index",
         "unmatched": "hold",
+        "key_motion": "smooth",
     }
     help_text = run(capfd, "--help")
     assert help_text[0] == 0

@@ -58,6 +58,7 @@ def test_values_of_reads_any_holder_of_the_options(addon):
         "carrier": "similarity",
         "matching": "auto",
         "unmatched": "middle",
+        "key_motion": "smooth",
     }
     assert options.label("method", "parabolic-ball") == "Parabolic Ball-morph"
 

@@ -134,6 +134,7 @@ def test_the_preview_follows_the_playhead_not_the_dope_sheet_selection(shot, pre
     for number in (1, 9):
         gp_data.frame_at(layer, number).select = True  # the operator would in-between 1 -> 9
     bpy.context.scene.frame_current = 10
+    bpy.context.scene.ballmorph_inbetween.key_motion = "PER_INTERVAL"  # (Smooth: test_arcs.py)
     np.testing.assert_allclose(cache.world(bpy.context).points, _expected(shot, 9, 13).points, atol=1e-9)
 
 

@@ -93,7 +93,7 @@ class PathPreview:
         return self.points.reshape(-1, 3), np.c_[first, first + 1].astype(np.int64), owner
 
 
-def path_preview(plan, points=PREVIEW_POINTS, times=PREVIEW_TIMES):
+def path_preview(plan, points=PREVIEW_POINTS, times=PREVIEW_TIMES, correction=None):
     """The trajectories of a few samples of every stroke pair of a plan.
 
     Parameters
@@ -106,6 +106,8 @@ def path_preview(plan, points=PREVIEW_POINTS, times=PREVIEW_TIMES):
         open stroke's from end to end). A pair with fewer samples shows all of them.
     times : int
         Points per trajectory (at least 2), at evenly spaced morph times from 0 to 1.
+    correction : arcs.PathCorrection, optional
+        The plan's paths joined smoothly to its neighbours' (as ``plan.evaluate`` takes it).
 
     Returns
     -------
@@ -136,7 +138,7 @@ def path_preview(plan, points=PREVIEW_POINTS, times=PREVIEW_TIMES):
     strokes = np.array([(a.index, b.index) for a, b, _ in plan.strokes], dtype=np.int64).reshape(-1, 2)
     if pairs == 0:
         return PathPreview(np.zeros((0, len(times), 3)), np.zeros(0, dtype=np.int64), times, strokes)
-    frames = plan.evaluate(times).frames
+    frames = plan.evaluate(times, correction).frames
     # The pairs come first in every in-between, with the same samples at every time; the strokes
     # without a partner follow them.
     offsets = frames[0].offsets[: pairs + 1]
