@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ...geometry.polyline import curve_length, subcurve
+from ...geometry.procrustes import similarity_fit
 from ...geometry.ragged import Ragged
 from ...geometry.similarity import as_complex, from_complex
 from ..frames.layout import PairFrames
@@ -217,10 +218,7 @@ def hinted_fit(a, b, hints):
         # One hint on a stroke: it maps onto its partner exactly, the rest by least squares.
         ca, cb = as_complex(_along(a.xy, a.u, False, hints.u_a)), as_complex(_along(b.xy, b.u, False, hints.u_b))
         ca, cb = complex(ca[0]), complex(cb[0])
-    pa, pb = za - ca, zb - cb
-    norm = float(np.vdot(pa, pa).real)
-    alpha = complex(np.vdot(pa, pb) / norm) if norm > 0 else 1.0 + 0j
-    return alpha, cb - alpha * ca
+    return similarity_fit(za, zb, ca, cb)
 
 
 #: A hint within this fraction of a stroke's end is on that end.

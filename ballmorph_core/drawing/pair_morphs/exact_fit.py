@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...geometry.procrustes import cyclic_correlation, similarity_fit
 from ...geometry.similarity import as_complex
 
 __all__ = ["EXACT", "ExactFit", "exact_fit", "may_be_exact"]
@@ -49,11 +50,7 @@ class ExactFit:
 
 def _procrustes(za, zb):
     """Least-squares similarity ``za -> zb`` and its largest point residual."""
-    ca, cb = za.mean(), zb.mean()
-    pa, pb = za - ca, zb - cb
-    norm = float(np.vdot(pa, pa).real)
-    a = complex(np.vdot(pa, pb) / norm) if norm > 0 else 1.0 + 0j
-    b = cb - a * ca
+    a, b = similarity_fit(za, zb)
     return a, b, float(np.abs(a * za + b - zb).max())
 
 
@@ -87,7 +84,7 @@ def exact_fit(xy_a, xy_b, closed, similarity=True, turn=0.0):
         # Starts of the second loop where the first's start may land: the shifts maximising the
         # centred cross-correlation (every vertex of a regular polygon), the smallest turn first.
         pa, pb = za - za.mean(), zb - zb.mean()
-        corr = np.fft.ifft(np.conj(np.fft.fft(pa)) * np.fft.fft(pb))
+        corr = cyclic_correlation(pa, pb)
         best = np.flatnonzero(np.abs(corr) >= np.abs(corr).max() * (1.0 - EXACT))
         off = np.abs(np.angle(corr[best] * np.exp(-1j * turn)))
         # Two fits at most: the closest turn, and the best correlation (which it usually is).
@@ -139,7 +136,7 @@ def may_be_exact(xy_a, xy_b, closed):
         pa, pb = za - za.mean(axis=1, keepdims=True), zb - zb.mean(axis=1, keepdims=True)
         norm_a, norm_b = (np.abs(pa) ** 2).sum(axis=1), (np.abs(pb) ** 2).sum(axis=1)
         if loop:
-            corr = np.abs(np.fft.ifft(np.conj(np.fft.fft(pa, axis=1)) * np.fft.fft(pb, axis=1), axis=1)).max(axis=1)
+            corr = np.abs(cyclic_correlation(pa, pb)).max(axis=1)
         else:
             corr = np.abs((np.conj(pa) * pb).sum(axis=1))
         residual = norm_b - corr**2 / np.where(norm_a > 0, norm_a, 1.0)

@@ -33,6 +33,7 @@ import numpy as np
 
 from ... import tolerances as tol
 from ...geometry.polyline import signed_area
+from ...geometry.procrustes import cyclic_correlation, similarity_fits
 from ...geometry.ragged import Ragged
 from ...geometry.similarity import Similarity, as_complex, from_complex
 from .sliding import slide
@@ -125,7 +126,7 @@ def _loop_fits(xp, xq, turn=0.0):
     p, q = xp - cp[:, None], xq - cq[:, None]
     norm_p = np.maximum(np.sum(np.abs(p) ** 2, axis=1), 1e-300)
     norm_q = np.maximum(np.sum(np.abs(q) ** 2, axis=1), 1e-300)
-    corr = np.fft.ifft(np.conj(np.fft.fft(p, axis=1)) * np.fft.fft(q, axis=1), axis=1)
+    corr = cyclic_correlation(p, q)
     fit = 1.0 - np.abs(corr) ** 2 / (norm_p * norm_q)[:, None]
     best = fit.min(axis=1, keepdims=True)
     minimum = (fit <= np.roll(fit, 1, axis=1)) & (fit <= np.roll(fit, -1, axis=1))
@@ -148,16 +149,14 @@ def _stroke_fits(xp, xq, pin_start, pin_end):
     cp = np.where(pin_start, xp[:, 0], np.where(pin_end, xp[:, -1], cp))
     cq = np.where(pin_start, xq[:, 0], np.where(pin_end, xq[:, -1], cq))
     p, q = xp - cp[:, None], xq - cq[:, None]
-    norm_p = np.sum(np.abs(p) ** 2, axis=1)
-    dot = np.sum(np.conj(p) * q, axis=1)
-    a = np.where(norm_p > 0, dot / np.where(norm_p > 0, norm_p, 1.0), 1.0)
+    a, _ = similarity_fits(p, q)
     residual = np.sqrt(np.mean(np.abs(a[:, None] * p - q) ** 2, axis=1))
     return a, cq - a * cp, residual
 
 
 def shifted_distance(xp, xq):
     """RMS distance between loop samples, at the cyclic shift of Q's that brings them closest, shape (L,)."""
-    dot = np.fft.ifft(np.conj(np.fft.fft(xp, axis=1)) * np.fft.fft(xq, axis=1), axis=1).real
+    dot = cyclic_correlation(xp, xq).real
     sq = (np.sum(np.abs(xp) ** 2, axis=1) + np.sum(np.abs(xq) ** 2, axis=1))[:, None] - 2.0 * dot
     return np.sqrt(np.maximum(sq.min(axis=1), 0.0) / xp.shape[1])
 
