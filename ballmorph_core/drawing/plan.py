@@ -17,7 +17,7 @@ from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positi
 from .frames.attributes import Extras, FrameValues, Held, Recycled, assemble_frames
 from .frames.layout import PairFrames
 from .keys.hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
-from .keys.projected import KeyStroke, ProjectedKey
+from .keys.projected import KeyStroke, ProjectedKey, StrokePair
 from .pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, STRAIGHT_POINT_MOTION, point_motion
 from .pair_morphs.pipeline import PairCurves, plan_pairs
 from .pair_morphs.registration import DrawingMotion
@@ -112,6 +112,11 @@ class InbetweenPlan:
 
     Evaluating a plan at ``times`` gives exactly what :func:`inbetween` gives for the same keys,
     options and times.
+
+    Attributes
+    ----------
+    strokes : list of StrokePair
+        The paired strokes, in the order of the plan's pairs.
     """
 
     def __init__(self, key_a, key_b, method, carrier, matching, unmatched, spacing):
@@ -188,14 +193,14 @@ class InbetweenPlan:
     def _pair_strokes(self, k, i, j, flip, drawing):
         """The two KeyStrokes of pair ``k`` (the pieced side joined), and whether B is flipped."""
         if k not in self.joined:
-            return self.ka.stroke(i), self.kb.stroke(j, flip), flip
+            return StrokePair(self.ka.stroke(i), self.kb.stroke(j, flip), flip)
         joined, (xy, u) = self.joined[k]
         first = joined.strokes[0]
         if joined.side == "a":
             a = KeyStroke(first, xy, u, False, int(self.ka.strokes.material_index[first]))
             b_xy = self.kb.rg.curve(j)
             flip = pair_direction(xy, b_xy, False, bool(self.kb.rg.closed[j]), drawing.turn)
-            return a, self.kb.stroke(j, flip), flip
+            return StrokePair(a, self.kb.stroke(j, flip), flip)
         a = self.ka.stroke(i)
         flip = pair_direction(a.xy, xy, a.closed, False, drawing.turn)
         b = KeyStroke(
@@ -205,7 +210,7 @@ class InbetweenPlan:
             False,
             int(self.kb.strokes.material_index[first]),
         )
-        return a, b, flip
+        return StrokePair(a, b, flip)
 
     def _orient_by_hints(self, hinted, hints):
         """Open pairs whose hints run backwards along the second stroke are flipped (the hints
@@ -219,7 +224,7 @@ class InbetweenPlan:
             on_end = np.abs(h.u_a - 0.5) >= 0.5 - END_HINT
             crossed = bool(np.any(on_end & (np.abs(h.u_a - (1.0 - h.u_b)) <= END_HINT)))
             if not b.closed and (backwards or crossed):
-                strokes[k] = (a, self.kb.stroke(b.index, not flip), not flip)
+                strokes[k] = StrokePair(a, self.kb.stroke(b.index, not flip), not flip)
                 flipped = True
         if not flipped:
             return strokes, hinted

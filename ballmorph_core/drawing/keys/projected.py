@@ -2,13 +2,14 @@
 point attribute ready to be read at any fraction along any stroke."""
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from ...geometry.polyline import reversal_order, reversed_fractions
 from ...geometry.ragged import Ragged
 
-__all__ = ["KeyStroke", "ProjectedKey"]
+__all__ = ["KeyStroke", "StrokePair", "ProjectedKey"]
 
 
 @dataclass
@@ -32,6 +33,15 @@ class KeyStroke:
     u: np.ndarray
     closed: bool
     material: int
+
+
+class StrokePair(NamedTuple):
+    """A stroke of each key that morph into each other: ``a`` of the first key, ``b`` of the
+    second as morphed (reversed when ``flipped``: it was drawn the other way)."""
+
+    a: KeyStroke
+    b: KeyStroke
+    flipped: bool
 
 
 class ProjectedKey:
