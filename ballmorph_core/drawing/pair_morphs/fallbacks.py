@@ -10,6 +10,8 @@ curves. A stroke with fewer than two distinct points moves straight, point by po
 fallback says why, for the animator's report.
 """
 
+from typing import NamedTuple
+
 import numpy as np
 
 from ...errors import BallMorphError, IncompatibleCurvesError
@@ -29,6 +31,7 @@ __all__ = [
     "STRAIGHT_POINT_MOTION",
     "BALL_METHODS",
     "short",
+    "FailingChain",
     "chain_fallbacks",
     "linear_fallback",
     "aligned_fallbacks",
@@ -65,6 +68,19 @@ def short(text, limit=160):
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
+class FailingChain(NamedTuple):
+    """A chain the ball-map cannot follow: its curves (``closed``: loops), the sample spacing,
+    which chain it is for the note ('lens 2/4', 'loops', 'stroke') and why the ball-morph did
+    not apply."""
+
+    P: np.ndarray
+    Q: np.ndarray
+    closed: bool
+    spacing: float
+    where: str
+    reason: str
+
+
 def chain_fallbacks(chains, kind):
     """The composite ball-morph of each chain that is not b-compatible, else aligned
     interpolation: their composite ball-morphs built together
@@ -72,9 +88,7 @@ def chain_fallbacks(chains, kind):
 
     Parameters
     ----------
-    chains : list of (ndarray, ndarray, bool, float, str, str)
-        Each chain's ``P, Q, closed, spacing, where, reason``: its curves, the sample spacing, which
-        chain it is for the note ('lens 2/4', 'loops', 'stroke') and why the ball-morph did not apply.
+    chains : list of FailingChain
     kind : str
 
     Returns
@@ -82,17 +96,17 @@ def chain_fallbacks(chains, kind):
     list of (Morph, str)
         Each chain's morph and note.
     """
-    built = composite_morphs([(P, Q, closed, spacing) for P, Q, closed, spacing, _, _ in chains], kind)
+    built = composite_morphs([(ch.P, ch.Q, ch.closed, ch.spacing) for ch in chains], kind)
     whys = _not_followed(built, chains)
     out, failed = [None] * len(chains), []
-    for k, ((_, _, _, _, where, reason), morph, why) in enumerate(zip(chains, built, whys)):
+    for k, (chain, morph, why) in enumerate(zip(chains, built, whys)):
         if why is None:
-            out[k] = morph, f"{where}: not b-compatible, composite ball-morph used ({short(reason)})"
+            out[k] = morph, f"{chain.where}: not b-compatible, composite ball-morph used ({short(chain.reason)})"
         else:
             failed.append((k, why))
-    curves = [chains[k][:3] for k, _ in failed]
-    for (k, why), morph in zip(failed, aligned_morphs(curves, [chains[k][3] for k, _ in failed])):
-        out[k] = morph, f"{chains[k][4]}: {ALIGNED_METHOD} used ({short(why)})"
+    curves = [(chains[k].P, chains[k].Q, chains[k].closed) for k, _ in failed]
+    for (k, why), morph in zip(failed, aligned_morphs(curves, [chains[k].spacing for k, _ in failed])):
+        out[k] = morph, f"{chains[k].where}: {ALIGNED_METHOD} used ({short(why)})"
     return out
 
 
@@ -118,7 +132,7 @@ def _not_followed(built, chains):
     error), its in-betweens (at ``CHECK_TIMES``) stray outside the chains' box, or they cross
     themselves where neither chain does (every curve's self-crossings searched in one batch)."""
     whys, asked = [None] * len(built), []
-    for k, ((P, Q, closed, *_), morph) in enumerate(zip(chains, built)):
+    for k, ((P, Q, closed, *_), morph) in enumerate(zip(chains, built)):  # FailingChain unpacked
         if isinstance(morph, BallMorphError):
             whys[k] = str(morph)
             continue

@@ -53,6 +53,7 @@ from .curves import PairCurves, prepare_pairs
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
+    FailingChain,
     aligned_fallbacks,
     arc_length_morphs,
     chain_fallbacks,
@@ -286,7 +287,7 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
     for k, order in zip(failing, orders):
         c, setup = chains.pair[k], chains.setups[k]
         where = f"lens {order + 1}/{counts[c]}" if events.count[c] else ("loops" if setup.closed else "stroke")
-        wanted.append((setup.P, setup.Q, setup.closed, spacing[c], where, maps.reports[k].describe()))
+        wanted.append(FailingChain(setup.P, setup.Q, setup.closed, spacing[c], where, maps.reports[k].describe()))
     # Every failing chain's composite ball-morph at once: one at a time, each paid a dozen
     # small ball-maps' fixed costs.
     for k, order, (morph, note) in zip(failing, orders, chain_fallbacks(wanted, kind)):

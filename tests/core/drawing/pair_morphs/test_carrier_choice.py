@@ -86,7 +86,9 @@ def test_a_composite_ball_morph_that_strays_far_outside_its_chains_falls_back(mo
     P = np.c_[np.linspace(0.0, 1.0, 20), np.zeros(20)]
     Q = np.c_[np.linspace(0.0, 1.0, 20), np.full(20, 0.5)]
     monkeypatch.setattr(fallbacks, "composite_morphs", lambda pairs, kind: [_Astray(P_, reach) for P_, *_ in pairs])
-    morph, note = fallbacks.chain_fallbacks([(P, Q, False, 0.05, "lens 1/2", "why")], "circular")[0]
+    morph, note = fallbacks.chain_fallbacks([fallbacks.FailingChain(P, Q, False, 0.05, "lens 1/2", "why")], "circular")[
+        0
+    ]
     # The box's diagonal is 1.118: a reach of 0.2 is 0.18 of it, 1.0 is 0.89.
     assert isinstance(morph, _Astray) == followed, note
     assert ("composite ball-morph used" in note) == followed
@@ -113,7 +115,9 @@ def test_a_composite_ball_morph_whose_in_between_crosses_itself_falls_back(monke
     x = np.linspace(0.0, 1.0, 20)
     P, Q = np.c_[x, np.zeros(20)], np.c_[x, np.full(20, 0.5)]
     monkeypatch.setattr(fallbacks, "composite_morphs", lambda pairs, kind: [_Crossing(P_, Q_) for P_, Q_, *_ in pairs])
-    morph, note = fallbacks.chain_fallbacks([(P, Q, False, 0.05, "lens 1/2", "why")], "circular")[0]
+    morph, note = fallbacks.chain_fallbacks([fallbacks.FailingChain(P, Q, False, 0.05, "lens 1/2", "why")], "circular")[
+        0
+    ]
     assert not isinstance(morph, _Crossing)
     assert "cross themselves where neither chain does" in note and "aligned-interpolation used" in note, note
 

@@ -288,7 +288,7 @@ def test_chains_are_checked_together_each_as_alone(monkeypatch):
         2: _Frames([middle] * 5),  # followed
         3: IncompatibleCurvesError("composite ball-morph: no disk bridges P near s=0.5"),
     }
-    chains = [(P, Q, False, 0.05, f"lens {k + 1}/4", "why") for k in range(4)]
+    chains = [fallbacks.FailingChain(P, Q, False, 0.05, f"lens {k + 1}/4", "why") for k in range(4)]
 
     monkeypatch.setattr(fallbacks, "composite_morphs", lambda pairs, kind: [stands[k] for k in range(len(pairs))])
     together = [note for _, note in fallbacks.chain_fallbacks(chains, "circular")]
