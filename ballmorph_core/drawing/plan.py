@@ -13,6 +13,7 @@ import numpy as np
 from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
 from ..geometry.polyline import reversed_fractions
+from ..geometry.similarity import Similarity
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
 from .frames.attributes import Extras, FrameValues, Held, Recycled, assemble_frames
 from .frames.layout import PairFrames
@@ -20,7 +21,6 @@ from .keys.hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hi
 from .keys.projected import KeyStroke, ProjectedKey, StrokePair
 from .pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, STRAIGHT_POINT_MOTION, point_motion
 from .pair_morphs.pipeline import PairCurves, plan_pairs
-from .pair_morphs.registration import DrawingMotion
 from .pairing.matching import match_strokes, pair_direction
 from .pairing.redrawn import Joined, cut_frame, join_pieces, joined_stroke
 from .strokes import InbetweenResult, Message, PairMorphs, PairOutcome, PairReport, StrokeSet
@@ -232,7 +232,7 @@ class InbetweenPlan:
 
     def _match(self, key_a, key_b, matching, hints):
         """Pairs (i, j, flip) of strokes with points (strokes without a partner are held), and
-        the keys' overall motion (DrawingMotion). Strokes a hint joins are paired first."""
+        the keys' overall motion (a Similarity). Strokes a hint joins are paired first."""
         ka, kb = self.ka, self.kb
         # Strokes without points have nothing to morph or show: leave them out, and say so.
         live_a, live_b = np.flatnonzero(key_a.sizes > 0), np.flatnonzero(key_b.sizes > 0)
@@ -254,7 +254,7 @@ class InbetweenPlan:
         self.held += [Held(kb, int(live_b[j]), False) for j in pairing.unmatched_b]
         if pairing.method != "index" or self.held:
             self.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
-        drawing = DrawingMotion(pairing.rotation, complex(*pairing.motion))
+        drawing = Similarity(pairing.rotation, complex(*pairing.motion))
         matched = [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
         for i, j in forced:
             flip = pair_direction(ka.rg.curve(i), kb.rg.curve(j), ka.rg.closed[i], kb.rg.closed[j], drawing.turn)

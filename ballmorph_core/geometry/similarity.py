@@ -69,10 +69,12 @@ class Similarity:
 
     @property
     def scale(self):
+        """``|a|``."""
         return float(abs(self.a))
 
     @property
-    def angle(self):
+    def turn(self):
+        """``arg a``, radians."""
         return float(np.angle(self.a))
 
     def power(self, s):

@@ -251,7 +251,7 @@ class Pieces:
     pairs : list of (KeyStroke, KeyStroke, bool)
     hinted : dict of int to PairHints
     carrier : str
-    drawing : DrawingMotion
+    drawing : Similarity
     make_curves : callable
         ``(KeyStroke, KeyStroke) -> PairCurves``.
 

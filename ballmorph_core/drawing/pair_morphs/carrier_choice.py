@@ -161,7 +161,7 @@ def carrier_motions(P, Q, carrier, scale, drawing=None):
         The pairs' curves, as drawn (each Q running the way its P does).
     carrier : {'similarity', 'rigid', 'none'}
     scale : ndarray, shape (C,)
-    drawing : DrawingMotion, optional
+    drawing : Similarity, optional
         The keys' overall motion (symmetric shapes turn with it).
 
     Returns

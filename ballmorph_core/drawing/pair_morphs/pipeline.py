@@ -303,7 +303,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
 
     Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
     :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
-    ``drawing`` (a DrawingMotion) is the keys' overall motion, the prior of symmetric shapes;
+    ``drawing`` (a Similarity) is the keys' overall motion, the prior of symmetric shapes;
     ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
 
     Returns
@@ -475,7 +475,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     carrier : {'similarity', 'rigid', 'none'}
     spacing : float, optional
         Geodesic sample spacing for every pair (default: each pair's own).
-    drawing : DrawingMotion, optional
+    drawing : Similarity, optional
         The keys' overall motion (from the stroke matching): symmetric shapes turn with it.
 
     Returns

@@ -40,7 +40,6 @@ from .sliding import slide
 
 __all__ = [
     "Fits",
-    "DrawingMotion",
     "similarity_matrices",
     "fit_pairs",
     "identity_residual",
@@ -389,32 +388,6 @@ class Motions:
         return cls(eye, np.zeros((n, 2)), np.zeros(n), eye.copy(), np.zeros((n, 2)), np.zeros(n, bool), kind)
 
 
-@dataclass
-class DrawingMotion:
-    """The keys' overall motion ``z -> a z + b`` (from the stroke matching), as a prior.
-
-    Symmetric loops turn as the drawing does, and a stroke turning with the drawing may turn
-    about a joint far from itself (a hand about the shoulder of its arm).
-
-    Attributes
-    ----------
-    a, b : complex
-    """
-
-    a: complex = 1.0 + 0j
-    b: complex = 0j
-
-    @property
-    def turn(self):
-        """The drawing's turn, radians."""
-        return float(np.angle(self.a))
-
-    @property
-    def scale(self):
-        """The drawing's scale (``|a|``)."""
-        return float(abs(self.a))
-
-
 def _reach_scales(P, fits, scale, drawing):
     """The size each pair's pivot reach is measured in, shape (C,): the pair's own, or the
     drawing's for pairs turning with a drawing that turns."""
@@ -461,7 +434,7 @@ def motions(P, fits, kind, scale, moving, drawing=None):
         Size of each pair.
     moving : ndarray of bool, shape (C,)
         Pairs that get a carrier (the others: the identity).
-    drawing : DrawingMotion, optional
+    drawing : Similarity, optional
         The keys' overall motion: a pair turning with it may turn about a farther pivot.
     """
     theta, stretch = _polar(fits.A)

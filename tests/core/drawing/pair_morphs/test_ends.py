@@ -12,11 +12,11 @@ from ballmorph_core.drawing.pair_morphs import ends, sliding
 from ballmorph_core.drawing.pair_morphs.carrier_choice import carrier_motions
 from ballmorph_core.drawing.pair_morphs.ends import overhang_morph, settle_ends
 from ballmorph_core.drawing.pair_morphs.pipeline import PairMorph
-from ballmorph_core.drawing.pair_morphs.registration import FIT_SAMPLES, DrawingMotion, fit_pairs
+from ballmorph_core.drawing.pair_morphs.registration import FIT_SAMPLES, fit_pairs
 from ballmorph_core.geometry.polyline import pair_scales, resample
 from ballmorph_core.geometry.projection import nearest_within
 from ballmorph_core.geometry.ragged import Ragged
-from ballmorph_core.geometry.similarity import as_complex
+from ballmorph_core.geometry.similarity import Similarity, as_complex
 
 
 def arc(start, stop, n=90, radius=1.0):
@@ -191,13 +191,13 @@ def test_the_carrier_slides_at_the_scale_of_the_drawing_motion():
     """The carrier of that outline reads the scale from the drawing's motion (the stroke
     matching's): twice the outline in a drawing scaled 2 times, turned by it too."""
     P, Q = restarted_oval(2.0)
-    drawing = DrawingMotion(2.0 + 0j)
+    drawing = Similarity(2.0 + 0j)
     assert (drawing.scale, drawing.turn) == (2.0, 0.0)
-    assert DrawingMotion(-2j).scale == 2.0 and DrawingMotion(-2j).turn == -np.pi / 2
+    assert Similarity(-2j).scale == 2.0 and Similarity(-2j).turn == -np.pi / 2
     scale = pair_scales(P, Q)
     motion, _ = carrier_motions(P, Q, "similarity", scale, drawing)
     np.testing.assert_allclose(motion.A[0], 2.0 * np.eye(2), atol=0.01)
-    unscaled, _ = carrier_motions(P, Q, "similarity", scale, DrawingMotion())
+    unscaled, _ = carrier_motions(P, Q, "similarity", scale, Similarity())
     assert np.abs(unscaled.A[0] - 2.0 * np.eye(2)).max() > 0.1
 
 
