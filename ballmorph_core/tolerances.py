@@ -29,3 +29,8 @@ IDENTITY = 1e-9
 #: Fits whose normalised residuals differ by less than this are equally good: the one that
 #: turns least wins (a symmetric shape turned by 90 degrees never turns by round-off).
 EQUAL_FIT = 1e-6
+
+#: The floor of a divisor that is zero only for degenerate input (a length, a norm, an area, a
+#: spread: ``x / max(d, TINY)``): far below anything a drawing in float64 yields, it only turns
+#: 0 / 0 into 0 instead of NaN. Not a length tolerance: comparisons use the relative ones above.
+TINY = 1e-300

@@ -10,6 +10,7 @@ searched again without a window before the verdict.
 
 import numpy as np
 
+from .. import tolerances as tol
 from ..geometry.spatial import CurveTree
 from ..geometry.vectors import norms
 from .lacing import as_rows, contacts, disk_map, full_search, refine, refined, same_lap
@@ -67,7 +68,7 @@ def _vertex_window_starts(side):
     # A loop's last vertex lies below its length; an open curve's last but one does.
     closed, length = rg.closed[filled], rg.length[filled]
     probe = rg.s[np.where(closed, last, np.maximum(last - 1, first))]
-    in_range = (rg.s[first] >= 0.0) & np.where(closed, probe < np.maximum(length, 1e-300), probe <= length)
+    in_range = (rg.s[first] >= 0.0) & np.where(closed, probe < np.maximum(length, tol.TINY), probe <= length)
     if not (in_range.all() and np.all(g[1:] > g[:-1])):
         return _window_starts(side, rg.owner, rg.s)
     edge = np.arange(len(g))

@@ -352,7 +352,7 @@ def same_lap(s_new, s_ref, length, closed):
     """Loop positions moved onto the lap of reference (unwrapped) positions, shape (K,)."""
     if not np.any(closed):
         return s_new.copy()  # no loop: np.where's values, without the laps computed for none
-    return np.where(closed, s_new + length * np.round((s_ref - s_new) / np.maximum(length, 1e-300)), s_new)
+    return np.where(closed, s_new + length * np.round((s_ref - s_new) / np.maximum(length, tol.TINY)), s_new)
 
 
 def _keep_order(better, s_new, s_dst, src, length, chain):

@@ -125,8 +125,8 @@ def segment_hits(a0, da, b0, db, scale):
     la = np.linalg.norm(da, axis=1)
     lb = np.linalg.norm(db, axis=1)
     parallel = np.abs(denom) <= tol.COINCIDENT * la * lb
-    slack_a = tol.COINCIDENT * scale / np.maximum(la, 1e-300)
-    slack_b = tol.COINCIDENT * scale / np.maximum(lb, 1e-300)
+    slack_a = tol.COINCIDENT * scale / np.maximum(la, tol.TINY)
+    slack_b = tol.COINCIDENT * scale / np.maximum(lb, tol.TINY)
     ok = ~parallel & (sa >= -slack_a) & (sa <= 1 + slack_a) & (sb >= -slack_b) & (sb <= 1 + slack_b)
     return ok, np.clip(sa, 0, 1), np.clip(sb, 0, 1)
 
@@ -256,7 +256,7 @@ def _lying_along(A, B, ga, gb, reach):
     only pairs whose curves may overlap, shape (C,) of bool."""
     da, db = np.take(A.edge, ga, axis=0), np.take(B.edge, gb, axis=0)
     sine = np.abs(da[:, 0] * db[:, 1] - da[:, 1] * db[:, 0]) / np.maximum(
-        A.length_of_edge[ga] * B.length_of_edge[gb], 1e-300
+        A.length_of_edge[ga] * B.length_of_edge[gb], tol.TINY
     )
     # Only the nearly parallel ones (few) are measured.
     parallel = np.flatnonzero(sine <= _PARALLEL_SINE)
@@ -279,7 +279,7 @@ def _matched_edges(A, B, searched, va):
     B's vertex nearest A's first, their starts need not match), global indices, shape (K,).
     ``va`` are the vertices of the ``searched`` pairs (bool, shape (C,)), whose B have edges."""
     pair = A.owner[va]
-    t = A.s[va] * (B.length[pair] / np.maximum(A.length[pair], 1e-300))
+    t = A.s[va] * (B.length[pair] / np.maximum(A.length[pair], tol.TINY))
     loops = np.flatnonzero((B.closed & searched)[B.owner])
     if len(loops):
         owner = B.owner[loops]

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import tolerances as tol
+
 __all__ = ["Plane", "fit_plane"]
 
 #: A fitted drawing plane within this (1 - |cos|) of a world axis plane is taken as that plane,
@@ -142,7 +144,7 @@ def fit_plane(points, axis_tolerance=PLANE_AXIS):
         return Plane(origin, u, v, n)
     if len(pts) >= 3:
         _, sing, vt = np.linalg.svd(pts - origin, full_matrices=False)
-        planar_enough = sing[1] > 1e-12 * max(sing[0], 1e-300)
+        planar_enough = sing[1] > 1e-12 * max(sing[0], tol.TINY)
     else:
         planar_enough = False
     if not planar_enough:

@@ -107,7 +107,7 @@ def as_curve(points, name="P", closed=False, min_points=2):
             f"{name}: coordinates up to {np.abs(arr).max():.3g} are too large (at most {MAX_COORDINATE:g}): "
             "scale the drawing down"
         )
-    scale = max(float(np.ptp(arr, axis=0).max()), 1e-300)
+    scale = max(float(np.ptp(arr, axis=0).max()), tol.TINY)
     step = np.linalg.norm(np.diff(arr, axis=0), axis=1)
     keep = np.concatenate([[True], step > tol.COINCIDENT * scale])
     arr = arr[keep]
@@ -153,7 +153,7 @@ def already_clean(curves, closed):
     finite = np.logical_and.reduceat(np.isfinite(pts).all(axis=1), starts)
     small = np.maximum.reduceat(np.abs(np.where(np.isfinite(pts), pts, 0.0)).max(axis=1), starts) <= MAX_COORDINATE
     span = np.maximum.reduceat(pts, starts) - np.minimum.reduceat(pts, starts)
-    eps = tol.COINCIDENT * np.maximum(span.max(axis=1), 1e-300) * (1.0 + CLEAN_MARGIN)
+    eps = tol.COINCIDENT * np.maximum(span.max(axis=1), tol.TINY) * (1.0 + CLEAN_MARGIN)
     d = np.diff(pts, axis=0)
     step = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
     owner = np.repeat(np.arange(len(which)), sizes)[1:]

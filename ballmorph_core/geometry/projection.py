@@ -70,7 +70,7 @@ def _pieces(a, d):
     width, height = corner_hi - corner_lo
     n = len(a)
     length = np.hypot(d[:, 0], d[:, 1])
-    piece = max(np.sqrt(width * height / n), max(width, height) / n, length.sum() / (_PIECES_PER_EDGE * n), 1e-300)
+    piece = max(np.sqrt(width * height / n), max(width, height) / n, length.sum() / (_PIECES_PER_EDGE * n), tol.TINY)
     count = np.maximum(np.ceil(length / piece), 1).astype(np.int64)
     if (count == 1).all():
         return np.concatenate([lo, hi], axis=1), np.arange(n)
@@ -208,7 +208,7 @@ class NearestEdges:
         """Reaches cut to their curve's far corner, shape (K,) (arguments as :meth:`_bounded` makes them)."""
         box = np.take(self._curve_boxes, owner, axis=0, mode="wrap")
         corner = np.maximum(np.abs(box[:, :2] - points), np.abs(box[:, 2:] - points))
-        return np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + 1e-300)
+        return np.minimum(reach, np.hypot(corner[:, 0], corner[:, 1]) * (1.0 + 1e-9) + tol.TINY)
 
     def _slack(self, points):
         """The tree's round-off slack for ``points`` (shape (K, 2), K > 0): distances computed

@@ -419,7 +419,7 @@ class _Locator:
         rg, length, loops = self._rg, self._length, self._loops
         s = np.asarray(s, dtype=np.float64)
         # Loops wrap round, open curves stop at their ends (rows by index: open curves skip the mod).
-        wrapped = np.mod(s[loops], np.maximum(length[loops], 1e-300)) if len(loops) else None
+        wrapped = np.mod(s[loops], np.maximum(length[loops], tol.TINY)) if len(loops) else None
         s = np.clip(s, 0.0, length)
         if wrapped is not None:
             s[loops] = wrapped

@@ -7,6 +7,7 @@ every pair, and both run without any per-pair Python loop.
 
 import numpy as np
 
+from .. import tolerances as tol
 from .ragged import budget_slices, ragged_arange
 
 __all__ = ["box_pairs", "box_pair_chunks", "box_overlap", "PointTree", "CurveTree"]
@@ -72,7 +73,7 @@ def _grid_cell(a, b, origin, extent, cell):
         # The larger of the two sets' typical box sizes: tiny boxes (points) against long ones
         # (a coarse polygon's edges) must not make every long box span millions of cells.
         cell = max(_typical_size(a), _typical_size(b))
-    cell = max(cell, extent / 4096.0, 1e-300)
+    cell = max(cell, extent / 4096.0, tol.TINY)
     # Bound the number of (box, cell) entries: grow the cells while long boxes would fill too many.
     for _ in range(16):
         ranges_a, ranges_b = _cell_ranges(a, origin, cell), _cell_ranges(b, origin, cell)
@@ -148,7 +149,7 @@ def box_pair_chunks(boxes_a, boxes_b=None, cell=None, budget=PAIR_BUDGET, active
         return
     origin = np.array([min(a[k].min(), b[k].min()) for k in range(2)])
     extent = max(max(float(a[k].max()), float(b[k].max())) - origin[k - 2] for k in range(2, 4))
-    extent = float(max(extent, 1e-300))
+    extent = float(max(extent, tol.TINY))
     cell, ranges_a, ranges_b = _grid_cell(a, b, origin, extent, cell)
     ny = int(extent / cell) + 2
     # The grid holds b; every run of a looks its cells up in it.

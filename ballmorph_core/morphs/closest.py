@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import tolerances as tol
 from ..ballmap.topology import orient_pair
 from ..errors import IncompatibleCurvesError
 from ..geometry.circles import circumcircles
@@ -124,7 +125,7 @@ class Projector:
         wn = np.linalg.norm(w, axis=1)
         ok &= wn > 0
         foot = centre + radius[:, None] * np.divide(w, wn[:, None], out=np.zeros_like(w), where=ok[:, None])
-        t = np.einsum("ij,ij->i", foot - b, ac) / np.maximum(ac2, 1e-300)
+        t = np.einsum("ij,ij->i", foot - b, ac) / np.maximum(ac2, tol.TINY)
         ok &= (np.abs(t) <= 0.5) & (np.linalg.norm(foot - proj.foot, axis=1) <= np.sqrt(ac2))
         if not self.closed:
             ok &= (proj.pos > 0) & (proj.pos < self.n_edges)  # a stroke's ends stay exact

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ... import tolerances as tol
 from ...geometry.ragged import ragged_arange
 from ...morphs.base import PathMorph, morph_time
 from ...morphs.paths import BallPaths, LinearPaths
@@ -169,7 +170,7 @@ def _fractions(local, ranges, lengths, chain, owner, loop):
     u = np.take(span, chain)
     u *= local
     u += np.take(start, chain)
-    u /= np.take(np.maximum(lengths, 1e-300), owner)
+    u /= np.take(np.maximum(lengths, tol.TINY), owner)
     out = np.clip(u, 0.0, 1.0)
     if loop.any():
         out[loop] = np.mod(u[loop], 1.0)

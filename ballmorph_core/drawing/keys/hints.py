@@ -20,6 +20,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ... import tolerances as tol
 from ...geometry.polyline import curve_length, subcurve
 from ...geometry.procrustes import similarity_fit
 from ...geometry.ragged import Ragged
@@ -335,7 +336,7 @@ def _pair_motion(a, b, hints, carrier, drawing):
     if abs(alpha) <= 1e-9:  # the hints squeeze the stroke to a point: move it, do not squash it
         alpha, beta = 1.0 + 0j, complex(as_complex(b.xy).mean() - as_complex(a.xy).mean())
     fits = Fits(similarity_matrices(np.array([alpha])), from_complex(np.array([beta])), np.zeros(1))
-    size = np.array([max(float(np.ptp(np.r_[a.xy, b.xy], axis=0).max()), 1e-300)])
+    size = np.array([max(float(np.ptp(np.r_[a.xy, b.xy], axis=0).max()), tol.TINY)])
     still = abs(alpha - 1.0) <= 1e-12 and abs(beta) <= 1e-12 * size[0]
     kind = "rigid" if carrier == "rigid" else "similarity"
     return motions(P, fits, kind, size, np.array([not still]), drawing)

@@ -114,7 +114,7 @@ def _overlaps(R, Q, scale, spacing, wanted):
     counts = np.round(sub.length / spacing[idx]).astype(np.int64) + np.where(sub.closed, 0, 1)
     dense = sub.resample(counts, smooth=False)
     # Dense arc lengths rescaled onto R's own (resampling along R keeps them proportional).
-    s_dense = dense.s * (sub.length / np.maximum(dense.length, 1e-300))[dense.owner]
+    s_dense = dense.s * (sub.length / np.maximum(dense.length, tol.TINY))[dense.owner]
     eps = tol.OVERLAP * scale[idx][dense.owner]
     dist, edge, frac = nearest_within(dense.pts, dense.owner, sub_q, eps)
     near = dist <= eps
@@ -320,7 +320,7 @@ def _piece_setups(R, Q, pair, sp0, sp1, sq0, sq1, scale):
     pieces_q.pts[pieces_q.offsets[1:] - 1] = pieces_p.pts[pieces_p.offsets[1:] - 1]
     # The gap lies left of P when P then Q backwards turns counter-clockwise.
     area = _open_area(pieces_p) - _open_area(pieces_q)
-    flat = np.abs(area) <= tol.OVERLAP * scale[pair] * np.maximum(pieces_p.length, 1e-300)
+    flat = np.abs(area) <= tol.OVERLAP * scale[pair] * np.maximum(pieces_p.length, tol.TINY)
     side = np.where(area > 0, 1.0, -1.0)
     return [
         PairSetup(pieces_p.curve(k), pieces_q.curve(k).copy(), False, side[k], -side[k], coincident=bool(flat[k]))

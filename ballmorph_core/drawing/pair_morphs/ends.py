@@ -191,7 +191,7 @@ def _reachable(points, curves, B, reach):
 def _along(s_on_other, dist, length_other, end_tol, which):
     """Whether an end lies along the other curve's interior, and how deep (a fraction of its length)."""
     depth = s_on_other if which == 0 else length_other - s_on_other
-    return np.isfinite(dist) & (depth > end_tol), depth / np.maximum(length_other, 1e-300)
+    return np.isfinite(dist) & (depth > end_tol), depth / np.maximum(length_other, tol.TINY)
 
 
 def _trims(R, Q, scale, trim):
@@ -242,7 +242,7 @@ def settle_ends(R, Q, scale, opened, trim=None):
     n = len(R)
     keep_p, keep_q = _trims(R, Q, scale, opened if trim is None else opened & trim)
     if not opened.any():  # a drawing of loops: every pair stays exactly as it is
-        return Ends(keep_p, keep_q, np.zeros((n, 2, 2)), R, Q, R.s / np.maximum(R.length, 1e-300)[R.owner])
+        return Ends(keep_p, keep_q, np.zeros((n, 2, 2)), R, Q, R.s / np.maximum(R.length, tol.TINY)[R.owner])
     idx = np.arange(n)
     part_p, part_q = R.pieces(idx, keep_p[:, 0], keep_p[:, 1]), Q.pieces(idx, keep_q[:, 0], keep_q[:, 1])
     first = part_q.pts[part_q.offsets[:-1]] - part_p.pts[part_p.offsets[:-1]]
@@ -250,7 +250,7 @@ def settle_ends(R, Q, scale, opened, trim=None):
     gap = np.where(opened[:, None, None], np.stack([first, last], axis=1), 0.0)
     # Ends already shared need no displacement.
     gap = np.where(np.linalg.norm(gap, axis=2)[..., None] <= tol.SHARED_ENDPOINT * scale[:, None, None], 0.0, gap)
-    u = part_p.s / np.maximum(part_p.length, 1e-300)[part_p.owner]
+    u = part_p.s / np.maximum(part_p.length, tol.TINY)[part_p.owner]
     # R's common part displaced by (1 - u) gap_first + u gap_last, coordinate by coordinate
     # (1-D gathers of the pairs' gaps, not (N, 2) rows of them: the same values, several
     # times faster).
@@ -265,7 +265,7 @@ def settle_ends(R, Q, scale, opened, trim=None):
     whole = ~opened
     if whole.any():  # loops (and pairs not settled) stay exactly as they are
         common_p, common_q = _merge(common_p, R, whole), _merge(common_q, Q, whole)
-        u = common_p.s / np.maximum(common_p.length, 1e-300)[common_p.owner]
+        u = common_p.s / np.maximum(common_p.length, tol.TINY)[common_p.owner]
     return Ends(keep_p, keep_q, gap, common_p, common_q, u)
 
 
@@ -392,7 +392,7 @@ def overhang_morph(curve, s0, s1, attach, towards, grow, spacing):
         ``'overhang'``: samples in order along the curve; ``u_p``/``u_q`` are fractions along
         the overhang.
     """
-    count = max(int(np.ceil((s1 - s0) / max(spacing, 1e-300))) + 1, 2)
+    count = max(int(np.ceil((s1 - s0) / max(spacing, tol.TINY))) + 1, 2)
     s, u = _even(s0, s1, count), _even(0.0, 1.0, count)
     # Filled in place rather than by np.full and np.broadcast_to (a drawing makes hundreds of
     # overhangs: their Python wrappers cost several times the filling).

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ... import tolerances as tol
 from ...geometry.procrustes import cyclic_correlation, similarity_fit
 from ...geometry.similarity import as_complex
 
@@ -77,7 +78,7 @@ def exact_fit(xy_a, xy_b, closed, similarity=True, turn=0.0):
     if len(xy_a) != len(xy_b) or len(xy_a) < 2:
         return None
     za, zb = as_complex(xy_a), as_complex(xy_b)
-    magnitude = max(float(np.abs(np.r_[za, zb]).max()), float(np.ptp(xy_a, axis=0).max()), 1e-300)
+    magnitude = max(float(np.abs(np.r_[za, zb]).max()), float(np.ptp(xy_a, axis=0).max()), tol.TINY)
     limit = EXACT * magnitude
     shifts = np.zeros(1, np.int64)
     if closed:
@@ -132,7 +133,7 @@ def may_be_exact(xy_a, xy_b, closed):
         magnitude = np.maximum(
             np.maximum(np.abs(za).max(axis=1), np.abs(zb).max(axis=1)), np.ptp(a, axis=1).max(axis=1)
         )
-        limit = EXACT * np.maximum(magnitude, 1e-300)
+        limit = EXACT * np.maximum(magnitude, tol.TINY)
         pa, pb = za - za.mean(axis=1, keepdims=True), zb - zb.mean(axis=1, keepdims=True)
         norm_a, norm_b = (np.abs(pa) ** 2).sum(axis=1), (np.abs(pb) ** 2).sum(axis=1)
         if loop:

@@ -14,6 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ... import tolerances as tol
 from ...errors import BallMorphError, IncompatibleCurvesError
 from ...geometry.intersections import is_simple, simple_curves
 from ...geometry.polyline import as_curve
@@ -162,7 +163,7 @@ def _outside(frames, P, Q):
     lo, hi = ends.min(axis=0), ends.max(axis=0)
     frames = np.asarray(frames).reshape(-1, 2)
     beyond = np.maximum(np.maximum(lo - frames, frames - hi), 0.0).max(initial=0.0)
-    return float(beyond / max(float(np.hypot(*(hi - lo))), 1e-300))
+    return float(beyond / max(float(np.hypot(*(hi - lo))), tol.TINY))
 
 
 def aligned_fallbacks(pairs, spacing, reasons):

@@ -180,8 +180,8 @@ def _ball_rows(chains, maps, index, good, ends):
     chain = np.r_[rows.chain, statics[overlap.owner]].astype(np.int64)
     order = np.argsort(chain, kind="stable")
     # An overlap stays where it is: its fractions along the piece are its own.
-    along = overlap.s / np.maximum(overlap.length, 1e-300)[overlap.owner]
-    lengths = np.maximum(maps.lengths[rows.chain], 1e-300)
+    along = overlap.s / np.maximum(overlap.length, tol.TINY)[overlap.owner]
+    lengths = np.maximum(maps.lengths[rows.chain], tol.TINY)
     u_p, u_q = np.r_[rows.s_src / lengths[:, 0], along], np.r_[rows.s_dst / lengths[:, 1], along]
     p, m, q = (np.concatenate([getattr(rows, f), overlap.pts]) for f in ("src", "m", "dst"))
     chain, kept = chain[order], np.flatnonzero(good | chains.static)
@@ -527,7 +527,7 @@ class PairMorph:
 
     def __init__(self, P, Q, closed, method="circular-ball", carrier="similarity", spacing=None):
         P, Q = np.asarray(P, dtype=np.float64), np.asarray(Q, dtype=np.float64)
-        u_p, u_q = (Ragged.from_list([c], [closed]).s / max(curve_length(c, closed), 1e-300) for c in (P, Q))
+        u_p, u_q = (Ragged.from_list([c], [closed]).s / max(curve_length(c, closed), tol.TINY) for c in (P, Q))
         self.plans = plan_pairs([PairCurves(P, u_p, closed, Q, u_q, closed)], method, carrier, spacing)
         self.used, self.notes = self.plans.used[0], self.plans.notes[0]
         parts = self.plans.frames([0.0])

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ... import tolerances as tol
 from ...geometry.ragged import Ragged, ragged_arange
 from ...morphs.base import PathMorph
 from ...morphs.paths import LinearPaths
@@ -84,7 +85,7 @@ def _off_runs(rg, corner):
     before, after = np.where(ok, before, idx), np.where(ok, after, idx)
     a, b, p = rg.pts[before], rg.pts[after], rg.pts
     d = b - a
-    length = np.maximum(np.linalg.norm(d, axis=1), 1e-300)
+    length = np.maximum(np.linalg.norm(d, axis=1), tol.TINY)
     cross = d[:, 0] * (p - a)[:, 1] - d[:, 1] * (p - a)[:, 0]
     off = np.zeros(len(rg))
     np.maximum.at(off, rg.owner, np.abs(cross / length))

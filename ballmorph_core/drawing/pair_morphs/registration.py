@@ -123,8 +123,8 @@ def _loop_fits(xp, xq, turn=0.0):
     """
     cp, cq = xp.mean(axis=1), xq.mean(axis=1)
     p, q = xp - cp[:, None], xq - cq[:, None]
-    norm_p = np.maximum(np.sum(np.abs(p) ** 2, axis=1), 1e-300)
-    norm_q = np.maximum(np.sum(np.abs(q) ** 2, axis=1), 1e-300)
+    norm_p = np.maximum(np.sum(np.abs(p) ** 2, axis=1), tol.TINY)
+    norm_q = np.maximum(np.sum(np.abs(q) ** 2, axis=1), tol.TINY)
     corr = cyclic_correlation(p, q)
     fit = 1.0 - np.abs(corr) ** 2 / (norm_p * norm_q)[:, None]
     best = fit.min(axis=1, keepdims=True)
@@ -187,7 +187,7 @@ def _area_moments(rg, index):
     area = 0.5 * total(cross)
     starts = np.minimum(sub.offsets[:-1], max(len(x) - 1, 0))
     ptp = [np.maximum.reduceat(v, starts) - np.minimum.reduceat(v, starts) for v in (x, y)]
-    flat = ~(np.abs(area) > tol.ROUNDOFF * (ptp[0] * ptp[1] + 1e-300)) | (sub.n < 3)
+    flat = ~(np.abs(area) > tol.ROUNDOFF * (ptp[0] * ptp[1] + tol.TINY)) | (sub.n < 3)
     area = np.where(flat, 1.0, area)
     cx, cy = total((x + xn) * cross) / (6 * area), total((y + yn) * cross) / (6 * area)
     sxx = total((x * x + x * xn + xn * xn) * cross) / (12 * area) - cx * cx
@@ -202,7 +202,7 @@ def _area_moments(rg, index):
 def _sqrtm(m):
     """Symmetric square roots and inverse square roots of 2x2 covariances, shape (L, 2, 2) each."""
     w, v = np.linalg.eigh(m)
-    w = np.maximum(w, 1e-300)
+    w = np.maximum(w, tol.TINY)
     root = np.einsum("lij,lj,lkj->lik", v, np.sqrt(w), v)
     inv = np.einsum("lij,lj,lkj->lik", v, 1 / np.sqrt(w), v)
     return root, inv
@@ -231,20 +231,20 @@ def _affine_loops(P, Q, index, res_sim, xp, xq):
     # A sliver (second moments of rank one) has no affine shape to fit.
     for m in (mp, mq):
         w = np.linalg.eigvalsh(m)
-        ok &= w[:, 0] > tol.ROUNDOFF * np.maximum(np.abs(w[:, 1]), 1e-300)
+        ok &= w[:, 0] > tol.ROUNDOFF * np.maximum(np.abs(w[:, 1]), tol.TINY)
     mp, mq = np.where(ok[:, None, None], mp, np.eye(2)), np.where(ok[:, None, None], mq, np.eye(2))
     root_q, inv_q = _sqrtm(mq)
     _, inv_p = _sqrtm(mp)
     wp = as_complex(np.einsum("lij,lkj->lki", inv_p, from_complex(xp) - cp[:, None]))
     wq = as_complex(np.einsum("lij,lkj->lki", inv_q, from_complex(xq) - cq[:, None]))
     a, _, _ = _loop_fits(wp, wq)
-    rot = similarity_matrices(a / np.maximum(np.abs(a), 1e-300))
+    rot = similarity_matrices(a / np.maximum(np.abs(a), tol.TINY))
     A = root_q @ rot @ inv_p
     b = cq - np.einsum("lij,lj->li", A, cp)
     fitted = as_complex(np.einsum("lij,lkj->lki", A, from_complex(xp)) + b[:, None])
     residual = shifted_distance(fitted, xq)
     sv = np.linalg.svd(A, compute_uv=False)
-    moderate = (sv[:, 0] <= MAX_STRETCH * np.maximum(sv[:, 1], 1e-300)) & (np.linalg.det(A) > 0)
+    moderate = (sv[:, 0] <= MAX_STRETCH * np.maximum(sv[:, 1], tol.TINY)) & (np.linalg.det(A) > 0)
     return ok & moderate & (residual < AFFINE_GAIN * res_sim), A, b, residual
 
 
@@ -287,12 +287,12 @@ def _open_fits(P, Q, index, k, turn, scale):
     """Strokes: end to end (about a shared endpoint when there is one), as loops when nearly
     closed, or sliding along each other, whichever fits clearly better."""
     xp, xq = _samples(P, index, k), _samples(Q, index, k)
-    size = np.maximum(np.abs(xp - xp.mean(axis=1, keepdims=True)).max(axis=1), 1e-300)
+    size = np.maximum(np.abs(xp - xp.mean(axis=1, keepdims=True)).max(axis=1), tol.TINY)
     pin_start = np.abs(xp[:, 0] - xq[:, 0]) <= tol.SHARED_ENDPOINT * size
     pin_end = ~pin_start & (np.abs(xp[:, -1] - xq[:, -1]) <= tol.SHARED_ENDPOINT * size)
     a, b, residual = _stroke_fits(xp, xq, pin_start, pin_end)
-    gap_p = np.abs(xp[:, -1] - xp[:, 0]) / np.maximum(P.length[index], 1e-300)
-    gap_q = np.abs(xq[:, -1] - xq[:, 0]) / np.maximum(Q.length[index], 1e-300)
+    gap_p = np.abs(xp[:, -1] - xp[:, 0]) / np.maximum(P.length[index], tol.TINY)
+    gap_q = np.abs(xq[:, -1] - xq[:, 0]) / np.maximum(Q.length[index], tol.TINY)
     round_ = (gap_p < NEARLY_CLOSED) & (gap_q < NEARLY_CLOSED) & ~pin_start & ~pin_end
     if round_.any():
         la, lb, lr = _loop_fits(xp[round_], xq[round_], turn)
@@ -414,7 +414,7 @@ def _pivots(P, fits, scale):
     det = IA[:, 0, 0] * IA[:, 1, 1] - IA[:, 0, 1] * IA[:, 1, 0]
     safe = np.abs(det) > tol.ROUNDOFF
     fixed = np.einsum("lij,lj->li", _inverses(np.where(safe[:, None, None], IA, np.eye(2))), fits.b)
-    far = np.linalg.norm(fixed - centre, axis=1) / np.maximum(scale, 1e-300)
+    far = np.linalg.norm(fixed - centre, axis=1) / np.maximum(scale, tol.TINY)
     w = np.where(safe, np.clip(2.0 - far / PIVOT_REACH, 0.0, 1.0), 0.0)
     return centre + w[:, None] * (fixed - centre)
 

@@ -105,11 +105,11 @@ def _weighted_fit(xp, xq, w, a, b, rigid):
     against 721; a ring opened and redrawn 1.2 times larger still slides at 1.19. (These are
     the iterations' own figures; :func:`_iterate` then keeps the freed scale only where it
     fits clearly better, and gives those after that rule.)"""
-    total = np.maximum(w.sum(axis=1), 1e-300)
+    total = np.maximum(w.sum(axis=1), tol.TINY)
     cp, cq = (w * xp).sum(axis=1) / total, (w * xq).sum(axis=1) / total
     p, q = xp - cp[:, None], xq - cq[:, None]
     dot = (w * np.conj(p) * q).sum(axis=1)
-    norm = np.abs(dot) / np.maximum(np.abs(a), 1e-300) if rigid else (w * np.abs(p) ** 2).sum(axis=1)
+    norm = np.abs(dot) / np.maximum(np.abs(a), tol.TINY) if rigid else (w * np.abs(p) ** 2).sum(axis=1)
     ok = (norm > 0) & ((w > 0).sum(axis=1) >= 2)
     fitted = np.where(ok, dot / np.where(ok, norm, 1.0), a)
     return fitted, np.where(ok, cq - fitted * cp, b)
@@ -184,7 +184,7 @@ def _fits(xp, Q, index, search, starts, size, overlap=SLIDE_OVERLAP, run=None):
     covered_p = w.mean(axis=1)
     s_kept = np.where(w > 0, s_q.reshape(len(cells), k), np.nan)
     span_q = (np.nanmax(s_kept, axis=1, initial=-np.inf) - np.nanmin(s_kept, axis=1, initial=np.inf)) / np.maximum(
-        Q.length[index], 1e-300
+        Q.length[index], tol.TINY
     )
     residual[cells] = np.where((covered_p >= overlap) & (span_q >= overlap), _trimmed_rms(d, w), np.inf)
     return a.reshape(n, L), b.reshape(n, L), residual.reshape(n, L), blind.reshape(n, L)
@@ -270,7 +270,7 @@ def _iterate(xp, Q, index, search, local, size, a, b):
         # query that found nothing keeps its reach).
         bound = reach_q
         if step:
-            bound = np.fmin(reach_q, np.abs(z - np.take(foot, q, mode="wrap")) * (1.0 + 1e-9) + 1e-300)
+            bound = np.fmin(reach_q, np.abs(z - np.take(foot, q, mode="wrap")) * (1.0 + 1e-9) + tol.TINY)
         # z's (real, imaginary) pairs are the points' (x, y) rows.
         dist, edge, frac = followed.within(q, z.view(np.float64).reshape(-1, 2), bound)
         found = np.isfinite(dist)
@@ -334,7 +334,7 @@ def _coarse(Q, index, step, most=np.inf):
     before = sub.offsets[sub.owner] + local // step * step
     after = np.minimum(before + step, sub.offsets[sub.owner] + last)
     u, chord = sub.pts[before], sub.pts[after] - sub.pts[before]
-    along = np.einsum("ij,ij->i", sub.pts - u, chord) / np.maximum(np.einsum("ij,ij->i", chord, chord), 1e-300)
+    along = np.einsum("ij,ij->i", sub.pts - u, chord) / np.maximum(np.einsum("ij,ij->i", chord, chord), tol.TINY)
     f = np.clip(along, 0, 1)
     off = np.hypot(*(u + f[:, None] * chord - sub.pts).T)
     deviation = np.zeros(len(sub))

@@ -5,6 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ... import tolerances as tol
 from ...geometry.ragged import budget_slices
 from ...geometry.spatial import box_pairs
 from .assignment import SparseCosts
@@ -251,7 +252,7 @@ class CostTable:
         moved = a * self.ca + b
         ia, ib = (np.flatnonzero(v if k is None else v & k) for v, k in zip(self._valid, (only_a, only_b)))
         za, zb = moved[ia], self.cb[ib]
-        scale, half_dot, reach = max(abs(a), 1e-300), 0.5 * self.dot_spread, level / W_PLACE * (1.0 + 1e-6)
+        scale, half_dot, reach = max(abs(a), tol.TINY), 0.5 * self.dot_spread, level / W_PLACE * (1.0 + 1e-6)
         # Round-off of the centroids' coordinates, far below any half-width that matters.
         slack = 1e-12 * max(np.abs(za).max(initial=0.0), np.abs(zb).max(initial=0.0))
         half_a = reach * np.maximum(scale * self.ra[ia], half_dot) + slack
@@ -314,7 +315,7 @@ class CostTable:
 
     def _costs(self, a, b, rows=None, cols=None):
         """:meth:`costs` from the shape terms as they are (fitted or not)."""
-        scale = max(abs(a), 1e-300)
+        scale = max(abs(a), tol.TINY)
         moved = a * self.ca + b
         if rows is None:
             ra, rb, za, zb = self.ra[:, None], self.rb[None, :], moved[:, None], self.cb[None, :]
@@ -333,7 +334,7 @@ class CostTable:
         np.maximum(spread, self.dot_spread, out=spread)
         place = np.abs(za - zb)
         place /= spread
-        size = np.divide(np.maximum(rb, 1e-300), np.maximum(near, 1e-300), out=spread)  # the ratio
+        size = np.divide(np.maximum(rb, tol.TINY), np.maximum(near, tol.TINY), out=spread)  # the ratio
         np.log(size, out=size)
         np.abs(size, out=size)
         size /= np.log(4.0)
@@ -356,7 +357,7 @@ class CostTable:
         rows, cols = rows[keep], cols[keep]
         if not len(rows):
             return 1.0 + 0j, 0j
-        w = np.maximum(self.ra[rows] + self.rb[cols], 1e-300)
+        w = np.maximum(self.ra[rows] + self.rb[cols], tol.TINY)
         za, zb = self.ca[rows], self.cb[cols]
         ma, mb = np.sum(w * za) / w.sum(), np.sum(w * zb) / w.sum()
         if len(rows) < 2:
@@ -373,9 +374,9 @@ class CostTable:
         spread (float)."""
         keep = self.valid(rows, cols)
         rows, cols = rows[keep], cols[keep]
-        w = np.maximum(self.ra[rows] + self.rb[cols], 1e-300)
+        w = np.maximum(self.ra[rows] + self.rb[cols], tol.TINY)
         zb = self.cb[cols]
-        spread = np.sum(w * np.abs(zb - np.sum(w * zb) / max(w.sum(), 1e-300)) ** 2)
+        spread = np.sum(w * np.abs(zb - np.sum(w * zb) / max(w.sum(), tol.TINY)) ** 2)
         if not spread > 0:
             return 1.0
         return 1.0 - float(np.sum(w * np.abs(motion[0] * self.ca[rows] + motion[1] - zb) ** 2) / spread)

@@ -122,7 +122,7 @@ class KeyDescriptors:
         else:
             line = Ragged(pts, offsets, np.zeros(len(sizes), dtype=bool))
         # Dots (one point, or all points the same) repeat their point.
-        dot = self.valid & (line.length <= tol.COINCIDENT * max(self.diagonal, 1e-300))
+        dot = self.valid & (line.length <= tol.COINCIDENT * max(self.diagonal, tol.TINY))
         first = pts[np.minimum(offsets[:-1], max(len(pts) - 1, 0))]
         self.open[dot] = self.ring[dot] = first[dot][:, None, :]
         keep = np.flatnonzero(self.valid & ~dot)
@@ -213,4 +213,4 @@ def dot_spread(key_a, key_b):
     """The floor of every pair's spread (see ``DOT_SPREAD``): a float."""
     strokes = max(np.count_nonzero(key_a.valid), np.count_nonzero(key_b.valid), 1)
     spacing = min(1.0, np.sqrt(DOT_SPREAD_STROKES / strokes))
-    return DOT_SPREAD * spacing * max(key_a.diagonal, key_b.diagonal, 1e-300)
+    return DOT_SPREAD * spacing * max(key_a.diagonal, key_b.diagonal, tol.TINY)

@@ -3,6 +3,7 @@ similar strokes vote for, the drawing order's motion), each alternated with the 
 
 import numpy as np
 
+from ... import tolerances as tol
 from .certified import assign_at, padded_total
 from .descriptors import complex_samples
 
@@ -86,7 +87,7 @@ def _turn_guess(table, key_a, key_b):
     angle = np.angle(np.sum(w * np.exp(1j * turn[peak])))
     # The scale of the whole ink, not the voters': the largest strokes of key B are the ones
     # that grew the most.
-    a = key_b.ink_spread() / max(key_a.ink_spread(), 1e-300) * np.exp(1j * angle)
+    a = key_b.ink_spread() / max(key_a.ink_spread(), tol.TINY) * np.exp(1j * angle)
     return complex(a), complex(complex_samples(key_b.ink_centroid()) - a * complex_samples(key_a.ink_centroid()))
 
 

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ... import tolerances as tol
 from ...geometry.polyline import curve_length, resample
 from ..strokes import StrokeSet
 
@@ -73,7 +74,7 @@ class Joined:
         past = u > ends[piece]
         nxt = np.minimum(piece + 1, len(starts) - 1)
         piece = np.where(past & (u - ends[piece] > starts[nxt] - u), nxt, piece)
-        local = np.clip((u - starts[piece]) / np.maximum(ends[piece] - starts[piece], 1e-300), 0.0, 1.0)
+        local = np.clip((u - starts[piece]) / np.maximum(ends[piece] - starts[piece], tol.TINY), 0.0, 1.0)
         local = np.where(np.array(self.flipped)[piece], 1.0 - local, local)
         return np.array(self.strokes)[piece], local
 
@@ -83,7 +84,7 @@ def _shape_residual(p, q):
     a, b = (resample(c, False, count=_SAMPLES, smooth=False) for c in (p, q))
     za, zb = (z[:, 0] + 1j * z[:, 1] for z in (a, b))
     za, zb = za - za.mean(), zb - zb.mean()
-    norm = max(float(np.vdot(za, za).real * np.vdot(zb, zb).real), 1e-300)
+    norm = max(float(np.vdot(za, za).real * np.vdot(zb, zb).real), tol.TINY)
     return 1.0 - max(abs(np.vdot(za, zb)) ** 2, abs(np.vdot(za, zb[::-1])) ** 2) / norm
 
 
@@ -148,7 +149,7 @@ def join_pieces(pairs, held, ka, kb):
                 trial = [*pieces, (index, key.rg.curve(index))]
                 order, flips, gap = _best_join(whole, trial)
                 xy = _joined_xy([(dict(trial)[o], f) for o, f in zip(order, flips)])
-                ratio = curve_length(xy, False) / max(length, 1e-300)
+                ratio = curve_length(xy, False) / max(length, tol.TINY)
                 if gap <= GAP * length and LENGTHS[0] <= ratio <= LENGTHS[1]:
                     fit = _shape_residual(whole, xy)
                     if fit < base:
@@ -167,7 +168,7 @@ def joined_stroke(key, first, extra):
     parts = [(dict(trial)[o], f) for o, f in zip(order, flips)]
     xy = _joined_xy(parts)
     s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))]
-    u = s / max(s[-1], 1e-300)
+    u = s / max(s[-1], tol.TINY)
     spans, start = [], 0
     for piece, _ in parts:
         spans.append((float(u[start]), float(u[start + len(piece) - 1])))

@@ -4,6 +4,7 @@ by FFT), and shared ends (see :mod:`.matching`)."""
 
 import numpy as np
 
+from ... import tolerances as tol
 from ...geometry.ragged import budget_slices
 
 __all__ = ["open_shapes", "sq_norms", "pair_shapes", "shared_ends", "LoopFits"]
@@ -45,7 +46,7 @@ def open_shapes(a, b):
         The fits' turns, the angles of the products ``<a_i, b_j>`` (only the angles are
         kept: 8 bytes a pair rather than 16, which a drawing of thousands of strokes feels).
     """
-    norms = np.maximum(sq_norms(a)[:, None] * sq_norms(b)[None, :], 1e-300)
+    norms = np.maximum(sq_norms(a)[:, None] * sq_norms(b)[None, :], tol.TINY)
     conj_a, out = np.conj(a), []
     for read in (b, b[:, ::-1]):
         # One direction at a time: the complex products are the largest arrays here.
@@ -69,7 +70,7 @@ def pair_shapes(a, b, norm_a=None, norm_b=None):
     another order)."""
     norm_a = sq_norms(a) if norm_a is None else norm_a
     norm_b = sq_norms(b) if norm_b is None else norm_b
-    norms = np.maximum(norm_a * norm_b, 1e-300)
+    norms = np.maximum(norm_a * norm_b, tol.TINY)
     conj_a, out = np.conj(a), []
     for read in (b, b[:, ::-1]):
         d = np.sum(conj_a * read, axis=1)
@@ -123,7 +124,7 @@ class LoopFits:
         back = self._sign_a[i] * self._sign_b[j] < 0
         fb, nb = np.take(self._fb[0], j, axis=0), np.take(self._nb[0], j)
         fb[back], nb[back] = self._fb[1][j[back]], self._nb[1][j[back]]
-        norms = np.maximum(np.take(self._na, i) * nb, 1e-300)
+        norms = np.maximum(np.take(self._na, i) * nb, tol.TINY)
         best = np.empty(len(i))
         m = self._fa.shape[1]
         for sl in budget_slices(np.full(len(i), m), CHUNK):
