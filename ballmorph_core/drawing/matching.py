@@ -63,6 +63,7 @@ import numpy as np
 
 from .. import tolerances as tol
 from ..errors import InvalidCurveError
+from ..geometry.guards import least, ratio
 from ..geometry.polyline import as_curve, curve_length, resample
 from ..geometry.ragged import Ragged, budget_slices, ragged_arange
 from ..geometry.spatial import box_pairs
@@ -589,6 +590,8 @@ class _CostTable:
         self._valid = key_a.valid, key_b.valid
         self._loop = key_a.loop, key_b.loop
         self.dot_spread = _dot_spread(key_a, key_b)
+        self.size = max(key_a.diagonal, key_b.diagonal)  # the drawing's, for the guards
+        self._least = least(self.size)
         self.prior_turn = 1.0 + 0j  # the turn motions are charged from (the hints' when given)
         self._open = key_a.open, key_b.open
         # The open reads centred: how every pair but two loops is fitted.
@@ -781,7 +784,8 @@ class _CostTable:
         np.maximum(spread, self.dot_spread, out=spread)
         place = np.abs(za - zb)
         place /= spread
-        size = np.divide(np.maximum(rb, 1e-300), np.maximum(near, 1e-300), out=spread)  # the ratio
+        # The ratio (1 where a stroke is a dot: that term is 0 then).
+        size = np.divide(rb, near, out=np.ones_like(spread), where=(near > self._least) & (rb > self._least))
         np.log(size, out=size)
         np.abs(size, out=size)
         size /= np.log(4.0)
@@ -810,8 +814,9 @@ class _CostTable:
         if len(rows) < 2:
             return 1.0 + 0j, mb - ma
         da, db = za - ma, zb - mb
-        norm = np.sum(w * np.abs(da) ** 2)
-        a = np.sum(w * np.conj(da) * db) / norm if norm > 0 else 1.0 + 0j
+        # Centroids of A that do not spread (at the keys' size) fix no turn nor scale.
+        spread = np.sum(w * np.abs(da) ** 2)
+        a = complex(ratio(np.sum(w * np.conj(da) * db), spread, least(self.size, 2) * w.sum(), 1.0 + 0j))
         return a, mb - a * ma
 
     def explained(self, rows, cols, motion):
@@ -824,9 +829,8 @@ class _CostTable:
         w = np.maximum(self.ra[rows] + self.rb[cols], 1e-300)
         zb = self.cb[cols]
         spread = np.sum(w * np.abs(zb - np.sum(w * zb) / max(w.sum(), 1e-300)) ** 2)
-        if not spread > 0:
-            return 1.0
-        return 1.0 - float(np.sum(w * np.abs(motion[0] * self.ca[rows] + motion[1] - zb) ** 2) / spread)
+        misses = np.sum(w * np.abs(motion[0] * self.ca[rows] + motion[1] - zb) ** 2)
+        return 1.0 - ratio(misses, spread, least(self.size, 2) * w.sum(), 0.0)
 
 
 def _assign_within(costs):
@@ -998,8 +1002,11 @@ def _turn_guess(table, key_a, key_b):
     w = weight[peak]
     angle = np.angle(np.sum(w * np.exp(1j * turn[peak])))
     # The scale of the whole ink, not the voters': the largest strokes of key B are the ones
-    # that grew the most.
-    a = key_b.ink_spread() / max(key_a.ink_spread(), 1e-300) * np.exp(1j * angle)
+    # that grew the most. Where key A's strokes share one centroid (a stroke drawn twice in
+    # place) its ink has no spread: the keys' sizes say the scale.
+    size = max(key_a.diagonal, key_b.diagonal)
+    grow = ratio(key_b.diagonal, key_a.diagonal, least(size))
+    a = ratio(key_b.ink_spread(), key_a.ink_spread(), least(size), grow) * np.exp(1j * angle)
     return complex(a), complex(_complex(key_b.ink_centroid()) - a * _complex(key_a.ink_centroid()))
 
 
