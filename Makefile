@@ -35,10 +35,11 @@ bench:
 # (HYPOTHESIS_PROFILE=fuzz, FUZZ_EXAMPLES to change the count); `make test` runs its short
 # profile. The address space is capped so a memory blow-up fails as a MemoryError instead of
 # exhausting the machine; pytest-timeout's per-test limit is lifted (3,000 examples per test:
-# about 5 minutes in all on two cores).
+# about 5 minutes in all on two cores). RuntimeWarnings are errors (tests/fuzz/conftest.py marks
+# every fuzz test so; -W says it here too).
 fuzz:
 	py=$$(tools/bootstrap.sh 5.0.1) && ulimit -v 8000000 && \
-	HYPOTHESIS_PROFILE=fuzz timeout 14400 $$py -m pytest -q --timeout=0 tests/fuzz --hypothesis-show-statistics
+	HYPOTHESIS_PROFILE=fuzz timeout 14400 $$py -m pytest -q -W error::RuntimeWarning --timeout=0 tests/fuzz --hypothesis-show-statistics
 
 # The real-data benchmark (issue 11): Inter's glyph outlines, Thin and Black masters as keys,
 # the font's own instances at weights 300-700 as ground truth; writes docs/realdata.md and

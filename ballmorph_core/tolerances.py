@@ -14,6 +14,10 @@ COINCIDENT = 1e-9
 #: Stroke endpoints closer than this (times scale) count as shared (paper configuration 2).
 SHARED_ENDPOINT = 1e-6
 
+#: A spread, norm or distance of at most this (times scale) is zero: dividing by it gives a
+#: ratio of round-off (``geometry.guards``: every such division takes a default instead).
+DEGENERATE = COINCIDENT
+
 #: Two curves closer than this (times scale) over a stretch of curve overlap there
 #: (paper section 3.2: overlapping portions stay static).
 OVERLAP = 1e-7

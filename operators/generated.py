@@ -20,7 +20,7 @@ frames it replaced must still be recognised. Undo in Object or Draw Mode restore
 from ..addon_logic.id_keys import id_key
 from . import grease_pencil
 
-__all__ = ["is_generated", "mark", "save", "restore"]
+__all__ = ["is_generated", "mark", "mark_many", "save", "restore"]
 
 PROPERTY = "ballmorph_inbetween"
 # Fingerprints kept per frame number: how many re-runs an edit-mode undo can go back through.
@@ -55,10 +55,24 @@ def is_generated(grease_pencil_data, layer, frame):
 def mark(grease_pencil_data, layer, frame, new):
     """Record ``frame`` as written by this add-on, its strokes' fingerprint ``new`` (what
     :func:`.grease_pencil.write_strokes` returns)."""
-    records = _records(grease_pencil_data, layer, create=True)
-    number = str(frame.frame_number)
-    kept = [fingerprint for fingerprint in records.get(number, "").split() if fingerprint != new]
-    records[number] = " ".join([*kept[max(0, len(kept) + 1 - _HISTORY) :], new])
+    mark_many(grease_pencil_data, layer, {frame.frame_number: new})
+
+
+def mark_many(grease_pencil_data, layer, written):
+    """:func:`mark` for many frames of ``layer`` at once: ``written`` maps frame numbers to
+    their fingerprints. The record is read and put back once (each lookup in an ID property
+    group scans it: marking frame by frame is quadratic in the frames)."""
+    if not written:
+        return
+    _records(grease_pencil_data, layer, create=True)
+    root = grease_pencil_data[PROPERTY]
+    key = id_key(layer.name)
+    records = root[key].to_dict()
+    for number, new in written.items():
+        number = str(number)
+        kept = [fingerprint for fingerprint in records.get(number, "").split() if fingerprint != new]
+        records[number] = " ".join([*kept[max(0, len(kept) + 1 - _HISTORY) :], new])
+    root[key] = records
 
 
 def save(grease_pencil_data):

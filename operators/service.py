@@ -115,6 +115,11 @@ class Progress:
     def end(self):
         """Computing is over (also after an error)."""
 
+    def writing(self, done, total):
+        """``done`` of ``total`` in-between frames are written (about a hundred calls in a run,
+        and one at its end). Raising here (a KeyboardInterrupt: a stop) rolls the whole write
+        back, and the exception reaches the caller."""
+
 
 def check_options(values):
     """Why these option values cannot run at all ('' when they can): an unavailable morph, a
@@ -188,7 +193,7 @@ def inbetween_object(obj, values, rule, progress=None):
     morphed = [item for _, _, item, _ in outcomes if item is not None]
     if morphed:
         try:
-            writer.write_all(data, morphed)
+            writer.write_all(data, morphed, progress=progress.writing)
         except Exception as exc:  # the writer restored the layers; say why nothing changed
             result.error = reports.write_failed(exc)
             return result

@@ -40,7 +40,10 @@ def _onto_forward_laps(fwd, bwd, sp, sq):
     gx = np.concatenate([fwd.s_src, fwd.s_src[first] + len_p])
     gy = np.concatenate([fwd.s_dst, fwd.s_dst[first] + len_q])
     gc = np.concatenate([cf, np.arange(n_chains)])
-    base = np.concatenate([[0.0], np.cumsum(len_p + 1.0)])[:-1]
+    # Chains shifted apart by a gap of their own size (not of 1.0, which swamps a tiny drawing's
+    # positions in round-off), so one interpolation serves them all.
+    gap = float(len_p.max(initial=0.0)) or 1.0
+    base = np.concatenate([[0.0], np.cumsum(len_p + gap)])[:-1]
     order = np.argsort(gx + base[gc], kind="stable")
     wraps = closed[cb] & (len_p[cb] > 0)  # loops of zero length (degenerate chains) do not wrap
     sp_b = np.where(wraps, np.mod(bwd.s_src, np.where(wraps, len_p[cb], 1.0)), bwd.s_src)
@@ -77,24 +80,29 @@ def chain_order(chain, key):
     return np.argsort(z, kind="stable")
 
 
-def running_backsteps(s, chain, span):
+def running_backsteps(s, chain):
     """How far each position lies behind the running maximum of its chain's earlier positions.
+
+    Exact at any scale: the running maximum is taken of the positions' ranks (integers, the
+    chains shifted apart by the count), not of the positions shifted by a length, whose
+    round-off would be that length's and not the chain's own.
 
     Parameters
     ----------
     s : ndarray, shape (K,)
         Positions, grouped by ``chain`` (non-decreasing).
     chain : ndarray of int, shape (K,)
-    span : float
-        More than any position's range (chains are shifted apart by it).
 
     Returns
     -------
     ndarray, shape (K,)
         0 where the sequence is monotone.
     """
-    shift = chain * span
-    return np.maximum.accumulate(s + shift) - shift - s
+    order = np.argsort(s, kind="stable")
+    rank = np.empty(len(s), dtype=np.int64)
+    rank[order] = np.arange(len(s))
+    shift = np.asarray(chain, dtype=np.int64) * len(s)
+    return np.take(s, np.take(order, np.maximum.accumulate(rank + shift) - shift)) - s
 
 
 def uniform_picks(sp_, sq_, chain, n_chains, len_p, len_q, closed, spacing):
@@ -218,9 +226,8 @@ def symmetric_samples(fwd, bwd, sp, sq, spacing, dense_spacing, reports):
     # are taken once, for the kept rows.
     order = chain_order(allp.chain, allp.s_src + allp.s_dst)
     s_p, s_q, chain = (np.take(v, order) for v in (allp.s_src, allp.s_dst, allp.chain))
-    span = 4.0 * (max(len_p.max(), len_q.max()) + 1.0)
-    back_p = running_backsteps(s_p, chain, span)
-    back_q = running_backsteps(s_q, chain, span)
+    back_p = running_backsteps(s_p, chain)
+    back_q = running_backsteps(s_q, chain)
     _report_disagreements(allp, order, back_p, back_q, sp, sq, dense_spacing, reports)
     # In range: take's 'wrap' mode skips the bounds check.
     lp, lq = (np.take(v, chain, mode="wrap") for v in (len_p, len_q))

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
-from ..geometry.polyline import reversed_fractions
+from ..geometry.polyline import MAX_COORDINATE, reversed_fractions
 from ..geometry.similarity import Similarity
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
 from .frames.attributes import Extras, FrameValues, Held, Recycled, assemble_frames
@@ -533,6 +533,14 @@ def _check_key(name, key):
             bad = np.unique(np.searchsorted(key.offsets, points, "right") - 1).tolist()
             what = "coordinates" if attr == "positions" else attr
             raise InvalidCurveError(f"{name}: stroke(s) {bad[:10]} have NaN or infinite {what}: redraw or delete them")
+    huge = np.flatnonzero(np.abs(key.positions).max(axis=1, initial=0.0) > MAX_COORDINATE)
+    if len(huge):
+        bad = np.unique(np.searchsorted(key.offsets, huge, "right") - 1).tolist()
+        largest = float(np.abs(key.positions).max())
+        raise InvalidCurveError(
+            f"{name}: stroke(s) {bad[:10]} have coordinates up to {largest:.3g}, beyond the {MAX_COORDINATE:g} "
+            "the geometry can square and multiply: scale the drawing down"
+        )
 
 
 def _report_pair(result, a, b, flipped, used, notes):

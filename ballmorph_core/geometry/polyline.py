@@ -46,9 +46,11 @@ __all__ = [
 DEFAULT_SAMPLES_MIN = 48
 DEFAULT_SAMPLES_MAX = 2000
 
-#: Coordinates beyond this magnitude are rejected: their squares (lengths, disk radii)
-#: would overflow float64.
-MAX_COORDINATE = 1e150
+#: Coordinates beyond this magnitude are rejected (a curve here, a drawing's strokes in
+#: ``drawing.plan``): the drawing pipeline multiplies up to four lengths (the fits' products of
+#: squared norms), which stay below 1e240 here, far from float64's 1.8e308. (At 1e100 they
+#: overflowed; the golden drawings scaled to 1e70 give the same in-betweens.)
+MAX_COORDINATE = 1e60
 
 #: :func:`already_clean` calls a curve clean only with its points this much (relative) farther
 #: apart than the duplicate tolerance: round-off never makes it disagree with :func:`as_curve`.

@@ -184,26 +184,24 @@ class Ragged:
         """Vertices of curve ``c``, shape (n_c, 2) (a view)."""
         return self.pts[self.offsets[c] : self.offsets[c + 1]]
 
-    def global_s(self, gap=1.0):
+    def global_s(self):
         """Arc lengths made increasing across the batch: curve ``c`` is shifted by ``base[c]``.
 
         Returns
         -------
         g : ndarray, shape (N,)
         base : ndarray, shape (C,)
-            Shift of each curve (each curve's range is followed by a gap).
+            Shift of each curve (each curve's range is followed by a gap of the longest
+            curve's length: of the batch's own size, so its round-off is too at any scale).
 
-        Those of the default gap are computed once and shared: read them, never write them.
+        Computed once and shared: read them, never write them.
         """
-        return self._global_s if gap == 1.0 else self._shifted(gap)
+        return self._global_s
 
     @cached_property
     def _global_s(self):
-        """:meth:`global_s` with the default gap, which every locate needs: made once (not
-        to be written to)."""
-        return self._shifted(1.0)
-
-    def _shifted(self, gap):
+        """:meth:`global_s`, which every locate needs: made once (not to be written to)."""
+        gap = float(np.max(self.length, initial=0.0)) or 1.0
         base = np.concatenate([[0.0], np.cumsum(self.length + gap)])[:-1]
         return self.s + base[self.owner], base
 
@@ -336,7 +334,7 @@ class Ragged:
         # Vertices passed before s0, and before s1 (counting a second lap for loops). A vertex
         # within round-off of a boundary is the boundary point itself: leave it out, whatever
         # the batch's offsets did to the last bits.
-        tiny = tol.COINCIDENT * (np.max(self.length, initial=0.0) + 1.0)
+        tiny = tol.COINCIDENT * np.max(self.length, initial=0.0)
         lo = np.searchsorted(g, s0 + base[curve] + tiny, side="right") - self.offsets[curve]
         lap = closed & (s1 > length)
         s1_in = np.where(lap, s1 - length, s1)

@@ -191,9 +191,9 @@ def _thinned(full, s_p, s_q, sp, sq, closed, spacing):
     uq = _unwrap(s_q / sq.length) * sq.length if closed else s_q
     order = np.argsort(up + uq, kind="stable")
     full, up, uq, s_p, s_q = full[order], up[order], uq[order], s_p[order], s_q[order]
-    one, span = np.zeros(len(up), dtype=np.int64), 4.0 * (max(sp.length, sq.length) + 1.0)
-    mono = (running_backsteps(up, one, span) <= tol.ROUNDOFF * sp.length) & (
-        running_backsteps(uq, one, span) <= tol.ROUNDOFF * sq.length
+    one = np.zeros(len(up), dtype=np.int64)
+    mono = (running_backsteps(up, one) <= tol.ROUNDOFF * sp.length) & (
+        running_backsteps(uq, one) <= tol.ROUNDOFF * sq.length
     )
     lengths = (np.array([sp.length]), np.array([sq.length]))
     keep = np.flatnonzero(mono)[

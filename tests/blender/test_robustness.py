@@ -536,8 +536,8 @@ def test_the_writer_lets_each_in_between_go_once_written(shot, addon, monkeypatc
     writer = importlib.import_module(f"{addon.__name__}.operators.writer")
     real, held = writer.write_all, []
 
-    def spy(data, morphed_list):
-        written = real(data, morphed_list)
+    def spy(data, morphed_list, **options):
+        written = real(data, morphed_list, **options)
         held.extend(frame for morphed in morphed_list for frame in morphed.frames if frame is not None)
         return written
 

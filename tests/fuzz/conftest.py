@@ -9,6 +9,7 @@ running tests/core and tests/fuzz in one process leaves the core suite's own pro
 import os
 import sys
 
+import pytest
 from hypothesis import HealthCheck, Phase, settings
 
 # No 'explain' phase: it re-runs a failing example hundreds of times, minutes on slow drawings.
@@ -41,3 +42,12 @@ settings.register_profile(
 )
 if os.environ.get("HYPOTHESIS_PROFILE") == "fuzz":
     settings.load_profile("fuzz")
+
+
+def pytest_collection_modifyitems(items):
+    """Every fuzz test runs with RuntimeWarnings as errors (issue 41): an overflow, a division
+    by zero or an invalid value in the core is a defect even where the result comes out finite."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    for item in items:
+        if str(item.path).startswith(here):
+            item.add_marker(pytest.mark.filterwarnings("error::RuntimeWarning"))

@@ -286,3 +286,50 @@ def drawings(draw, max_strokes=4):
             out.append((np.c_[pts[:, 0], depth * rng.standard_normal(len(pts)), pts[:, 1]], closed))
         keys.append(out)
     return keys[0], keys[1]
+
+
+#: How a pair of keys degenerates (issue 41): a stroke drawn again in place, every stroke about
+#: one centroid, one stroke far from the rest (up to a million times the drawing's size).
+DEGENERACIES = ("duplicated-in-place", "same-centroid", "one-far")
+
+
+def _degenerate(strokes, degeneracy, rng):
+    """``strokes`` ([(points (N, 2), closed)]) made degenerate in place of a new list."""
+    out = [(p.copy(), c) for p, c in strokes]
+    if not out:
+        return out
+    if degeneracy == "duplicated-in-place":
+        k = int(rng.integers(0, len(out)))
+        out += [(out[k][0].copy(), out[k][1]) for _ in range(int(rng.integers(1, 3)))]
+    elif degeneracy == "same-centroid":
+        out = [(p - p.mean(axis=0) + out[0][0].mean(axis=0), c) for p, c in out]
+    else:
+        size = max(float(np.linalg.norm(np.ptp(np.concatenate([p for p, _ in out]), axis=0))), 1.0)
+        k = int(rng.integers(0, len(out)))
+        out[k] = (out[k][0] + size * 10 ** rng.uniform(2, 6) * rng.standard_normal(2), out[k][1])
+    return out
+
+
+def _rounded(points, single):
+    """``points`` (float64), rounded to float32 first when ``single``."""
+    return points.astype(np.float32).astype(np.float64) if single else points
+
+
+@st.composite
+def degenerate_drawings(draw, max_strokes=3):
+    """A pair of keys as :func:`drawings` gives them, made degenerate: each key by one of
+    ``DEGENERACIES`` (or left alone), and perhaps both rounded to float32 (Blender's storage).
+
+    The overflow of issue 41 is one of them: key A a stroke drawn twice in place, key B that
+    stroke moved and one more far away.
+    """
+    strokes_a = draw(st.lists(curves(), min_size=1, max_size=max_strokes))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    strokes_b = []
+    for pts, closed in strokes_a:
+        q = related(pts, closed, draw(RELATION), rng)
+        strokes_b.append((pts if q is None else q, closed))
+    strokes_b += draw(st.lists(curves(), min_size=0, max_size=1))
+    keys = [_degenerate(key, draw(st.sampled_from(("none", *DEGENERACIES))), rng) for key in (strokes_a, strokes_b)]
+    single = draw(st.booleans())
+    return tuple([(_rounded(np.c_[p[:, 0], np.zeros(len(p)), p[:, 1]], single), c) for p, c in key] for key in keys)

@@ -18,7 +18,7 @@ examples per test (HYPOTHESIS_PROFILE=fuzz).
 
 import numpy as np
 import pytest
-from fuzz_strategies import curve_pairs, distinct_count, drawings, fuzz_settings
+from fuzz_strategies import curve_pairs, degenerate_drawings, distinct_count, drawings, fuzz_settings
 from hypothesis import event, given, note
 from hypothesis import strategies as st
 
@@ -172,6 +172,26 @@ def _unchanged(s, before):
     seed=st.integers(0, 2**32 - 1),
 )
 def test_inbetween_contract(keys, method, carrier, matching, unmatched, times, seed):
+    _check_inbetween(keys, (method, carrier, matching, unmatched), times, seed)
+
+
+@fuzz_settings
+@given(
+    keys=degenerate_drawings(),
+    method=st.sampled_from(bm.METHODS),
+    matching=st.sampled_from(MATCHINGS),
+    times=st.lists(st.floats(0.0, 1.0), min_size=0, max_size=2),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_inbetween_contract_on_degenerate_keys(keys, method, matching, times, seed):
+    """Strokes drawn again in place, sharing one centroid, one far from the rest, float32
+    coordinates (issue 41: an OverflowError in the matching's turn guess)."""
+    _check_inbetween(keys, (method, "similarity", matching, "middle"), times, seed)
+
+
+def _check_inbetween(keys, options, times, seed):
+    """The contract of ``plan_inbetween(*keys, *options).evaluate(times)`` (see the module notes)."""
+    method = options[0]
     rng = np.random.default_rng(seed)
     key_a, key_b = _strokeset(keys[0], rng), _strokeset(keys[1], rng)
     note(f"strokes {len(key_a)} -> {len(key_b)}, sizes {key_a.sizes.tolist()} -> {key_b.sizes.tolist()}")
@@ -179,7 +199,7 @@ def test_inbetween_contract(keys, method, carrier, matching, unmatched, times, s
     before_a, before_b = _copy(key_a), _copy(key_b)
     # ``inbetween`` is ``plan_inbetween(...).evaluate(times)``; the plan is what the operator
     # keeps for a redo, so evaluate it twice.
-    plan = _without_memory_error(lambda: bm.plan_inbetween(key_a, key_b, method, carrier, matching, unmatched))
+    plan = _without_memory_error(lambda: bm.plan_inbetween(key_a, key_b, *options))
     result = plan.evaluate(times)
     again = plan.evaluate(times[::-1])
     for frame, other in zip(result.frames, again.frames[::-1]):

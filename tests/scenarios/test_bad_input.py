@@ -778,10 +778,16 @@ def test_strokes_with_fewer_than_two_distinct_points_move_straight(a):
         )
 
 
-def test_cyclic_stroke_with_two_points_is_morphed_as_open():
+def test_cyclic_stroke_with_two_points_moves_straight_with_a_warning():
+    """Not "morphed as open" (what docs/reliability.md said until issue 41): its two points move
+    straight, and the warning says a loop needs three."""
     a, b = np.array([[0.0, 0.0], [1.0, 0.0]]), np.array([[0.0, 0.1], [1.0, 0.1]])
     result = inbetween(key(a, cyclic=[True]), key(b, cyclic=[True]), TIMES, matching="INDEX")
     assert all_finite(result)
+    assert result.pairs[0].method == "straight point motion"
+    assert [m.text for m in result.messages] == [
+        "stroke 0 -> 0: too few distinct points (P: a loop needs at least 3 distinct points, got 2)"
+    ]
     for t, frame in zip(TIMES, result.frames):
         np.testing.assert_allclose(xz(frame.positions)[:, 1], 0.1 * t, atol=1e-12)
 

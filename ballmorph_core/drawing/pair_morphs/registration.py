@@ -130,8 +130,10 @@ def _loop_fits(xp, xq, turn=0.0):
     best = fit.min(axis=1, keepdims=True)
     minimum = (fit <= np.roll(fit, 1, axis=1)) & (fit <= np.roll(fit, -1, axis=1))
     equal = (fit <= best + tol.EQUAL_FIT) | (minimum & (fit <= best + EQUAL_TURNS))
-    off = np.abs(np.angle(corr * np.exp(-1j * np.reshape(turn, (-1, 1)))))
-    s = np.argmin(np.where(equal, off, np.inf), axis=1)
+    off = np.where(equal, np.abs(np.angle(corr * np.exp(-1j * np.reshape(turn, (-1, 1))))), np.inf)
+    # Turns equal but for round-off (a symmetric loop turned a quarter either way): the first
+    # shift, whatever the drawing's scale does to the last digits.
+    s = np.argmax(off <= off.min(axis=1, keepdims=True) + tol.ROUNDOFF, axis=1)
     rows = np.arange(len(xp))
     a = corr[rows, s] / norm_p
     k = xp.shape[1]

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ... import tolerances as tol
+from ...geometry.guards import least, ratio
 from ...geometry.ragged import budget_slices
 from ...geometry.spatial import box_pairs
 from .assignment import SparseCosts
@@ -140,6 +141,8 @@ class CostTable:
         self._valid = key_a.valid, key_b.valid
         self._loop = key_a.loop, key_b.loop
         self.dot_spread = dot_spread(key_a, key_b)
+        self.size = max(key_a.diagonal, key_b.diagonal)  # the drawing's, for the guards
+        self._least = least(self.size)
         self.prior_turn = 1.0 + 0j  # the turn motions are charged from (the hints' when given)
         self._open = key_a.open, key_b.open
         # The open reads centred: how every pair but two loops is fitted.
@@ -334,7 +337,8 @@ class CostTable:
         np.maximum(spread, self.dot_spread, out=spread)
         place = np.abs(za - zb)
         place /= spread
-        size = np.divide(np.maximum(rb, tol.TINY), np.maximum(near, tol.TINY), out=spread)  # the ratio
+        # The ratio (1 where a stroke is a dot: that term is 0 then).
+        size = np.divide(rb, near, out=np.ones_like(spread), where=(near > self._least) & (rb > self._least))
         np.log(size, out=size)
         np.abs(size, out=size)
         size /= np.log(4.0)
@@ -363,8 +367,9 @@ class CostTable:
         if len(rows) < 2:
             return 1.0 + 0j, mb - ma
         da, db = za - ma, zb - mb
-        norm = np.sum(w * np.abs(da) ** 2)
-        a = np.sum(w * np.conj(da) * db) / norm if norm > 0 else 1.0 + 0j
+        # Centroids of A that do not spread (at the keys' size) fix no turn nor scale.
+        spread = np.sum(w * np.abs(da) ** 2)
+        a = complex(ratio(np.sum(w * np.conj(da) * db), spread, least(self.size, 2) * w.sum(), 1.0 + 0j))
         return a, mb - a * ma
 
     def explained(self, rows, cols, motion):
@@ -377,6 +382,5 @@ class CostTable:
         w = np.maximum(self.ra[rows] + self.rb[cols], tol.TINY)
         zb = self.cb[cols]
         spread = np.sum(w * np.abs(zb - np.sum(w * zb) / max(w.sum(), tol.TINY)) ** 2)
-        if not spread > 0:
-            return 1.0
-        return 1.0 - float(np.sum(w * np.abs(motion[0] * self.ca[rows] + motion[1] - zb) ** 2) / spread)
+        misses = np.sum(w * np.abs(motion[0] * self.ca[rows] + motion[1] - zb) ** 2)
+        return 1.0 - ratio(misses, spread, least(self.size, 2) * w.sum(), 0.0)

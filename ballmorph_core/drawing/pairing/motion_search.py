@@ -3,7 +3,7 @@ similar strokes vote for, the drawing order's motion), each alternated with the 
 
 import numpy as np
 
-from ... import tolerances as tol
+from ...geometry.guards import least, ratio
 from .certified import assign_at, padded_total
 from .descriptors import complex_samples
 
@@ -86,8 +86,11 @@ def _turn_guess(table, key_a, key_b):
     w = weight[peak]
     angle = np.angle(np.sum(w * np.exp(1j * turn[peak])))
     # The scale of the whole ink, not the voters': the largest strokes of key B are the ones
-    # that grew the most.
-    a = key_b.ink_spread() / max(key_a.ink_spread(), tol.TINY) * np.exp(1j * angle)
+    # that grew the most. Where key A's strokes share one centroid (a stroke drawn twice in
+    # place) its ink has no spread: the keys' sizes say the scale.
+    size = max(key_a.diagonal, key_b.diagonal)
+    grow = ratio(key_b.diagonal, key_a.diagonal, least(size))
+    a = ratio(key_b.ink_spread(), key_a.ink_spread(), least(size), grow) * np.exp(1j * angle)
     return complex(a), complex(complex_samples(key_b.ink_centroid()) - a * complex_samples(key_a.ink_centroid()))
 
 

@@ -102,16 +102,16 @@ def test_group_argmin_finds_the_first_minimum_of_each_group():
 
 
 def test_global_arc_lengths_are_made_once_and_shifted_per_curve():
-    batch = Ragged.from_list(
-        [np.array([[0.0, 0.0], [3.0, 4.0]]), np.array([[1.0, 1.0], [1.0, 2.0], [2.0, 2.0]])], False
-    )
+    curves = [np.array([[0.0, 0.0], [3.0, 4.0]]), np.array([[1.0, 1.0], [1.0, 2.0], [2.0, 2.0]])]
+    batch = Ragged.from_list(curves, False)
     g, base = batch.global_s()
-    assert batch.global_s()[0] is g  # the default gap's is kept for every locate
-    np.testing.assert_array_equal(base, [0.0, 6.0])
-    np.testing.assert_array_equal(g, [0.0, 5.0, 6.0, 7.0, 8.0])
-    g2, base2 = batch.global_s(gap=0.5)
-    np.testing.assert_array_equal(base2, [0.0, 5.5])
-    np.testing.assert_array_equal(g2, [0.0, 5.0, 5.5, 6.5, 7.5])
+    assert batch.global_s()[0] is g  # kept for every locate
+    # Each curve is followed by a gap of the longest one's length (5), not of 1.0: the same
+    # shifts at any scale (issue 41: a gap of 1.0 swamped a tiny drawing's lengths in round-off).
+    np.testing.assert_array_equal(base, [0.0, 10.0])
+    np.testing.assert_array_equal(g, [0.0, 5.0, 10.0, 11.0, 12.0])
+    tiny = Ragged.from_list([c * 2.0**-40 for c in curves], False).global_s()
+    np.testing.assert_array_equal(tiny[0], g * 2.0**-40)
 
 
 def test_ragged_boxes_of_curves_with_and_without_points():
