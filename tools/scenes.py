@@ -993,6 +993,20 @@ def figure_ink_jumps(keys, frames, times):
     return _at_most("largest ink jump", jump, limit, f"{jump:.3f}", f"≤ {limit:.3f} (keys' difference)")
 
 
+def figure_travel(keys, frames, times, index):
+    """Stroke ``index`` of both keys (one shape, moved) on every in-between at its keys' linear
+    blend: the worst of each frame's nearest stroke, its largest point distance / size (a
+    stroke held on a key, or popping at the middle, is off by its whole travel)."""
+    size = drawing_size(*keys)
+    a, b = keys[0][index].xy, keys[1][index].xy
+    worst = 0.0
+    for frame, t in zip(frames, times):
+        want = (1 - t) * a + t * b
+        near = [np.abs(s.xy - want).max() for s in frame if len(s.xy) == len(want)]
+        worst = max(worst, min(near, default=np.inf) / size)
+    return _at_most("travelling stroke off its blend / size", worst, 1e-6, f"{worst:.2g}", "≤ 1e-06")
+
+
 # ------------------------------------------------------------------ scenes
 
 
@@ -1471,6 +1485,37 @@ def _split_scenes():
         yield _scene(name, 12, about, keys, [figure_ink_blend, figure_ink_jumps])
 
 
+def thrown_ball(radius=0.09, throw=4.2):
+    """Ground, a tree (trunk, crown) and a ball of ``radius`` thrown ``throw`` across the frame,
+    rising a little: keys A and B as lists of strokes, and the cyclic flags."""
+    ground, trunk = polyline([(-1.0, 0.0), (5.0, 0.0)], 30), bowed((2.0, 0.0), (2.0, 1.2), 0.03, 20)
+    still = [ground, trunk, circle(0.5, (2.0, 1.6), 40)]
+    balls = circle(radius, (-0.5, 0.8), 24), circle(radius, (-0.5 + throw, 0.9), 24)
+    return [*still, balls[0]], [*still, balls[1]], [False, False, True, True]
+
+
+def flying_bird(flight=2.2, span=0.3):
+    """A landscape (hills, a bush, a house's roof) and a bird, a V of seven points ``span`` wide,
+    flying ``flight`` across it: keys A and B as lists of strokes, and the cyclic flags."""
+    still = [
+        bowed((-2.0, 0.0), (3.0, 0.2), 0.3, 40),
+        bowed((0.0, 0.1), (1.0, 1.0), 0.2, 30),
+        polyline([(1.5, 0.3), (1.8, 1.1), (2.1, 0.3)], 3),
+    ]
+    u = np.linspace(-0.5, 0.5, 7)
+    bird = np.c_[span * u, span * 0.9 * u**2]
+    return [*still, bird + (-1.2, 1.5)], [*still, bird + (-1.2 + flight, 1.6)], [False] * 4
+
+
+def _travel_scenes():
+    for name, (a, b, cyclic), about in (
+        ("thrown-ball", thrown_ball(), "a ball of radius 0.09 thrown 4.2 past a ground line and a tree that stay"),
+        ("flying-bird", flying_bird(), "a bird (a V of 7 points) flying 2.2 across a landscape that stays"),
+    ):
+        keys = (key(a, cyclic), key(b, cyclic))
+        yield _scene(name, 39, about, keys, [partial(figure_travel, index=3)])
+
+
 def _all_scenes():
     yield from _turn_scenes()
     yield _arm_scene()
@@ -1489,6 +1534,7 @@ def _all_scenes():
     yield from _corner_scenes()
     yield _point_count_scene()
     yield from _split_scenes()
+    yield from _travel_scenes()
 
 
 #: Every scene by name, in the tracker's order.

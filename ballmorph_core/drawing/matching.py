@@ -52,9 +52,10 @@ its area) differs.
 
 Unmatched strokes
 -----------------
-A pair costing ``MATCH_MAX_COST`` or more is never formed: both strokes stay unmatched (they
-appear or disappear, see :func:`~ballmorph_core.inbetween`), except that a stroke alone in both
-keys always pairs.
+A pair costing ``MATCH_MAX_COST`` or more is never formed by the assignment, except that a
+stroke alone in both keys always pairs. The strokes it leaves over pair when their shapes agree,
+however far they travel (:mod:`.travelling`; ``Matching.travelled``); the rest stay unmatched
+(they appear or disappear, see :func:`~ballmorph_core.inbetween`).
 """
 
 from dataclasses import dataclass, field
@@ -68,6 +69,7 @@ from ..geometry.ragged import Ragged, budget_slices, ragged_arange
 from ..geometry.spatial import box_pairs
 from ..options import MATCHINGS, check_option
 from .assignment import SparseCosts, solve_assignment
+from .travelling import pair_leftovers
 
 __all__ = ["Matching", "match_strokes", "pair_direction"]
 
@@ -163,6 +165,9 @@ class Matching:
         The translation of the keys' overall motion (key B is about key A moved by it).
     rotation : complex
         Its turn and scale: key B is about ``rotation * z + motion`` of key A (complex ``z``).
+    travelled : list of (int, int)
+        The pairs ``(i, j)`` made by the drawing's motion: left over by the assignment (too far
+        apart for it), paired because their shapes agree (:mod:`.travelling`).
     """
 
     pairs: list
@@ -173,6 +178,7 @@ class Matching:
     costs: list = field(default_factory=list)
     motion: np.ndarray = field(default_factory=lambda: np.zeros(2))
     rotation: complex = 1.0 + 0j
+    travelled: list = field(default_factory=list)
 
 
 def _clean(points, name, closed):
@@ -666,6 +672,17 @@ class _CostTable:
         self.shape[rows, cols] = np.sqrt(e)
         self._unfitted[rows, cols] = False
 
+    def shapes(self, rows, cols):
+        """``sqrt(e)`` of pairs ``(rows[k], cols[k])`` (shapes (K,)), fitted where not yet, shape (K,)."""
+        self._fit(rows, cols)
+        return self.shape[rows, cols]
+
+    def unplaced_costs(self, a, rows, cols):
+        """Costs of pairs ``(rows[k], cols[k])`` (shapes (K,)) without the place and turn terms,
+        sizes compared at the scale of ``a`` (complex), shape (K,): how well their shapes agree
+        wherever they are (:mod:`.travelling`)."""
+        return self._costs(a, 0j, rows, cols, placed=False)
+
     def directions(self, turn, rows, cols):
         """Whether B's stroke runs opposite to A's in pairs ``(rows[k], cols[k])`` (shapes (K,)),
         given the drawing's turn (radians), shape (K,): the direction sharing more ends; then the
@@ -760,8 +777,9 @@ class _CostTable:
             c[may] = self._costs(a, b, *fit)
         return c
 
-    def _costs(self, a, b, rows=None, cols=None):
-        """:meth:`costs` from the shape terms as they are (fitted or not)."""
+    def _costs(self, a, b, rows=None, cols=None, placed=True):
+        """:meth:`costs` from the shape terms as they are (fitted or not); without the place and
+        turn terms unless ``placed``."""
         scale = max(abs(a), 1e-300)
         moved = a * self.ca + b
         if rows is None:
@@ -787,14 +805,16 @@ class _CostTable:
         size /= np.log(4.0)
         np.copyto(size, 0.0, where=~((ra > 0) & (rb > 0)))
         c = np.multiply(shape, W_SHAPE)
-        place *= W_PLACE
-        c += place
+        if placed:
+            place *= W_PLACE
+            c += place
         size *= W_SCALE
         c += size
         # + MATCH_CYCLIC_PENALTY * mixed: the others add 0.0, which leaves these sums of terms
         # that are not negative as they are.
         np.add(c, MATCH_CYCLIC_PENALTY, out=c, where=mixed)
-        c += W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
+        if placed:
+            c += W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
         np.copyto(c, np.inf, where=~valid)
         return c
 
@@ -1126,10 +1146,25 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto", motion=
     if n_a == n_b == 0:
         return _matching(key_a, key_b, table, index, index, (1.0 + 0j, 0j), "index", "neither key has strokes")
     total, rows, cols, motion = _best_assignment(table, key_a, key_b, motion)
+    rows, cols, travelled = _with_travellers(key_a, key_b, table, rows, cols, motion)
     if n_a != n_b:
         reason = f"stroke counts differ ({n_a} vs {n_b}): optimal assignment"
-        return _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)
-    return _order_or_assignment(key_a, key_b, table, total, rows, cols, motion)
+        matching = _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)
+    else:
+        matching = _order_or_assignment(key_a, key_b, table, total, rows, cols, motion)
+    # (The drawing order, when kept, may not be the pairs travelling made.)
+    matching.travelled = sorted(set(travelled) & {(i, j) for i, j, _ in matching.pairs})
+    return matching
+
+
+def _with_travellers(key_a, key_b, table, rows, cols, motion):
+    """The assignment's pairs and those :func:`.travelling.pair_leftovers` makes of the strokes it
+    leaves over: rows, cols (shapes (K,)), and the new pairs (list of (int, int))."""
+    left_a = np.setdiff1d(np.flatnonzero(key_a.valid), rows)
+    left_b = np.setdiff1d(np.flatnonzero(key_b.valid), cols)
+    new_a, new_b = pair_leftovers(table, motion, left_a, left_b, key_a.count == key_b.count)
+    travelled = list(zip(new_a.tolist(), new_b.tolist()))
+    return np.concatenate([rows, new_a]).astype(np.int64), np.concatenate([cols, new_b]).astype(np.int64), travelled
 
 
 def _order_or_assignment(key_a, key_b, table, total, rows, cols, motion):

@@ -251,6 +251,11 @@ class InbetweenPlan:
             self.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
         drawing = DrawingMotion(pairing.rotation, complex(*pairing.motion))
         matched = [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
+        self.travelled = {(int(live_a[i]), int(live_b[j])) for i, j in pairing.travelled}
+        for i, j in sorted(self.travelled):
+            self.messages.append(
+                Message("INFO", f"stroke {i} -> {j}: paired by the drawing's motion (the shapes agree, far apart)")
+            )
         for i, j in forced:
             flip = pair_direction(ka.rg.curve(i), kb.rg.curve(j), ka.rg.closed[i], kb.rg.closed[j], drawing.turn)
             matched.append((i, j, flip))
@@ -360,7 +365,7 @@ class InbetweenPlan:
                 break
             result.frames += frames
         for k, (a, b, flip) in enumerate(self.strokes):
-            _report_pair(result, a, b, flip, parts.used[k], parts.notes[k])
+            _report_pair(result, a, b, flip, parts.used[k], parts.notes[k], (a.index, b.index) in self.travelled)
             if k in self.joined:  # the other pieces of a line drawn in pieces: part of this pair
                 joined = self.joined[k][0]
                 for piece in joined.strokes[1:]:
@@ -500,8 +505,8 @@ def _check_key(name, key):
             raise InvalidCurveError(f"{name}: stroke(s) {bad[:10]} have NaN or infinite {what}: redraw or delete them")
 
 
-def _report_pair(result, a, b, flipped, used, notes):
-    result.pairs.append(PairReport(a.index, b.index, used, "; ".join(notes)))
+def _report_pair(result, a, b, flipped, used, notes, travelled=False):
+    result.pairs.append(PairReport(a.index, b.index, used, "; ".join(notes), travelled))
     if flipped:
         notes = ["the second key's stroke runs the other way: flipped", *notes]
     fell_back = used.startswith((FALLBACK_METHOD, ALIGNED_METHOD)) or used == "straight point motion"

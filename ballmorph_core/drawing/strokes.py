@@ -211,12 +211,16 @@ class PairReport:
         The morph actually used (or 'appear' / 'disappear' / 'hold').
     reason : str
         Why a fallback was used ('' when the requested morph worked).
+    travelled : bool
+        Whether the pair was made by the drawing's motion: left over by the assignment (too far
+        apart for it), paired because the shapes agree (see :mod:`.travelling`).
     """
 
     stroke_a: int
     stroke_b: int
     method: str
     reason: str = ""
+    travelled: bool = False
 
 
 @dataclass
