@@ -1007,6 +1007,33 @@ def figure_travel(keys, frames, times, index):
     return _at_most("travelling stroke off its blend / size", worst, 1e-6, f"{worst:.2g}", "≤ 1e-06")
 
 
+def _centre(stroke):
+    return resample(stroke.xy, stroke.cyclic, 64).mean(axis=0)
+
+
+def figure_riding(keys, frames, times):
+    """The smallest stroke (a valve, a dot) rides on the open strokes (spokes): on every
+    in-between its centre sits where the similarity taking key A's open strokes' centres onto
+    the frame's takes it (within 0.5% of the largest stroke's size: the wheel's)."""
+    size = max(float(np.ptp(s.xy, axis=0).max()) for s in keys[0])
+
+    def parts(drawing):
+        rider = min(drawing, key=lambda s: (s.length, len(s.xy)))
+        return _centre(rider), np.array([_centre(s) for s in drawing if not s.cyclic and s is not rider])
+
+    rider_a, group_a = parts(keys[0])
+    worst = 0.0
+    for frame in frames:
+        rider, group = parts(frame)
+        if len(group) != len(group_a):
+            worst = np.inf
+            break
+        a, b = fit_similarity(group_a, group)
+        want = a * complex(*rider_a) + b
+        worst = max(worst, abs(complex(*rider) - want) / size)
+    return _at_most("rider off its group's motion / wheel size", worst, 0.005, _percent(worst), "≤ 0.5%")
+
+
 # ------------------------------------------------------------------ scenes
 
 
@@ -1516,6 +1543,38 @@ def _travel_scenes():
         yield _scene(name, 39, about, keys, [partial(figure_travel, index=3)])
 
 
+def wheel(turn=-30.0, roll=0.6, valve_at=60.0, radius=1.0, dot=False):
+    """A wheel (rim, hub, eight curved spokes, one shorter, and a tyre valve near the rim: a small
+    circle, or a dot) rolling ``roll`` and turning ``turn`` degrees: keys A and B as lists of
+    strokes, and the cyclic flags. Key B's circles (rim, hub, valve) are drawn afresh where they
+    went, from the same angle (circles have no turn of their own); its spokes are key A's turned."""
+
+    def parts(angle, shift):
+        strokes = [circle(radius, shift, 96), circle(0.15 * radius, shift, 24)]
+        for k in range(8):
+            reach = 0.6 if k == 3 else 0.85
+            u = np.linspace(0.2, reach, 12)
+            spoke = radius * np.c_[u, 0.075 * np.sin(np.pi * (u - 0.2) / (reach - 0.2))]
+            strokes.append(turned(turned(spoke, 45.0 * k + 10.0, (0.0, 0.0)), angle, (0.0, 0.0)) + shift)
+        at = np.radians(valve_at + angle)
+        centre = 0.92 * radius * np.array([np.cos(at), np.sin(at)]) + shift
+        strokes.append(centre[None] if dot else circle(0.04 * radius, centre, 16))
+        return strokes
+
+    cyclic = [True, True] + [False] * 8 + [not dot]
+    return parts(0.0, np.zeros(2)), parts(turn, np.array([roll, 0.0])), cyclic
+
+
+def _wheel_scenes():
+    for dot in (False, True):
+        a, b, cyclic = wheel(dot=dot)
+        what = "a dot" if dot else "a small circle"
+        about = f"a wheel rolling 0.6 and turning -30°, its valve {what} near the rim, redrawn where it went"
+        yield _scene(
+            f"wheel-valve-{'dot' if dot else 'circle'}", 39, about, (key(a, cyclic), key(b, cyclic)), [figure_riding]
+        )
+
+
 def _all_scenes():
     yield from _turn_scenes()
     yield _arm_scene()
@@ -1535,6 +1594,7 @@ def _all_scenes():
     yield _point_count_scene()
     yield from _split_scenes()
     yield from _travel_scenes()
+    yield from _wheel_scenes()
 
 
 #: Every scene by name, in the tracker's order.

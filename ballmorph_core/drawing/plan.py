@@ -509,7 +509,7 @@ def _report_pair(result, a, b, flipped, used, notes, travelled=False):
     result.pairs.append(PairReport(a.index, b.index, used, "; ".join(notes), travelled))
     if flipped:
         notes = ["the second key's stroke runs the other way: flipped", *notes]
-    fell_back = used.startswith((FALLBACK_METHOD, ALIGNED_METHOD)) or used == "straight point motion"
+    fell_back = used.startswith((FALLBACK_METHOD, ALIGNED_METHOD)) or used.startswith("straight point motion")
     for note in notes:
         level = "WARNING" if fell_back and note is notes[-1] else "INFO"
         result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {note}"))
