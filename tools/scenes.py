@@ -1007,6 +1007,18 @@ def figure_travel(keys, frames, times, index):
     return _at_most("travelling stroke off its blend / size", worst, 1e-6, f"{worst:.2g}", "≤ 1e-06")
 
 
+def figure_turns(keys, frames, times, angle, tolerance=2.0):
+    """The longest loop's best-fit rotation against key A's on every in-between: ``t angle``
+    within ``tolerance`` degrees (a symmetric loop read the wrong way turns half a turn more)."""
+    start = _main(keys[0], True)
+    worst = 0.0
+    for frame, t in zip(frames, times):
+        stroke = _main(frame, True)
+        turn = np.nan if stroke is None else best_rotation(start.xy, stroke.xy, True)
+        worst = max(worst, abs(wrap_degrees(turn - t * angle)) if np.isfinite(turn) else np.inf)
+    return _at_most("turn off t x the keys' turn, worst", worst, tolerance, f"{worst:.2f}°", f"≤ {tolerance:g}°")
+
+
 def _centre(stroke):
     return resample(stroke.xy, stroke.cyclic, 64).mean(axis=0)
 
@@ -1575,6 +1587,19 @@ def _wheel_scenes():
         )
 
 
+def figure_eight(width=1.0, start=0.0, n=120):
+    """A figure eight (one loop crossing itself, lobes left and right) ``width`` wide and 1 high,
+    drawn from ``start`` degrees along its parameter: shape (n, 2)."""
+    t = np.linspace(0.0, 2 * np.pi, n, endpoint=False) + np.radians(start)
+    return np.c_[width * np.sin(t), 0.5 * np.sin(2 * t)]
+
+
+def _eight_scene():
+    keys = (key([figure_eight()], True), key([turned(figure_eight(1.2, 180.0), 10.0, (0, 0)) + (0.3, 0.1)], True))
+    about = "a figure eight widening 1.2x, turning 10° and moving, key B drawn from its other lobe"
+    return _scene("figure-eight-turn", 39, about, keys, [partial(figure_turns, angle=10.0)])
+
+
 def _all_scenes():
     yield from _turn_scenes()
     yield _arm_scene()
@@ -1595,6 +1620,7 @@ def _all_scenes():
     yield from _split_scenes()
     yield from _travel_scenes()
     yield from _wheel_scenes()
+    yield _eight_scene()
 
 
 #: Every scene by name, in the tracker's order.

@@ -69,6 +69,7 @@ from ..geometry.ragged import Ragged, budget_slices, ragged_arange
 from ..geometry.spatial import box_pairs
 from ..options import MATCHINGS, check_option
 from .assignment import SparseCosts, solve_assignment
+from .symmetry import loop_reversals, unoriented
 from .travelling import pair_leftovers
 
 __all__ = ["Matching", "match_strokes", "pair_direction"]
@@ -611,9 +612,13 @@ class _CostTable:
         if la.size and lb.size:
             ra = _complex(key_a.ring[la]) - self.ca[la, None]
             rb = _complex(key_b.ring[lb]) - self.cb[lb, None]
-            # A loop drawn the other way (its area's sign) is read backwards before fitting.
-            sign_a, sign_b = np.sign(key_a.areas()[la]), np.sign(key_b.areas()[lb])
+            # A loop drawn the other way (its area's sign) is read backwards before fitting; a
+            # loop whose area cannot tell (a figure eight: the sign is round-off) as drawn.
+            flat_a, flat_b = unoriented(key_a.areas()[la], self.ra[la]), unoriented(key_b.areas()[lb], self.rb[lb])
+            sign_a = np.where(flat_a, 0.0, np.sign(key_a.areas()[la]))
+            sign_b = np.where(flat_b, 0.0, np.sign(key_b.areas()[lb]))
             self._loop_fits = _LoopFits(ra, rb, sign_a, sign_b)
+            self._rings = ra, rb
             # Each stroke's row among the loops (-1 for open strokes).
             self._loop_row = np.full(key_a.count, -1), np.full(key_b.count, -1)
             self._loop_row[0][la], self._loop_row[1][lb] = np.arange(len(la)), np.arange(len(lb))
@@ -699,6 +704,12 @@ class _CostTable:
             sign_a, sign_b = self._signs[0][rows], self._signs[1][cols]
             loops = self._loop[0][rows] & self._loop[1][cols]
             reverse[loops] = (sign_a * sign_b < 0)[loops]
+            # Where an area cannot tell (a zero sign), the smallest turn the fits allow does.
+            flat = loops & ((sign_a == 0) | (sign_b == 0))
+            if flat.any():
+                i, j = self._loop_row[0][rows[flat]], self._loop_row[1][cols[flat]]
+                ring_a, ring_b = self._rings
+                reverse[flat] = loop_reversals(ring_a[i], ring_b[j], turn, DIRECTION_TURN, EQUAL_FIT)
         # A dot has no direction: its partner keeps the one it was drawn in.
         return reverse & (self.ra[rows] > 0) & (self.rb[cols] > 0)
 
