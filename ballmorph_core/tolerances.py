@@ -29,3 +29,10 @@ IDENTITY = 1e-9
 #: Fits whose normalised residuals differ by less than this are equally good: the one that
 #: turns least wins (a symmetric shape turned by 90 degrees never turns by round-off).
 EQUAL_FIT = 1e-6
+
+#: Two strokes' shapes agree when the residual of their similarity fit (``sqrt(e)``, 0 for
+#: similar shapes, 1 for shapes nothing alike) is at most this: a V of seven points against
+#: itself slightly opened, a circle against an ellipse 1.5 x 1, a gently bent line against it
+#: bent twice as much, but not a line against an arc of a quarter turn. Strokes left over pair
+#: when theirs agree (however far they travel), pieces join when theirs agree with the line.
+SHAPES_AGREE = 0.25

@@ -1019,6 +1019,20 @@ def figure_turns(keys, frames, times, angle, tolerance=2.0):
     return _at_most("turn off t x the keys' turn, worst", worst, tolerance, f"{worst:.2f}°", f"≤ {tolerance:g}°")
 
 
+def figure_steps(keys, frames, times, limit=1.5):
+    """No pop: the largest frame-to-frame step (keys included) over the median step, each step
+    the Hausdorff distance between the two drawings' ink (a stroke appearing at the middle
+    makes one step as long as its distance from everything)."""
+    size = drawing_size(*keys)
+    inks = [ink_points(d, 0.005 * size) for d in (keys[0], *frames, keys[1])]
+    steps = []
+    for p, q in zip(inks[:-1], inks[1:]):
+        d = np.sqrt(((p[:, None, :] - q[None, :, :]) ** 2).sum(axis=2))
+        steps.append(max(d.min(axis=1).max(), d.min(axis=0).max()))
+    ratio = float(max(steps) / max(np.median(steps), 1e-300))
+    return _at_most("largest step / median step", ratio, limit, f"{ratio:.2f}", f"≤ {limit:g}")
+
+
 def _centre(stroke):
     return resample(stroke.xy, stroke.cyclic, 64).mean(axis=0)
 
@@ -1600,6 +1614,29 @@ def _eight_scene():
     return _scene("figure-eight-turn", 39, about, keys, [partial(figure_turns, angle=10.0)])
 
 
+def restroked(pieces, overlap=0.06, bend=0.6, shift=(0.4, 0.2), length=4.0, n=60):
+    """A back contour (a bow ``length`` long, ``bend`` high, moved by ``shift``) drawn in
+    ``pieces`` strokes along it, each overlapping the next by ``overlap`` of its length: list
+    of (m, 2) strokes."""
+    edges = np.linspace(0.0, 1.0, pieces + 1)
+    out = []
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        lo, hi = max(lo - overlap / 2, 0.0) if lo > 0 else 0.0, min(hi + overlap / 2, 1.0) if hi < 1 else 1.0
+        u = np.linspace(lo, hi, max(int(n * (hi - lo)), 8))
+        out.append(np.c_[length * u, bend * np.sin(np.pi * u)] + shift)
+    return out
+
+
+def _restroke_scenes():
+    whole = restroked(1, bend=0.3, shift=(0.0, 0.0))
+    for count in (2, 3):
+        parts = restroked(count)
+        for name, a, b in ((f"restroke-1-to-{count}", whole, parts), (f"restroke-{count}-to-1", parts, whole)):
+            about = f"a back contour bending, moving, re-stroked in {count} strokes overlapping 6% ({len(a)}->{len(b)})"
+            measures = [partial(figure_ink_blend, tolerance=0.05), figure_steps]
+            yield _scene(name, 39, about, (key(a, False), key(b, False)), measures)
+
+
 def _all_scenes():
     yield from _turn_scenes()
     yield _arm_scene()
@@ -1621,6 +1658,7 @@ def _all_scenes():
     yield from _travel_scenes()
     yield from _wheel_scenes()
     yield _eight_scene()
+    yield from _restroke_scenes()
 
 
 #: Every scene by name, in the tracker's order.

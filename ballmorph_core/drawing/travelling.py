@@ -20,15 +20,13 @@ a pop at the middle is the worst the animator can see).
 
 import numpy as np
 
+from .. import tolerances as tol
 from .assignment import solve_assignment
 
 __all__ = ["TRAVEL_SCALE", "TRAVEL_SHAPE_FIT", "pair_leftovers"]
 
-#: Leftover strokes' shapes agree when the residual of their similarity fit (``sqrt(e)``, 0 for
-#: similar shapes, 1 for shapes nothing alike) is at most this: a V of seven points against
-#: itself slightly opened, a circle against an ellipse 1.5 x 1, but not a line against an arc
-#: of a quarter turn.
-TRAVEL_SHAPE_FIT = 0.25
+#: Leftover strokes' shapes agree (see ``tolerances.SHAPES_AGREE``).
+TRAVEL_SHAPE_FIT = tol.SHAPES_AGREE
 #: ... and the stroke grows or shrinks by less than this factor more than the drawing does.
 TRAVEL_SCALE = 3.0
 
