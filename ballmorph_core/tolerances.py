@@ -36,3 +36,10 @@ EQUAL_FIT = 1e-6
 #: bent twice as much, but not a line against an arc of a quarter turn. Strokes left over pair
 #: when theirs agree (however far they travel), pieces join when theirs agree with the line.
 SHAPES_AGREE = 0.25
+
+#: Stroke ends closer than this (times scale) are meant to be shared (a rope pinned at both
+#: ends, redrawn a hair off its pins): a pair whose both ends are takes no carrier, and those
+#: ends meet halfway (:mod:`ballmorph_core.drawing.ends`), so its in-betweens' ends stay between
+#: the keys' ends and consecutive in-betweens do not cross there. Far above ``SHARED_ENDPOINT``
+#: (exact sharing, round-off), far below a stroke's own length.
+NEAR_SHARED_END = 5e-3

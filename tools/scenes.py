@@ -1033,6 +1033,36 @@ def figure_steps(keys, frames, times, limit=1.5):
     return _at_most("largest step / median step", ratio, limit, f"{ratio:.2f}", f"≤ {limit:g}")
 
 
+def _crossings_between(p, q):
+    """Proper crossings between the segments of two open polylines (int)."""
+    a, b = p[:-1, None], p[1:, None]
+    c, d = q[None, :-1], q[None, 1:]
+    o1, o2, o3, o4 = _orient(a, b, c), _orient(a, b, d), _orient(c, d, a), _orient(c, d, b)
+    return int(np.count_nonzero((o1 * o2 < 0) & (o3 * o4 < 0)))
+
+
+def figure_pinned_ends(keys, frames, times):
+    """The longest open stroke's ends on every in-between, off the segment between the keys'
+    ends, / size (they stay between the keys' ends: at most 1e-6)."""
+    size = drawing_size(*keys)
+    ends = [_main(k, False).xy[[0, -1]] for k in keys]
+    worst = 0.0
+    for frame in frames:
+        stroke = _main(frame, False)
+        for e in (0, 1):
+            a, d = ends[0][e], ends[1][e] - ends[0][e]
+            f = np.clip(np.dot(stroke.xy[-e] - a, d) / max(float(np.dot(d, d)), 1e-300), 0.0, 1.0)
+            worst = max(worst, float(np.linalg.norm(stroke.xy[-e] - (a + f * d))) / size)
+    return _at_most("ends off the keys' ends' segments / size", worst, 1e-6, f"{worst:.2g}", "≤ 1e-06")
+
+
+def figure_sweep_crossings(keys, frames, times):
+    """Crossings between the longest open strokes of consecutive in-betweens (a sweep has none)."""
+    strokes = [_main(f, False).xy for f in frames]
+    count = sum(_crossings_between(p, q) for p, q in zip(strokes[:-1], strokes[1:]))
+    return _at_most("crossings between consecutive in-betweens", count, 0, str(count))
+
+
 def _centre(stroke):
     return resample(stroke.xy, stroke.cyclic, 64).mean(axis=0)
 
@@ -1637,6 +1667,24 @@ def _restroke_scenes():
             yield _scene(name, 39, about, (key(a, False), key(b, False)), measures)
 
 
+def pinned_rope(sag, off=(0.0, 0.0, 0.0, 0.0), span=4.0, n=50):
+    """A rope between pins at (0, 0) and (``span``, 0), sagging ``sag`` and swaying, its ends
+    moved by ``off`` (x0, y0, x1, y1): shape (n, 2)."""
+    u = np.linspace(0.0, 1.0, n)
+    x0, y0, x1, y1 = np.array([0.0, 0.0, span, 0.0]) + off
+    return (
+        np.c_[x0 + (x1 - x0) * u, y0 + (y1 - y0) * u]
+        + np.c_[0.3 * sag * np.sin(2 * np.pi * u), -sag * np.sin(np.pi * u)]
+    )
+
+
+def _rope_scene():
+    # Key B's ends a hair off the pins: 0.3% of the drawing (its size, 4) and less.
+    keys = (key([pinned_rope(0.3)], False), key([pinned_rope(1.0, (0.012, 0.006, -0.0084, -0.012))], False))
+    about = "a rope pinned at both ends sagging more, key B's ends drawn 0.3% of the drawing off the pins"
+    return _scene("rope-pinned", 39, about, keys, [figure_pinned_ends, figure_sweep_crossings])
+
+
 def _all_scenes():
     yield from _turn_scenes()
     yield _arm_scene()
@@ -1659,6 +1707,7 @@ def _all_scenes():
     yield from _wheel_scenes()
     yield _eight_scene()
     yield from _restroke_scenes()
+    yield _rope_scene()
 
 
 #: Every scene by name, in the tracker's order.

@@ -423,7 +423,7 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     coincident = residual <= tol.OVERLAP * scale
     pieces = np.array([m is not None for m in given], dtype=bool)
     settle = ~closed & ~coincident & ((carrier != "none") | pieces)
-    ends = settle_ends(R, Q, scale, settle, trim=settle & ~pieces)
+    ends = settle_ends(R, Q, scale, settle, trim=settle & ~pieces, pin=~motions.moving)
     Rc, Qc = ends.common_p, ends.common_q
     # Of the common parts: only settled pairs have other curves than the whole ones measured above.
     settled = np.flatnonzero(settle)
