@@ -1,4 +1,4 @@
-"""Scenes drawn the way animators draw, with the figures each one must meet (tracker issues 11 and 12).
+"""Scenes drawn the way animators draw, with the figures each one must meet (tracker issues 11, 12, 39).
 
 A :class:`Scene` is two keys (lists of ``(n, 2)`` strokes on Blender's front canvas, with cyclic
 flags), the in-between times (7 even steps, frames 2..8 between keys on frames 1 and 9), the core
@@ -1101,7 +1101,7 @@ class Scene:
     ----------
     name : str
     issue : int
-        The tracker issue (11: correspondence, 12: fidelity).
+        The tracker issue (11: correspondence, 12: fidelity, 39: drawing-level motion).
     about : str
         What the scene is, in a sentence.
     keys : tuple of Key
