@@ -57,3 +57,13 @@ def test_a_reversed_window_cuts_a_stroke_into_overlapping_pieces():
     xs = [cut.positions[cut.points(i)][:, 0] for i in range(2)]
     np.testing.assert_allclose([xs[0][-1], xs[1][0]], [0.6, 0.5])
     assert len(cut_frame(line, {0: [(5.0, 5.0)]})) == 1  # an empty window cuts nothing
+
+
+@pytest.mark.parametrize("count, flipped, order", [(2, [1], [1, 0]), (3, [1], [2, 0, 1]), (3, [0, 2], [1, 2, 0])])
+def test_pieces_drawn_in_any_order_and_direction_join_the_same(count, flipped, order):
+    whole = scenes.restroked(1, bend=0.3, shift=(0.0, 0.0))
+    parts = [p[::-1] if i in flipped else p for i, p in enumerate(scenes.restroked(count))]
+    parts = [parts[i] for i in order]
+    for a, b in ((whole, parts), (parts, whole)):
+        ink, steps, _ = _figures(a, b)
+        assert ink.ok and steps.ok, f"{count} pieces, {flipped} reversed, in order {order}: {ink}; {steps}"
