@@ -522,7 +522,7 @@ def riding_fits(P, Q, drawing):
     return Fits(A, b, np.zeros(len(P))), moving
 
 
-def motions(P, fits, kind, scale, moving, drawing=None):
+def motions(P, fits, kind, scale, moving, drawing=None, turned=None):
     """The carrier motions of registered pairs (Motions).
 
     Parameters
@@ -540,8 +540,11 @@ def motions(P, fits, kind, scale, moving, drawing=None):
     drawing : DrawingMotion, optional
         The keys' overall motion: a pair turning with it may turn about a farther pivot, and a
         loop with no orientation of its own turns as it does (:func:`orientation_free`).
+    turned : ndarray of bool, shape (C,), optional
+        Pairs whose turn is given (hinted: the animator said where a point goes): they keep
+        it, oriented or not.
     """
-    fits = _drawing_turns(P, fits, moving, drawing)
+    fits = _drawing_turns(P, fits, moving if turned is None else moving & ~turned, drawing)
     theta, stretch = _polar(fits.A)
     pivot = _pivots(P, fits, _reach_scales(P, fits, scale, drawing))
     A, b = fits.A.copy(), fits.b.copy()
