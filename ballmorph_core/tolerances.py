@@ -38,3 +38,17 @@ EQUAL_FIT = 1e-6
 #: spread: ``x / max(d, TINY)``): far below anything a drawing in float64 yields, it only turns
 #: 0 / 0 into 0 instead of NaN. Not a length tolerance: comparisons use the relative ones above.
 TINY = 1e-300
+
+#: Two strokes' shapes agree when the residual of their similarity fit (``sqrt(e)``, 0 for
+#: similar shapes, 1 for shapes nothing alike) is at most this: a V of seven points against
+#: itself slightly opened, a circle against an ellipse 1.5 x 1, a gently bent line against it
+#: bent twice as much, but not a line against an arc of a quarter turn. Strokes left over pair
+#: when theirs agree (however far they travel), pieces join when theirs agree with the line.
+SHAPES_AGREE = 0.25
+
+#: Stroke ends closer than this (times scale) are meant to be shared (a rope pinned at both
+#: ends, redrawn a hair off its pins): a pair whose both ends are takes no carrier, and those
+#: ends meet halfway (:mod:`ballmorph_core.drawing.ends`), so its in-betweens' ends stay between
+#: the keys' ends and consecutive in-betweens do not cross there. Far above ``SHARED_ENDPOINT``
+#: (exact sharing, round-off), far below a stroke's own length.
+NEAR_SHARED_END = 5e-3

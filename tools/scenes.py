@@ -1,4 +1,4 @@
-"""Scenes drawn the way animators draw, with the figures each one must meet (tracker issues 11 and 12).
+"""Scenes drawn the way animators draw, with the figures each one must meet (tracker issues 11, 12, 39).
 
 A :class:`Scene` is two keys (lists of ``(n, 2)`` strokes on Blender's front canvas, with cyclic
 flags), the in-between times (7 even steps, frames 2..8 between keys on frames 1 and 9), the core
@@ -993,6 +993,103 @@ def figure_ink_jumps(keys, frames, times):
     return _at_most("largest ink jump", jump, limit, f"{jump:.3f}", f"≤ {limit:.3f} (keys' difference)")
 
 
+def figure_travel(keys, frames, times, index):
+    """Stroke ``index`` of both keys (one shape, moved) on every in-between at its keys' linear
+    blend: the worst of each frame's nearest stroke, its largest point distance / size (a
+    stroke held on a key, or popping at the middle, is off by its whole travel)."""
+    size = drawing_size(*keys)
+    a, b = keys[0][index].xy, keys[1][index].xy
+    worst = 0.0
+    for frame, t in zip(frames, times):
+        want = (1 - t) * a + t * b
+        near = [np.abs(s.xy - want).max() for s in frame if len(s.xy) == len(want)]
+        worst = max(worst, min(near, default=np.inf) / size)
+    return _at_most("travelling stroke off its blend / size", worst, 1e-6, f"{worst:.2g}", "≤ 1e-06")
+
+
+def figure_turns(keys, frames, times, angle, tolerance=2.0):
+    """The longest loop's best-fit rotation against key A's on every in-between: ``t angle``
+    within ``tolerance`` degrees (a symmetric loop read the wrong way turns half a turn more)."""
+    start = _main(keys[0], True)
+    worst = 0.0
+    for frame, t in zip(frames, times):
+        stroke = _main(frame, True)
+        turn = np.nan if stroke is None else best_rotation(start.xy, stroke.xy, True)
+        worst = max(worst, abs(wrap_degrees(turn - t * angle)) if np.isfinite(turn) else np.inf)
+    return _at_most("turn off t x the keys' turn, worst", worst, tolerance, f"{worst:.2f}°", f"≤ {tolerance:g}°")
+
+
+def figure_steps(keys, frames, times, limit=1.5):
+    """No pop: the largest frame-to-frame step (keys included) over the median step, each step
+    the Hausdorff distance between the two drawings' ink (a stroke appearing at the middle
+    makes one step as long as its distance from everything)."""
+    size = drawing_size(*keys)
+    inks = [ink_points(d, 0.005 * size) for d in (keys[0], *frames, keys[1])]
+    steps = []
+    for p, q in zip(inks[:-1], inks[1:]):
+        d = np.sqrt(((p[:, None, :] - q[None, :, :]) ** 2).sum(axis=2))
+        steps.append(max(d.min(axis=1).max(), d.min(axis=0).max()))
+    ratio = float(max(steps) / max(np.median(steps), 1e-300))
+    return _at_most("largest step / median step", ratio, limit, f"{ratio:.2f}", f"≤ {limit:g}")
+
+
+def _crossings_between(p, q):
+    """Proper crossings between the segments of two open polylines (int)."""
+    a, b = p[:-1, None], p[1:, None]
+    c, d = q[None, :-1], q[None, 1:]
+    o1, o2, o3, o4 = _orient(a, b, c), _orient(a, b, d), _orient(c, d, a), _orient(c, d, b)
+    return int(np.count_nonzero((o1 * o2 < 0) & (o3 * o4 < 0)))
+
+
+def figure_pinned_ends(keys, frames, times):
+    """The longest open stroke's ends on every in-between, off the segment between the keys'
+    ends, / size (they stay between the keys' ends: at most 1e-6)."""
+    size = drawing_size(*keys)
+    ends = [_main(k, False).xy[[0, -1]] for k in keys]
+    worst = 0.0
+    for frame in frames:
+        stroke = _main(frame, False)
+        for e in (0, 1):
+            a, d = ends[0][e], ends[1][e] - ends[0][e]
+            f = np.clip(np.dot(stroke.xy[-e] - a, d) / max(float(np.dot(d, d)), 1e-300), 0.0, 1.0)
+            worst = max(worst, float(np.linalg.norm(stroke.xy[-e] - (a + f * d))) / size)
+    return _at_most("ends off the keys' ends' segments / size", worst, 1e-6, f"{worst:.2g}", "≤ 1e-06")
+
+
+def figure_sweep_crossings(keys, frames, times):
+    """Crossings between the longest open strokes of consecutive in-betweens (a sweep has none)."""
+    strokes = [_main(f, False).xy for f in frames]
+    count = sum(_crossings_between(p, q) for p, q in zip(strokes[:-1], strokes[1:]))
+    return _at_most("crossings between consecutive in-betweens", count, 0, str(count))
+
+
+def _centre(stroke):
+    return resample(stroke.xy, stroke.cyclic, 64).mean(axis=0)
+
+
+def figure_riding(keys, frames, times):
+    """The smallest stroke (a valve, a dot) rides on the open strokes (spokes): on every
+    in-between its centre sits where the similarity taking key A's open strokes' centres onto
+    the frame's takes it (within 0.5% of the largest stroke's size: the wheel's)."""
+    size = max(float(np.ptp(s.xy, axis=0).max()) for s in keys[0])
+
+    def parts(drawing):
+        rider = min(drawing, key=lambda s: (s.length, len(s.xy)))
+        return _centre(rider), np.array([_centre(s) for s in drawing if not s.cyclic and s is not rider])
+
+    rider_a, group_a = parts(keys[0])
+    worst = 0.0
+    for frame in frames:
+        rider, group = parts(frame)
+        if len(group) != len(group_a):
+            worst = np.inf
+            break
+        a, b = fit_similarity(group_a, group)
+        want = a * complex(*rider_a) + b
+        worst = max(worst, abs(complex(*rider) - want) / size)
+    return _at_most("rider off its group's motion / wheel size", worst, 0.005, _percent(worst), "≤ 0.5%")
+
+
 # ------------------------------------------------------------------ scenes
 
 
@@ -1004,7 +1101,7 @@ class Scene:
     ----------
     name : str
     issue : int
-        The tracker issue (11: correspondence, 12: fidelity).
+        The tracker issue (11: correspondence, 12: fidelity, 39: drawing-level motion).
     about : str
         What the scene is, in a sentence.
     keys : tuple of Key
@@ -1471,6 +1568,123 @@ def _split_scenes():
         yield _scene(name, 12, about, keys, [figure_ink_blend, figure_ink_jumps])
 
 
+def thrown_ball(radius=0.09, throw=4.2):
+    """Ground, a tree (trunk, crown) and a ball of ``radius`` thrown ``throw`` across the frame,
+    rising a little: keys A and B as lists of strokes, and the cyclic flags."""
+    ground, trunk = polyline([(-1.0, 0.0), (5.0, 0.0)], 30), bowed((2.0, 0.0), (2.0, 1.2), 0.03, 20)
+    still = [ground, trunk, circle(0.5, (2.0, 1.6), 40)]
+    balls = circle(radius, (-0.5, 0.8), 24), circle(radius, (-0.5 + throw, 0.9), 24)
+    return [*still, balls[0]], [*still, balls[1]], [False, False, True, True]
+
+
+def flying_bird(flight=2.2, span=0.3):
+    """A landscape (hills, a bush, a house's roof) and a bird, a V of seven points ``span`` wide,
+    flying ``flight`` across it: keys A and B as lists of strokes, and the cyclic flags."""
+    still = [
+        bowed((-2.0, 0.0), (3.0, 0.2), 0.3, 40),
+        bowed((0.0, 0.1), (1.0, 1.0), 0.2, 30),
+        polyline([(1.5, 0.3), (1.8, 1.1), (2.1, 0.3)], 3),
+    ]
+    u = np.linspace(-0.5, 0.5, 7)
+    bird = np.c_[span * u, span * 0.9 * u**2]
+    return [*still, bird + (-1.2, 1.5)], [*still, bird + (-1.2 + flight, 1.6)], [False] * 4
+
+
+def _travel_scenes():
+    for name, (a, b, cyclic), about in (
+        ("thrown-ball", thrown_ball(), "a ball of radius 0.09 thrown 4.2 past a ground line and a tree that stay"),
+        ("flying-bird", flying_bird(), "a bird (a V of 7 points) flying 2.2 across a landscape that stays"),
+    ):
+        keys = (key(a, cyclic), key(b, cyclic))
+        yield _scene(name, 39, about, keys, [partial(figure_travel, index=3)])
+
+
+def wheel(turn=-30.0, roll=0.6, valve_at=60.0, radius=1.0, dot=False):
+    """A wheel (rim, hub, eight curved spokes, one shorter, and a tyre valve near the rim: a small
+    circle, or a dot) rolling ``roll`` and turning ``turn`` degrees: keys A and B as lists of
+    strokes, and the cyclic flags. Key B's circles (rim, hub, valve) are drawn afresh where they
+    went, from the same angle (circles have no turn of their own); its spokes are key A's turned."""
+
+    def parts(angle, shift):
+        strokes = [circle(radius, shift, 96), circle(0.15 * radius, shift, 24)]
+        for k in range(8):
+            reach = 0.6 if k == 3 else 0.85
+            u = np.linspace(0.2, reach, 12)
+            spoke = radius * np.c_[u, 0.075 * np.sin(np.pi * (u - 0.2) / (reach - 0.2))]
+            strokes.append(turned(turned(spoke, 45.0 * k + 10.0, (0.0, 0.0)), angle, (0.0, 0.0)) + shift)
+        at = np.radians(valve_at + angle)
+        centre = 0.92 * radius * np.array([np.cos(at), np.sin(at)]) + shift
+        strokes.append(centre[None] if dot else circle(0.04 * radius, centre, 16))
+        return strokes
+
+    cyclic = [True, True] + [False] * 8 + [not dot]
+    return parts(0.0, np.zeros(2)), parts(turn, np.array([roll, 0.0])), cyclic
+
+
+def _wheel_scenes():
+    for dot in (False, True):
+        a, b, cyclic = wheel(dot=dot)
+        what = "a dot" if dot else "a small circle"
+        about = f"a wheel rolling 0.6 and turning -30°, its valve {what} near the rim, redrawn where it went"
+        yield _scene(
+            f"wheel-valve-{'dot' if dot else 'circle'}", 39, about, (key(a, cyclic), key(b, cyclic)), [figure_riding]
+        )
+
+
+def figure_eight(width=1.0, start=0.0, n=120):
+    """A figure eight (one loop crossing itself, lobes left and right) ``width`` wide and 1 high,
+    drawn from ``start`` degrees along its parameter: shape (n, 2)."""
+    t = np.linspace(0.0, 2 * np.pi, n, endpoint=False) + np.radians(start)
+    return np.c_[width * np.sin(t), 0.5 * np.sin(2 * t)]
+
+
+def _eight_scene():
+    keys = (key([figure_eight()], True), key([turned(figure_eight(1.2, 180.0), 10.0, (0, 0)) + (0.3, 0.1)], True))
+    about = "a figure eight widening 1.2x, turning 10° and moving, key B drawn from its other lobe"
+    return _scene("figure-eight-turn", 39, about, keys, [partial(figure_turns, angle=10.0)])
+
+
+def restroked(pieces, overlap=0.06, bend=0.6, shift=(0.4, 0.2), length=4.0, n=60):
+    """A back contour (a bow ``length`` long, ``bend`` high, moved by ``shift``) drawn in
+    ``pieces`` strokes along it, each overlapping the next by ``overlap`` of its length: list
+    of (m, 2) strokes."""
+    edges = np.linspace(0.0, 1.0, pieces + 1)
+    out = []
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        lo, hi = max(lo - overlap / 2, 0.0) if lo > 0 else 0.0, min(hi + overlap / 2, 1.0) if hi < 1 else 1.0
+        u = np.linspace(lo, hi, max(int(n * (hi - lo)), 8))
+        out.append(np.c_[length * u, bend * np.sin(np.pi * u)] + shift)
+    return out
+
+
+def _restroke_scenes():
+    whole = restroked(1, bend=0.3, shift=(0.0, 0.0))
+    for count in (2, 3):
+        parts = restroked(count)
+        for name, a, b in ((f"restroke-1-to-{count}", whole, parts), (f"restroke-{count}-to-1", parts, whole)):
+            about = f"a back contour bending, moving, re-stroked in {count} strokes overlapping 6% ({len(a)}->{len(b)})"
+            measures = [partial(figure_ink_blend, tolerance=0.05), figure_steps]
+            yield _scene(name, 39, about, (key(a, False), key(b, False)), measures)
+
+
+def pinned_rope(sag, off=(0.0, 0.0, 0.0, 0.0), span=4.0, n=50):
+    """A rope between pins at (0, 0) and (``span``, 0), sagging ``sag`` and swaying, its ends
+    moved by ``off`` (x0, y0, x1, y1): shape (n, 2)."""
+    u = np.linspace(0.0, 1.0, n)
+    x0, y0, x1, y1 = np.array([0.0, 0.0, span, 0.0]) + off
+    return (
+        np.c_[x0 + (x1 - x0) * u, y0 + (y1 - y0) * u]
+        + np.c_[0.3 * sag * np.sin(2 * np.pi * u), -sag * np.sin(np.pi * u)]
+    )
+
+
+def _rope_scene():
+    # Key B's ends a hair off the pins: 0.3% of the drawing (its size, 4) and less.
+    keys = (key([pinned_rope(0.3)], False), key([pinned_rope(1.0, (0.012, 0.006, -0.0084, -0.012))], False))
+    about = "a rope pinned at both ends sagging more, key B's ends drawn 0.3% of the drawing off the pins"
+    return _scene("rope-pinned", 39, about, keys, [figure_pinned_ends, figure_sweep_crossings])
+
+
 def _all_scenes():
     yield from _turn_scenes()
     yield _arm_scene()
@@ -1489,6 +1703,11 @@ def _all_scenes():
     yield from _corner_scenes()
     yield _point_count_scene()
     yield from _split_scenes()
+    yield from _travel_scenes()
+    yield from _wheel_scenes()
+    yield _eight_scene()
+    yield from _restroke_scenes()
+    yield _rope_scene()
 
 
 #: Every scene by name, in the tracker's order.

@@ -256,6 +256,11 @@ class InbetweenPlan:
             self.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
         drawing = Similarity(pairing.rotation, complex(*pairing.motion))
         matched = [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
+        self.travelled = {(int(live_a[i]), int(live_b[j])) for i, j in pairing.travelled}
+        for i, j in sorted(self.travelled):
+            self.messages.append(
+                Message("INFO", f"stroke {i} -> {j}: paired by the drawing's motion (the shapes agree, far apart)")
+            )
         for i, j in forced:
             flip = pair_direction(ka.rg.curve(i), kb.rg.curve(j), ka.rg.closed[i], kb.rg.closed[j], drawing.turn)
             matched.append((i, j, flip))
@@ -391,7 +396,7 @@ class InbetweenPlan:
                 break
             result.frames += frames
         for k, (a, b, flip) in enumerate(self.strokes):
-            _report_pair(result, a, b, flip, parts.used[k], parts.notes[k])
+            _report_pair(result, a, b, flip, parts.used[k], parts.notes[k], (a.index, b.index) in self.travelled)
             if k in self.joined:  # the other pieces of a line drawn in pieces: part of this pair
                 joined = self.joined[k][0]
                 for piece in joined.strokes[1:]:
@@ -543,12 +548,12 @@ def _check_key(name, key):
         )
 
 
-def _report_pair(result, a, b, flipped, used, notes):
-    result.pairs.append(PairReport(a.index, b.index, str(used), "; ".join(notes), used=used))
+def _report_pair(result, a, b, flipped, used, notes, travelled=False):
+    result.pairs.append(PairReport(a.index, b.index, str(used), "; ".join(notes), used=used, travelled=travelled))
     if flipped:
         notes = ["the second key's stroke runs the other way: flipped", *notes]
     first = used.morphs[0] if used.morphs else ""
-    fell_back = first in (FALLBACK_METHOD, ALIGNED_METHOD) or used == PairMorphs((STRAIGHT_POINT_MOTION,))
+    fell_back = first in (FALLBACK_METHOD, ALIGNED_METHOD) or first == STRAIGHT_POINT_MOTION
     for note in notes:
         level = "WARNING" if fell_back and note is notes[-1] else "INFO"
         result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {note}"))

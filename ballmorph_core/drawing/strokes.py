@@ -259,6 +259,9 @@ class PairReport:
     outcome : PairOutcome
     used : PairMorphs
         The morphs and carrier, as fields (``method`` words them): read these, never the text.
+    travelled : bool
+        Whether the pair was made by the drawing's motion: left over by the assignment (too far
+        apart for it), paired because the shapes agree (see :mod:`.travelling`).
     """
 
     stroke_a: int
@@ -267,6 +270,7 @@ class PairReport:
     reason: str = ""
     outcome: PairOutcome = PairOutcome.MORPHED
     used: PairMorphs = PairMorphs()
+    travelled: bool = False
 
 
 @dataclass

@@ -339,7 +339,7 @@ def _pair_motion(a, b, hints, carrier, drawing):
     size = np.array([max(float(np.ptp(np.r_[a.xy, b.xy], axis=0).max()), tol.TINY)])
     still = abs(alpha - 1.0) <= 1e-12 and abs(beta) <= 1e-12 * size[0]
     kind = "rigid" if carrier == "rigid" else "similarity"
-    return motions(P, fits, kind, size, np.array([not still]), drawing)
+    return motions(P, fits, kind, size, np.array([not still]), drawing, turned=np.ones(1, bool))
 
 
 def _cut(a, hints, first):

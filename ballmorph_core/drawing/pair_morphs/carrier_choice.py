@@ -3,7 +3,8 @@
 A carrier is for a pair that *moved*: turned, swung, travelled, grew. The ball-morph alone
 follows two kinds of pairs as they are drawn, and they get none:
 
-- pairs the paper's configurations take directly: strokes sharing both endpoints, loops one
+- pairs the paper's configurations take directly: strokes sharing both endpoints (within
+  ``tolerances.NEAR_SHARED_END``: the ends settle the rest, see :mod:`.ends`), loops one
   inside the other without crossing (configurations 2 and 1);
 - loops that overlap (at least ``OVERLAPPING`` of one lies inside the other) and whose
   registration explains little of their difference: the closest-point distance between the
@@ -64,7 +65,7 @@ def handled_directly(P, Q, scale):
     scale : ndarray, shape (C,)
     """
     n, closed = len(P), P.closed
-    end_eps = tol.SHARED_ENDPOINT * scale
+    end_eps = tol.NEAR_SHARED_END * scale  # ends meant to be shared are (issue 39)
     first = np.linalg.norm(P.pts[P.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
     last = np.linalg.norm(P.pts[P.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
     # A loop inside another has its box inside the other's: a cheap necessary test first.

@@ -14,6 +14,13 @@ strokes that share both ends, so each end is settled first:
 
 The common parts (P displaced, Q) then share both ends and go through the crossings and the
 ball-map as any stroke pair.
+
+Ends within ``tolerances.NEAR_SHARED_END`` of each other (of the pair's size) are meant to be
+shared (a rope pinned at both ends, redrawn a hair off its pins): such an end gap is no overhang,
+and it is not undone as ``1 - t`` either (the in-betweens' ends would then sweep across the pins
+and consecutive in-betweens cross there). Both common parts meet halfway instead, P displaced by
+half the gap and Q by minus half: every in-between's end is the pins' midpoint, between the
+keys' ends, and consecutive in-betweens meet there without crossing.
 """
 
 from dataclasses import dataclass
@@ -194,11 +201,14 @@ def _along(s_on_other, dist, length_other, end_tol, which):
     return np.isfinite(dist) & (depth > end_tol), depth / np.maximum(length_other, tol.TINY)
 
 
-def _trims(R, Q, scale, trim):
-    """The common parts' arc-length ranges on R and Q, shapes (C, 2) each."""
+def _trims(R, Q, scale, trim, pin):
+    """The common parts' arc-length ranges on R and Q, shapes (C, 2) each (``pin``: the pairs
+    whose ends meant to be shared are, shape (C,))."""
     n = len(R)
     keep_p, keep_q = np.c_[np.zeros(n), R.length], np.c_[np.zeros(n), Q.length]
-    end_tol, reach = tol.SHARED_ENDPOINT * scale, ALONG * scale
+    # An end within NEAR_SHARED_END of the other's, as drawn, is meant to be shared: a gap to
+    # close, not an overhang to slide.
+    end_tol, reach = np.where(pin, tol.NEAR_SHARED_END, tol.SHARED_ENDPOINT) * scale, ALONG * scale
     rows = np.flatnonzero(trim)  # only their ends are searched (none for loops)
     if len(rows):
         on_q, on_r = _ends_onto(R, Q, reach, rows), _ends_onto(Q, R, reach, rows)
@@ -220,7 +230,7 @@ def _trims(R, Q, scale, trim):
     return keep_p, keep_q
 
 
-def settle_ends(R, Q, scale, opened, trim=None):
+def settle_ends(R, Q, scale, opened, trim=None, pin=None):
     """The common parts and end gaps of every open pair (see the module docstring).
 
     Parameters
@@ -234,13 +244,20 @@ def settle_ends(R, Q, scale, opened, trim=None):
     trim : ndarray of bool, shape (C,), optional
         The settled pairs whose overhangs may be trimmed (default: all); the others are only
         displaced (pieces cut at hints: their ends are the hinted points).
+    pin : ndarray of bool, shape (C,), optional
+        The pairs whose ends within ``tolerances.NEAR_SHARED_END`` are meant to be shared (of
+        those trimmed): pairs taken as drawn, without a carrier (default: none). After a
+        registration, ends that nearly meet say how well it fits, not where the animator
+        pinned them.
 
     Returns
     -------
     Ends
     """
     n = len(R)
-    keep_p, keep_q = _trims(R, Q, scale, opened if trim is None else opened & trim)
+    trim = opened if trim is None else opened & trim
+    pin = trim & (np.zeros(n, bool) if pin is None else pin)
+    keep_p, keep_q = _trims(R, Q, scale, trim, pin)
     if not opened.any():  # a drawing of loops: every pair stays exactly as it is
         return Ends(keep_p, keep_q, np.zeros((n, 2, 2)), R, Q, R.s / np.maximum(R.length, tol.TINY)[R.owner])
     idx = np.arange(n)
@@ -249,17 +266,19 @@ def settle_ends(R, Q, scale, opened, trim=None):
     last = part_q.pts[part_q.offsets[1:] - 1] - part_p.pts[part_p.offsets[1:] - 1]
     gap = np.where(opened[:, None, None], np.stack([first, last], axis=1), 0.0)
     # Ends already shared need no displacement.
-    gap = np.where(np.linalg.norm(gap, axis=2)[..., None] <= tol.SHARED_ENDPOINT * scale[:, None, None], 0.0, gap)
+    width = np.linalg.norm(gap, axis=2)[..., None]
+    gap = np.where(width <= tol.SHARED_ENDPOINT * scale[:, None, None], 0.0, gap)
+    # Ends meant to be shared (untrimmed: not an overhang's; not a hinted piece's, whose ends
+    # are the hinted points) meet halfway, for good.
+    whole_ends = np.stack([(keep_p[:, 0] == 0) & (keep_q[:, 0] == 0), _untrimmed(keep_p, keep_q, R, Q)], axis=1)
+    whole_ends &= pin[:, None]
+    pinned = np.where((width <= tol.NEAR_SHARED_END * scale[:, None, None]) & whole_ends[..., None], 0.5 * gap, 0.0)
+    part_q = _displaced(part_q, part_q.s / np.maximum(part_q.length, tol.TINY)[part_q.owner], -pinned)
+    # R meets Q halfway at those ends; beyond that (the other gaps) it is displaced by what
+    # the in-betweens undo as 1 - t.
+    moved_by, gap = gap - pinned, gap - 2 * pinned
     u = part_p.s / np.maximum(part_p.length, tol.TINY)[part_p.owner]
-    # R's common part displaced by (1 - u) gap_first + u gap_last, coordinate by coordinate
-    # (1-D gathers of the pairs' gaps, not (N, 2) rows of them: the same values, several
-    # times faster).
-    moved, rest = np.empty_like(part_p.pts), 1 - u
-    for k in range(2):
-        shift = rest * np.take(gap[:, 0, k], part_p.owner)
-        shift += u * np.take(gap[:, 1, k], part_p.owner)
-        np.add(part_p.pts[:, k], shift, out=moved[:, k])
-    common_p = Ragged(moved, part_p.offsets, R.closed)
+    common_p = _displaced(part_p, u, moved_by, R.closed)
     # The pieces are open curves: of open pairs they are the common parts as they come.
     common_q = Ragged(part_q.pts, part_q.offsets, Q.closed) if Q.closed.any() else part_q
     whole = ~opened
@@ -267,6 +286,26 @@ def settle_ends(R, Q, scale, opened, trim=None):
         common_p, common_q = _merge(common_p, R, whole), _merge(common_q, Q, whole)
         u = common_p.s / np.maximum(common_p.length, tol.TINY)[common_p.owner]
     return Ends(keep_p, keep_q, gap, common_p, common_q, u)
+
+
+def _untrimmed(keep_p, keep_q, R, Q):
+    """Pairs whose last ends are both kept (no overhang there), shape (C,)."""
+    return (keep_p[:, 1] == R.length) & (keep_q[:, 1] == Q.length)
+
+
+def _displaced(part, u, gap, closed=None):
+    """Curves ``part`` (Ragged) displaced by ``(1 - u) gap_first + u gap_last`` (``u``: each
+    vertex's fraction along its curve, shape (N,); ``gap``: shape (C, 2, 2)), coordinate by
+    coordinate (1-D gathers of the pairs' gaps, not (N, 2) rows of them: the same values,
+    several times faster); the same ``part`` where no gap is and ``closed`` is not given."""
+    if closed is None and not np.any(gap):
+        return part
+    moved, rest = np.empty_like(part.pts), 1 - u
+    for k in range(2):
+        shift = rest * np.take(gap[:, 0, k], part.owner)
+        shift += u * np.take(gap[:, 1, k], part.owner)
+        np.add(part.pts[:, k], shift, out=moved[:, k])
+    return Ragged(moved, part.offsets, part.closed if closed is None else closed)
 
 
 def _merge(parts, whole, keep):

@@ -63,7 +63,7 @@ from .fallbacks import (
     unsplittable,
 )
 from .pair_plans import PairPlans
-from .point_routes import guarded, own_points_road, polyline_road
+from .point_routes import dot_road, guarded, own_points_road, polyline_road
 from .registration import Motions, identity_residual
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
@@ -342,7 +342,7 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     coincident = residual <= tol.OVERLAP * scale
     pieces = np.array([m is not None for m in given], dtype=bool)
     settle = ~closed & ~coincident & ((carrier != "none") | pieces)
-    ends = settle_ends(R, Q, scale, settle, trim=settle & ~pieces)
+    ends = settle_ends(R, Q, scale, settle, trim=settle & ~pieces, pin=~motions.moving)
     Rc, Qc = ends.common_p, ends.common_q
     # Of the common parts: only settled pairs have other curves than the whole ones measured above.
     settled = np.flatnonzero(settle)
@@ -484,14 +484,15 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     """
     ready = prepare_pairs(pairs, method, spacing)
     plans = PairPlans(pairs)
-    for c, pair in enumerate(pairs):
-        if pair.P is None:
-            plans.add_morph(c, point_motion(pair.xy_a, pair.u_a, pair.xy_b, pair.u_b), False)
+    dots = [c for c, pair in enumerate(pairs) if pair.P is None]
     if method not in BALL_METHODS:
+        for c in dots:
+            plans.add_morph(c, point_motion(pairs[c].xy_a, pairs[c].u_a, pairs[c].xy_b, pairs[c].u_b), False)
         _comparison_road(plans, pairs, ready, method, spacing)
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
+    dot_road(plans, pairs, dots, carrier, drawing)
     # Pieces of hinted pairs share their pair's carrier: only the ball road takes them.
     pieces = [c for c in ready if pairs[c].motion is not None]
     ready = [c for c in ready if pairs[c].motion is None]

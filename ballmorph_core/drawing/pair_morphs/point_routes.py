@@ -1,6 +1,7 @@
 """The roads that keep the keys' own points (before the ball road): pairs whose points match one
 for one under a similarity (:mod:`.exact_fit`) and polylines with as many corners
-(:mod:`.polylines`), each on its carrier, each guarded so that a failure sends its pairs on."""
+(:mod:`.polylines`), each on its carrier, each guarded so that a failure sends its pairs on; and
+dots, moved straight or riding on the drawing's turn."""
 
 import numpy as np
 
@@ -12,10 +13,11 @@ from ...morphs.base import PathMorph
 from ...morphs.paths import LinearPaths
 from .carrier_choice import carrier_motions, note_shape_changes
 from .exact_fit import exact_fit, may_be_exact
+from .fallbacks import point_motion
 from .polylines import corners_of, polyline_morph
-from .registration import Fits, motions, similarity_matrices
+from .registration import Fits, motions, riding_fits, similarity_matrices
 
-__all__ = ["guarded", "own_points_road", "polyline_road"]
+__all__ = ["guarded", "dot_road", "own_points_road", "polyline_road"]
 
 
 def guarded(road, plans, pairs, ready, carrier, drawing):
@@ -96,3 +98,27 @@ def own_points_road(plans, pairs, ready, carrier, drawing):
         morph = PathMorph("own points", pair.closed, LinearPaths(moved, pair.xy_b[order]), pair.u_a, pair.u_b[order])
         plans.add_morph(c, morph, pair.closed, pair.lengths)
     return rest
+
+
+def dot_road(plans, pairs, dots, carrier, drawing):
+    """Pairs with no shape to fit (strokes of fewer than two distinct points: dots): straight
+    point motion, on the drawing's turn when it turns (see :func:`.registration.riding_fits`;
+    pivoting where the drawing does, a dot on a turning wheel rides its arc)."""
+    if not dots:
+        return
+    xy = [pairs[c].xy_a for c in dots], [pairs[c].xy_b for c in dots]
+    if drawing is None or carrier == "none":
+        moving = np.zeros(len(dots), bool)
+    else:
+        P, Q = (Ragged.from_list(side, np.zeros(len(dots), bool)) for side in xy)
+        fits, moving = riding_fits(P, Q, drawing)
+        # The reach of a pivot: the drawing's size (a dot has none of its own).
+        every = np.concatenate([pair.xy_a for pair in pairs])
+        size = np.full(len(dots), float(np.linalg.norm(every.max(axis=0) - every.min(axis=0))))
+        kind = "rigid" if carrier == "rigid" else "similarity"
+        motion = motions(P, fits, kind, size, moving, drawing)
+        plans.motions.put(np.asarray(dots), motion)
+    for k, c in enumerate(dots):
+        pair = pairs[c]
+        start = pair.xy_a @ motion.A[k].T + motion.b[k] if moving[k] else pair.xy_a
+        plans.add_morph(c, point_motion(start, pair.u_a, pair.xy_b, pair.u_b), False)

@@ -45,6 +45,8 @@ __all__ = [
     "identity_residual",
     "Motions",
     "motions",
+    "orientation_free",
+    "riding_fits",
     "endpoint_similarity",
     "fit_similarity",
 ]
@@ -69,6 +71,13 @@ MAX_STRETCH = 4.0
 #: A pair turns with the drawing when their turns agree within this (radians); a drawing
 #: turning less does not count as turning.
 TURN_AGREE = np.radians(10.0)
+
+#: A loop has no orientation of its own (a circle, a hand-drawn round dot, a regular polygon of
+#: many sides) when turned by any angle it still fits itself within this normalised residual
+#: (``1 - |<p, p_s>|^2 / |p|^4`` over every cyclic shift ``s``): a 9-gon or a circle with a 2%
+#: wobble (about 7e-4) has none, an ellipse 1.1 x 1 (6e-3), a hexagon (8e-3) or a square
+#: (0.05) has one. Such a loop takes the drawing's turn (see :func:`motions`).
+NO_ORIENTATION = 2e-3
 
 #: The fixed point of a registration is the carrier's pivot when it lies within this many sizes
 #: (bounding-box diagonal of the pair) of the stroke's centroid; beyond twice that, the
@@ -421,7 +430,73 @@ def _pivots(P, fits, scale):
     return centre + w[:, None] * (fixed - centre)
 
 
-def motions(P, fits, kind, scale, moving, drawing=None):
+def orientation_free(P, k=FIT_SAMPLES):
+    """Which loops of ``P`` (Ragged) have no orientation of their own (see ``NO_ORIENTATION``):
+    shape (C,), False for open strokes."""
+    free = np.zeros(len(P), bool)
+    loops = np.flatnonzero(P.closed)
+    if not len(loops):
+        return free
+    x = _samples(P, loops, k)
+    x = x - x.mean(axis=1, keepdims=True)
+    norm = np.maximum(np.sum(np.abs(x) ** 2, axis=1), tol.TINY)
+    spectrum = np.fft.fft(x, axis=1)
+    # Autocorrelation over every shift: |<x, x_s>| is largest (norm) at s = 0.
+    corr = np.abs(np.fft.ifft(np.abs(spectrum) ** 2, axis=1))
+    worst = 1.0 - (corr.min(axis=1) / norm) ** 2
+    free[loops] = worst <= NO_ORIENTATION
+    return free
+
+
+def _turning(drawing):
+    """Whether the drawing's motion (a Similarity or None) turns: by more than ``TURN_AGREE``
+    (less does not count as turning), at a scale within ``1 / MAX_STRETCH .. MAX_STRETCH``
+    (beyond, the matching's fit is degenerate: its centroids coincide, its turn is noise)."""
+    return drawing is not None and abs(drawing.turn) > TURN_AGREE and 1 / MAX_STRETCH <= drawing.scale <= MAX_STRETCH
+
+
+def _drawing_turns(P, fits, moving, drawing):
+    """``fits`` (Fits) where the moving loops with no orientation of their own take the
+    drawing's turn (their own scale, their centroid's image kept): a valve on a turning wheel
+    rides on its arc instead of crossing the wheel straight. The same ``fits`` when none does,
+    or when the drawing does not turn (:func:`_turning`)."""
+    if not (_turning(drawing) and len(P)):
+        return fits
+    A = fits.A
+    # Similarities only: an affine fit's stretch (a ball squashing) is the loop's own.
+    conformal = np.isclose(A[:, 0, 0], A[:, 1, 1]) & np.isclose(A[:, 0, 1], -A[:, 1, 0])
+    free = moving & conformal & orientation_free(P)
+    if not free.any():
+        return fits
+    A, b = fits.A.copy(), fits.b.copy()
+    rows = np.flatnonzero(free)
+    centre = P.centroids()[rows]
+    image = np.einsum("lij,lj->li", A[rows], centre) + b[rows]
+    scale = np.sqrt(np.abs(np.linalg.det(A[rows])))
+    A[rows] = similarity_matrices(scale * np.exp(1j * drawing.turn))
+    b[rows] = image - np.einsum("lij,lj->li", A[rows], centre)
+    return Fits(A, b, fits.residual)
+
+
+def riding_fits(P, Q, drawing):
+    """Registrations of pairs with no shape to fit (a dot and a dot: strokes of fewer than two
+    distinct points): the drawing's turn and scale, each P's centroid onto its Q's (Fits); and
+    which pairs they move (where the drawing turns, :func:`_turning`: else a straight move says
+    as much), shape (C,).
+
+    Parameters
+    ----------
+    P, Q : Ragged
+        The pairs' points (one location each, perhaps repeated).
+    drawing : DrawingMotion
+    """
+    A = np.tile(similarity_matrices(np.array([drawing.a])), (len(P), 1, 1))
+    b = Q.centroids() - np.einsum("lij,lj->li", A, P.centroids())
+    moving = np.full(len(P), _turning(drawing))
+    return Fits(A, b, np.zeros(len(P))), moving
+
+
+def motions(P, fits, kind, scale, moving, drawing=None, turned=None):
     """The carrier motions of registered pairs (Motions).
 
     Parameters
@@ -437,8 +512,13 @@ def motions(P, fits, kind, scale, moving, drawing=None):
     moving : ndarray of bool, shape (C,)
         Pairs that get a carrier (the others: the identity).
     drawing : Similarity, optional
-        The keys' overall motion: a pair turning with it may turn about a farther pivot.
+        The keys' overall motion: a pair turning with it may turn about a farther pivot, and a
+        loop with no orientation of its own turns as it does (:func:`orientation_free`).
+    turned : ndarray of bool, shape (C,), optional
+        Pairs whose turn is given (hinted: the animator said where a point goes): they keep
+        it, oriented or not.
     """
+    fits = _drawing_turns(P, fits, moving if turned is None else moving & ~turned, drawing)
     theta, stretch = _polar(fits.A)
     pivot = _pivots(P, fits, _reach_scales(P, fits, scale, drawing))
     A, b = fits.A.copy(), fits.b.copy()

@@ -12,6 +12,7 @@ from ...geometry.spatial import box_pairs
 from .assignment import SparseCosts
 from .descriptors import complex_samples, dot_spread
 from .shape_fits import CHUNK, LoopFits, open_shapes, pair_shapes, shared_ends, sq_norms
+from .symmetry import loop_reversals, unoriented
 
 __all__ = ["CostTable"]
 
@@ -161,9 +162,13 @@ class CostTable:
         if la.size and lb.size:
             ra = complex_samples(key_a.ring[la]) - self.ca[la, None]
             rb = complex_samples(key_b.ring[lb]) - self.cb[lb, None]
-            # A loop drawn the other way (its area's sign) is read backwards before fitting.
-            sign_a, sign_b = np.sign(key_a.areas()[la]), np.sign(key_b.areas()[lb])
+            # A loop drawn the other way (its area's sign) is read backwards before fitting; a
+            # loop whose area cannot tell (a figure eight: the sign is round-off) as drawn.
+            flat_a, flat_b = unoriented(key_a.areas()[la], self.ra[la]), unoriented(key_b.areas()[lb], self.rb[lb])
+            sign_a = np.where(flat_a, 0.0, np.sign(key_a.areas()[la]))
+            sign_b = np.where(flat_b, 0.0, np.sign(key_b.areas()[lb]))
             self._loop_fits = LoopFits(ra, rb, sign_a, sign_b)
+            self._rings = ra, rb
             # Each stroke's row among the loops (-1 for open strokes).
             self._loop_row = np.full(key_a.count, -1), np.full(key_b.count, -1)
             self._loop_row[0][la], self._loop_row[1][lb] = np.arange(len(la)), np.arange(len(lb))
@@ -222,6 +227,17 @@ class CostTable:
         self.shape[rows, cols] = np.sqrt(e)
         self._unfitted[rows, cols] = False
 
+    def shapes(self, rows, cols):
+        """``sqrt(e)`` of pairs ``(rows[k], cols[k])`` (shapes (K,)), fitted where not yet, shape (K,)."""
+        self._fit(rows, cols)
+        return self.shape[rows, cols]
+
+    def unplaced_costs(self, a, rows, cols):
+        """Costs of pairs ``(rows[k], cols[k])`` (shapes (K,)) without the place and turn terms,
+        sizes compared at the scale of ``a`` (complex), shape (K,): how well their shapes agree
+        wherever they are (:mod:`.travelling`)."""
+        return self._costs(a, 0j, rows, cols, placed=False)
+
     def directions(self, turn, rows, cols):
         """Whether B's stroke runs opposite to A's in pairs ``(rows[k], cols[k])`` (shapes (K,)),
         given the drawing's turn (radians), shape (K,): the direction sharing more ends; then the
@@ -238,6 +254,12 @@ class CostTable:
             sign_a, sign_b = self._signs[0][rows], self._signs[1][cols]
             loops = self._loop[0][rows] & self._loop[1][cols]
             reverse[loops] = (sign_a * sign_b < 0)[loops]
+            # Where an area cannot tell (a zero sign), the smallest turn the fits allow does.
+            flat = loops & ((sign_a == 0) | (sign_b == 0))
+            if flat.any():
+                i, j = self._loop_row[0][rows[flat]], self._loop_row[1][cols[flat]]
+                ring_a, ring_b = self._rings
+                reverse[flat] = loop_reversals(ring_a[i], ring_b[j], turn, DIRECTION_TURN, DIRECTION_TIE)
         # A dot has no direction: its partner keeps the one it was drawn in.
         return reverse & (self.ra[rows] > 0) & (self.rb[cols] > 0)
 
@@ -316,8 +338,9 @@ class CostTable:
             c[may] = self._costs(a, b, *fit)
         return c
 
-    def _costs(self, a, b, rows=None, cols=None):
-        """:meth:`costs` from the shape terms as they are (fitted or not)."""
+    def _costs(self, a, b, rows=None, cols=None, placed=True):
+        """:meth:`costs` from the shape terms as they are (fitted or not); without the place and
+        turn terms unless ``placed``."""
         scale = max(abs(a), tol.TINY)
         moved = a * self.ca + b
         if rows is None:
@@ -344,14 +367,16 @@ class CostTable:
         size /= np.log(4.0)
         np.copyto(size, 0.0, where=~((ra > 0) & (rb > 0)))
         c = np.multiply(shape, W_SHAPE)
-        place *= W_PLACE
-        c += place
+        if placed:
+            place *= W_PLACE
+            c += place
         size *= W_SCALE
         c += size
         # + MATCH_CYCLIC_PENALTY * mixed: the others add 0.0, which leaves these sums of terms
         # that are not negative as they are.
         np.add(c, MATCH_CYCLIC_PENALTY, out=c, where=mixed)
-        c += W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
+        if placed:
+            c += W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
         np.copyto(c, np.inf, where=~valid)
         return c
 

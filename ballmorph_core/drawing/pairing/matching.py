@@ -52,9 +52,10 @@ its area) differs.
 
 Unmatched strokes
 -----------------
-A pair costing ``MATCH_MAX_COST`` or more is never formed: both strokes stay unmatched (they
-appear or disappear, see :func:`~ballmorph_core.inbetween`), except that a stroke alone in both
-keys always pairs.
+A pair costing ``MATCH_MAX_COST`` or more is never formed by the assignment, except that a
+stroke alone in both keys always pairs. The strokes it leaves over pair when their shapes agree,
+however far they travel (:mod:`.travelling`; ``Matching.travelled``); the rest stay unmatched
+(they appear or disappear, see :func:`~ballmorph_core.inbetween`).
 """
 
 from dataclasses import dataclass, field
@@ -66,6 +67,7 @@ from .certified import padded_total
 from .costs import CostTable
 from .descriptors import MATCH_SAMPLES, KeyDescriptors
 from .motion_search import MATCH_ROUNDOFF, best_assignment
+from .travelling import pair_leftovers
 
 __all__ = ["Matching", "match_strokes", "pair_direction"]
 
@@ -100,6 +102,9 @@ class Matching:
         The translation of the keys' overall motion (key B is about key A moved by it).
     rotation : complex
         Its turn and scale: key B is about ``rotation * z + motion`` of key A (complex ``z``).
+    travelled : list of (int, int)
+        The pairs ``(i, j)`` made by the drawing's motion: left over by the assignment (too far
+        apart for it), paired because their shapes agree (:mod:`.travelling`).
     """
 
     pairs: list
@@ -110,6 +115,7 @@ class Matching:
     costs: list = field(default_factory=list)
     motion: np.ndarray = field(default_factory=lambda: np.zeros(2))
     rotation: complex = 1.0 + 0j
+    travelled: list = field(default_factory=list)
 
 
 def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
@@ -197,10 +203,25 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto", motion=
     if n_a == n_b == 0:
         return _matching(key_a, key_b, table, index, index, (1.0 + 0j, 0j), "index", "neither key has strokes")
     total, rows, cols, motion = best_assignment(table, key_a, key_b, motion)
+    rows, cols, travelled = _with_travellers(key_a, key_b, table, rows, cols, motion)
     if n_a != n_b:
         reason = f"stroke counts differ ({n_a} vs {n_b}): optimal assignment"
-        return _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)
-    return _order_or_assignment(key_a, key_b, table, total, rows, cols, motion)
+        matching = _matching(key_a, key_b, table, rows, cols, motion, "assignment", reason)
+    else:
+        matching = _order_or_assignment(key_a, key_b, table, total, rows, cols, motion)
+    # (The drawing order, when kept, may not be the pairs travelling made.)
+    matching.travelled = sorted(set(travelled) & {(i, j) for i, j, _ in matching.pairs})
+    return matching
+
+
+def _with_travellers(key_a, key_b, table, rows, cols, motion):
+    """The assignment's pairs and those :func:`.travelling.pair_leftovers` makes of the strokes it
+    leaves over: rows, cols (shapes (K,)), and the new pairs (list of (int, int))."""
+    left_a = np.setdiff1d(np.flatnonzero(key_a.valid), rows)
+    left_b = np.setdiff1d(np.flatnonzero(key_b.valid), cols)
+    new_a, new_b = pair_leftovers(table, motion, left_a, left_b, key_a.count == key_b.count)
+    travelled = list(zip(new_a.tolist(), new_b.tolist()))
+    return np.concatenate([rows, new_a]).astype(np.int64), np.concatenate([cols, new_b]).astype(np.int64), travelled
 
 
 def _order_or_assignment(key_a, key_b, table, total, rows, cols, motion):

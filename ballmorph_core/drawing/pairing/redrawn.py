@@ -10,7 +10,16 @@ follows the keys' blend and nothing pops.
 
 A held stroke joins a pair's stroke of its own key when an end of each lies within ``GAP`` of
 the whole stroke's length of the other, the joined length is within ``LENGTHS`` of the whole
-one's, and the joined stroke fits the whole one's shape better than the piece alone.
+one's, its shape agrees with the whole one's (``sqrt(e) <= tolerances.SHAPES_AGREE``) and its
+length is nearer the whole one's than the pieces' before (``|log(length / whole length)|``;
+between lengths as near, within ``EQUAL_LENGTHS``, the better shape). The length decides, not
+the shape: a line that bends between the keys is, in part, more like its less bent whole.
+
+Pieces re-stroked with an overlap (the next piece starts back along the one before, as animators
+re-stroke) are joined without going back: the stroke before is cut where the next one starts,
+and its span along the joined stroke reaches to where it ended on the next. Its gap is then
+negative: the in-betweens' pieces overlap by the keys' overlap times the morph's time, so the
+ink follows the keys' blend.
 """
 
 from dataclasses import dataclass
@@ -27,6 +36,8 @@ __all__ = ["GAP", "LENGTHS", "Joined", "join_pieces", "cut_frame"]
 GAP = 0.15
 #: The joined pieces' length over the whole stroke's: within these.
 LENGTHS = (0.6, 1.6)
+#: Joined lengths whose ``|log(length / whole length)|`` differ by less than this are as near.
+EQUAL_LENGTHS = 0.02
 #: Pieces a whole stroke may be redrawn in.
 MAX_PIECES = 3
 #: Samples of the shape comparison.
@@ -88,9 +99,80 @@ def _shape_residual(p, q):
     return 1.0 - max(abs(np.vdot(za, zb)) ** 2, abs(np.vdot(za, zb[::-1])) ** 2) / norm
 
 
+def _fit_cost(whole, xy, length):
+    """How well ``xy`` stands for the ``whole`` stroke (of ``length``): ``(length term, shape
+    term)``, compared in that order (see the module notes); the length term is inf where the
+    shapes do not agree."""
+    ratio = max(curve_length(xy, False), tol.TINY) / max(length, tol.TINY)
+    shape = float(np.sqrt(max(_shape_residual(whole, xy), 0.0)))
+    return (abs(np.log(ratio)) if shape <= tol.SHAPES_AGREE else np.inf), shape
+
+
+def _better(cost, than):
+    """Whether :func:`_fit_cost` ``cost`` beats ``than`` (bool)."""
+    if abs(cost[0] - than[0]) <= EQUAL_LENGTHS or not np.isfinite(cost[0]):
+        return cost[1] < than[1]
+    return cost[0] < than[0]
+
+
+def _arc(xy):
+    """Cumulative arc length of a polyline's points, shape (n,)."""
+    return np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))]
+
+
+def _projection(xy, point):
+    """Arc length along polyline ``xy`` (shape (n, 2)) of its point nearest ``point``, and the
+    distance to it: (float, float)."""
+    if len(xy) < 2:
+        return 0.0, float(np.linalg.norm(point - xy[0]))
+    a, d = xy[:-1], np.diff(xy, axis=0)
+    f = np.clip(np.einsum("ij,ij->i", point - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), tol.TINY), 0.0, 1.0)
+    gaps = np.linalg.norm(a + f[:, None] * d - point, axis=1)
+    k = int(np.argmin(gaps))
+    return float(_arc(xy)[k] + f[k] * np.linalg.norm(d[k])), float(gaps[k])
+
+
+def _cut_at(xy, s):
+    """Polyline ``xy`` up to arc length ``s`` (its point there added), shape (m, 2)."""
+    arc = _arc(xy)
+    k = int(np.searchsorted(arc, s, side="right"))
+    if k >= len(xy):
+        return xy
+    f = (s - arc[k - 1]) / max(arc[k] - arc[k - 1], tol.TINY)
+    return np.r_[xy[:k], [xy[k - 1] + f * (xy[k] - xy[k - 1])]]
+
+
+def _joined(parts):
+    """Pieces ``(xy, flipped)`` joined in order: the joined polyline (shape (n, 2)) and each
+    piece's span along it in arc length, list of (float, float).
+
+    A piece starting back along the joined stroke (an overlap: its start lies on the stroke
+    before, nearer it than to its end) cuts the stroke there, and the piece before spans up to
+    where it ended along the new one; else a bridge (the segment between them) joins them."""
+    joined, spans = None, []
+    for xy, flip in parts:
+        xy = xy[::-1] if flip else xy
+        if joined is None:
+            joined, spans = xy, [(0.0, float(_arc(xy)[-1]))]
+            continue
+        along, off = _projection(joined, xy[0])
+        total = float(_arc(joined)[-1])
+        if along < total and off < np.linalg.norm(joined[-1] - xy[0]):
+            # An overlap: the piece before ends where its end lies along this one.
+            reach, _ = _projection(xy, joined[-1])
+            joined = _cut_at(joined, along)
+            spans[-1] = (spans[-1][0], along + reach)
+            start = along
+        else:
+            start = total + float(np.linalg.norm(joined[-1] - xy[0]))
+        spans.append((start, start + float(_arc(xy)[-1])))
+        joined = np.r_[joined, xy]
+    return joined, spans
+
+
 def _joined_xy(parts):
-    """Pieces ``(xy, flipped)`` concatenated (bridges are the segments between them)."""
-    return np.concatenate([xy[::-1] if flip else xy for xy, flip in parts])
+    """Pieces ``(xy, flipped)`` joined (see :func:`_joined`), shape (n, 2)."""
+    return _joined(parts)[0]
 
 
 def _best_join(whole, pieces):
@@ -142,7 +224,7 @@ def join_pieces(pairs, held, ka, kb):
             whole = other[0].rg.curve(other[1])
             length = curve_length(whole, False)
             pieces = [(mine, key.rg.curve(mine))]
-            base = _shape_residual(whole, pieces[0][1])
+            base = _fit_cost(whole, pieces[0][1], length)
             for index, side_a in list(free):
                 if side_a != from_a or key.rg.closed[index] or len(pieces) >= MAX_PIECES or index == mine:
                     continue
@@ -151,8 +233,8 @@ def join_pieces(pairs, held, ka, kb):
                 xy = _joined_xy([(dict(trial)[o], f) for o, f in zip(order, flips)])
                 ratio = curve_length(xy, False) / max(length, tol.TINY)
                 if gap <= GAP * length and LENGTHS[0] <= ratio <= LENGTHS[1]:
-                    fit = _shape_residual(whole, xy)
-                    if fit < base:
+                    fit = _fit_cost(whole, xy, length)
+                    if _better(fit, base):
                         pieces, base = trial, fit
                         free.remove((index, side_a))
             if len(pieces) > 1:
@@ -166,13 +248,11 @@ def joined_stroke(key, first, extra):
     trial = [(first, key.rg.curve(first)), *[(e, key.rg.curve(e)) for e in extra]]
     order, flips, _ = _best_join(None, trial)
     parts = [(dict(trial)[o], f) for o, f in zip(order, flips)]
-    xy = _joined_xy(parts)
-    s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))]
-    u = s / max(s[-1], tol.TINY)
-    spans, start = [], 0
-    for piece, _ in parts:
-        spans.append((float(u[start]), float(u[start + len(piece) - 1])))
-        start += len(piece)
+    xy, arcs = _joined(parts)
+    s = _arc(xy)
+    total = max(s[-1], tol.TINY)
+    u = s / total
+    spans = [(float(a / total), float(b / total)) for a, b in arcs]
     return xy, u, order, flips, spans
 
 
@@ -196,9 +276,10 @@ def cut_frame(frame, windows):
         Per stroke of ``frame``: stretches ``(lo, hi)`` in fractional point indices along it
         (``2.5`` is halfway between its points 2 and 3) to leave out. The pieces end exactly at
         ``lo`` and start at ``hi``, their attributes interpolated there; an empty stretch
-        (``hi <= lo``) cuts nothing.
+        (``hi == lo``) cuts nothing, a reversed one (``hi < lo``, pieces re-stroked with an
+        overlap) cuts the stroke into pieces that overlap there.
     """
-    windows = {s: [(lo, hi) for lo, hi in w if hi > lo] for s, w in windows.items()}
+    windows = {s: [(lo, hi) for lo, hi in w if hi != lo] for s, w in windows.items()}
     if not any(windows.values()):
         return frame
     rows, sizes, stroke_of = [], [], []
@@ -212,7 +293,7 @@ def cut_frame(frame, windows):
             x = np.r_[begin, inner, lo] if lo > begin else np.zeros(0)
             if len(x) >= 2:
                 rows.append(first + x), sizes.append(len(x)), stroke_of.append(s)
-            begin = max(begin, hi)
+            begin = hi if hi < lo else max(begin, hi)
     x = np.concatenate(rows)
     stroke_of = np.array(stroke_of, dtype=np.int64)
     cut = np.array([bool(windows.get(int(s))) for s in stroke_of], dtype=bool)

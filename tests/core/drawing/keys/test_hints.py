@@ -152,3 +152,28 @@ def test_a_hint_on_the_rim_turns_the_unhinted_spokes_with_it():
         frame = result.frames[0]
         tip = frame.positions[frame.points(1)][-1, [0, 2]]
         assert abs(np.degrees(np.arctan2(tip[1], tip[0])) - (30.0 + turn)) < 1.0
+
+
+def test_a_hinted_circle_keeps_its_hinted_turn_whatever_the_drawing_does():
+    """A circle has no orientation of its own, so unhinted it takes the drawing's turn (issue
+    39); hinted, the animator said where its point goes: a dial hinted a quarter turn keeps that
+    turn while the wheel beside it turns -30 degrees."""
+
+    def spokes(turn):
+        out = []
+        for k in range(4):
+            a = np.radians(turn + 90.0 * k + 20.0)
+            out.append(np.linspace(0.1, 0.95, 12)[:, None] * [np.cos(a), np.sin(a)])
+        return out
+
+    dial = circle(0.2, 40) + [3.0, 0.0]  # its point 10 is at 90 degrees about its centre
+    cyclic = [True, False, False, False, False]
+    key_a = hinted([dial, *spokes(0.0)], cyclic, {0: 1})
+    key_b = hinted([dial, *spokes(-30.0)], cyclic, {10: 1})
+    frame = bm.inbetween(key_a, key_b, [0.5]).frames[0]
+    (_, xy) = hint_points(frame)[1]
+    angle = np.degrees(np.arctan2(xy[1], xy[0] - 3.0))
+    off = np.abs(np.linalg.norm(frame.positions[frame.points(0)][:, [0, 2]] - [3.0, 0.0], axis=1) - 0.2).max()
+    assert abs(angle - 45.0) < 2.0, f"the dial's hinted point at {angle:.1f} degrees halfway (want 45)"
+    # Carried by the drawing's -30 instead of its hinted +90, it bulged 0.10 off its circle.
+    assert off <= 0.01 * 0.2, f"the dial's points {off:.3g} off its circle of radius 0.2 halfway"

@@ -1,0 +1,60 @@
+"""Issue 39 item 2: strokes without an orientation of their own (circles, dots) take the turn of
+the drawing they ride on: a tyre valve on a turning wheel stays on its arc."""
+
+import numpy as np
+import pytest
+import scenes
+
+import ballmorph_core as bm
+from ballmorph_core.drawing.pair_morphs.registration import orientation_free
+from ballmorph_core.geometry.ragged import Ragged
+
+
+def _frames(keys):
+    a, b, cyclic = keys
+    result = bm.inbetween(scenes.key(a, cyclic).stroke_set(), scenes.key(b, cyclic).stroke_set(), scenes.TIMES)
+    return [scenes.key(a, cyclic), scenes.key(b, cyclic)], [scenes.as_drawing(f) for f in result.frames], result
+
+
+@pytest.mark.parametrize("dot", [False, True], ids=["circle", "dot"])
+@pytest.mark.parametrize(
+    "turn, roll, valve_at, radius",
+    [(-30.0, 0.6, 60.0, 1.0), (45.0, 1.0, 200.0, 1.5), (-20.0, 0.3, 120.0, 0.5), (-12.0, 0.9, 300.0, 2.0)],
+    ids=["scene", "held-back-45", "held-back-20", "held-back-12"],
+)
+def test_a_valve_on_a_turning_wheel_stays_on_its_arc(turn, roll, valve_at, radius, dot):
+    keys, frames, result = _frames(scenes.wheel(turn, roll, valve_at, radius, dot))
+    figure = scenes.figure_riding(tuple(scenes.as_drawing(k) for k in keys), frames, scenes.TIMES)
+    assert figure.ok, f"wheel turning {turn}°, valve at {valve_at}° ({'dot' if dot else 'circle'}): {figure}"
+    # And on its arc: as far from the hub's centre as on the keys (0.92 of the radius).
+    a, _, _ = scenes.wheel(turn, roll, valve_at, radius, dot)
+    for t, frame in zip(scenes.TIMES, result.frames):
+        hub, valve = (frame.positions[frame.points(i)][:, [0, 2]].mean(axis=0) for i in (1, len(a) - 1))
+        off = abs(float(np.linalg.norm(valve - hub)) - 0.92 * radius) / (2 * radius)
+        assert off <= 0.005, f"t={t}: valve {off:.2%} of the wheel off its arc about the hub"
+
+
+def test_orientation_free_loops():
+    shapes = {
+        "circle": (scenes.circle(1.0, n=96), True, True),
+        "16-gon": (scenes.circle(1.0, n=16), True, True),
+        "wobbly circle": (scenes.circle(1.0, n=40) * (1 + 0.02 * np.sin(np.arange(40) * 2.3))[:, None], True, True),
+        "ellipse 1.1 x 1": (scenes.circle(1.0, n=64, axes=(1.1, 1.0)), True, False),
+        "hexagon": (scenes.circle(1.0, n=6), True, False),
+        "square": (scenes.polyline([(0, 0), (1, 0), (1, 1), (0, 1)], 5, closed=True), True, False),
+        "open arc": (scenes.circle(1.0, n=96)[:80], False, False),
+    }
+    P = Ragged.from_list([s for s, _, _ in shapes.values()], [c for _, c, _ in shapes.values()])
+    got = dict(zip(shapes, orientation_free(P).tolist()))
+    assert got == {name: want for name, (_, _, want) in shapes.items()}
+
+
+def test_a_circle_on_a_drawing_turning_less_than_the_agreement_keeps_its_path():
+    """Below TURN_AGREE (10°) the drawing does not count as turning: the valve moves as before
+    (its own fit), so drawings that barely turn keep their frames."""
+    a, b, cyclic = scenes.wheel(-6.0, 0.6)
+    _, _, result = _frames((a, b, cyclic))
+    t, frame = scenes.TIMES[3], result.frames[3]
+    got = frame.positions[frame.points(len(a) - 1)][:, [0, 2]].mean(axis=0)
+    straight = (1 - t) * a[-1].mean(axis=0) + t * b[-1].mean(axis=0)
+    assert np.linalg.norm(got - straight) <= 1e-9
