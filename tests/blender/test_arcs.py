@@ -73,6 +73,18 @@ def test_smooth_runs_the_ball_on_the_arc_with_no_corner_at_the_middle_key(addon,
     assert "joined smoothly at frame 7" in said, said
 
 
+def test_timing_still_applies_per_interval_on_the_smooth_path(addon, capfd):
+    obj = ball_on_an_arc()
+    options = {"easing_type": "QUAD", "easing": "EASE_IN_OUT", "favor": 0.3, "key_motion": "SMOOTH"}
+    assert run(capfd, **options)[0] == {"FINISHED"}
+    c = centres(obj)
+    off = figures(c)[0]
+    steps = np.linalg.norm(np.diff(c, axis=0), axis=1)
+    # Eased in and out of every key: the first and last steps of each interval are the shortest.
+    message = f"off the arc {off:.3%} of the path; steps {np.round(steps, 4).tolist()}"
+    assert off < ON_ARC and steps[0] < steps[2] and steps[5] < steps[3] and steps[6] < steps[8], message
+
+
 def test_per_interval_is_each_interval_alone_bit_for_bit_with_its_corner(addon, capfd):
     alone = {}
     for pair in ((1, 7), (7, 13)):
