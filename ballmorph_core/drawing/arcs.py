@@ -21,7 +21,9 @@ per sample; an interval between two corners is left as it is.
 
 A sample of one interval is matched to the samples of the next at their shared key by its
 nearest one there on the same key stroke (the two plans sample the key differently), offset by
-their distance: a first-order transfer, exact for strokes that move without deforming.
+their distance: exact for strokes that translate, first order in the sample spacing otherwise.
+The velocities are linear in the key positions, so a stroke that moves, turns and grows as a
+whole (a similarity) keeps its shape, and its position, turn and scale join C1 too.
 
 Timing (easing, favor, charts) still applies per interval: the correction is a function of the
 morph time, so a velocity per frame is continuous across a key when both intervals are timed
