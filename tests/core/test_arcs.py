@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from golden_cases import cases
 
 import ballmorph_core as bm
 from ballmorph_core.drawing.arcs import (
@@ -243,3 +244,26 @@ def test_a_bouncing_ball_runs_on_one_parabola_per_bounce_with_its_contacts_as_co
     want = np.array([centre(6 * (k + x)) for k in range(4) for x in s])
     off = float(np.abs(got - want).max())
     assert off < 1e-9, f"{off:.3g} off the bounces' parabolas"
+
+
+#: The golden drawings, the mixed one once (its other cases only change the morph).
+GOLDEN = [c for c in cases() if not c[0].startswith("mixed-") or c[0] == "mixed-circular-ball"]
+
+
+@pytest.mark.parametrize("case", GOLDEN, ids=lambda c: c[0])
+def test_there_and_back_through_the_golden_drawings_keeps_every_guarantee(case):
+    # key_a -> key_b -> key_a: pieces, hints, strokes without a partner, loops, non-planar keys.
+    name, key_a, key_b, options = case
+    plans = [bm.plan_inbetween(key_a, key_b, **options), bm.plan_inbetween(key_b, key_a, **options)]
+    corrections = bm.chain_corrections(plans, [4, 4], [True])
+    times = np.array([0.0, 0.25, 0.5, 0.75, 1.0])
+    size = float(np.ptp(np.concatenate([key_a.positions, key_b.positions]), axis=0).max())
+    for plan, correction in zip(plans, corrections):
+        plain, moved = plan.evaluate(times).frames, plan.evaluate(times, correction).frames
+        for t, a, b in zip(times, plain, moved):
+            assert np.array_equal(a.offsets, b.offsets), f"{name} t={t}: strokes changed"
+            assert np.isfinite(b.positions).all(), f"{name} t={t}: not finite"
+            moved_by = float(np.abs(a.positions - b.positions).max(initial=0.0))
+            if t in (0.0, 1.0):
+                assert moved_by == 0.0, f"{name}: the key at t={t} moved by {moved_by:.3g}"
+            assert moved_by <= size, f"{name} t={t}: moved {moved_by:.3g}, drawing size {size:.3g}"
