@@ -10,6 +10,7 @@ from ballmorph_core.drawing.arcs import (
     IntervalEnds,
     hermite_bumps,
     interval_ends,
+    key_places,
     key_velocities,
     smooth_chain,
 )
@@ -196,21 +197,35 @@ def test_a_turning_growing_stroke_keeps_its_shape_and_turns_and_grows_smoothly_t
     assert turn_out > 1.8 * turn_in, message
 
 
-def test_samples_are_matched_within_their_key_stroke():
-    # Two strokes lying on each other at the key, one going up, one going right afterwards:
-    # each sample takes its own stroke's motion, not its nearest neighbour's on the other.
-    key = np.c_[np.linspace(0, 1, 6), np.zeros(6), np.zeros(6)]
+def test_samples_are_matched_along_their_key_stroke():
+    # Two strokes lying on each other at the key, one going up, one going right afterwards, the
+    # second sampled three times as densely, in the other order: each sample takes the motion
+    # of its own stroke at its own place (not its nearest neighbour's on the other stroke).
+    u, dense = np.linspace(0, 1, 6), np.linspace(0, 1, 16)
+    key = np.c_[u, np.zeros(6), np.zeros(6)]
     both = np.concatenate([key, key + 1e-9])
-    groups = np.repeat([0, 1], 6)
+    places = key_places(np.repeat([0, 1], 6), np.tile(u, 2))
     up, right = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
-    motion = np.repeat([up, right], 6, axis=0)
-    arriving = IntervalEnds(both, both, 0 * both, 0 * both, 6.0, groups, groups)
-    leaving = IntervalEnds(both, both + 6 * motion, 6 * motion, 6 * motion, 6.0, groups[::-1], groups)
-    at_end, _ = key_velocities(arriving, leaving)
-    # Arriving stroke 0 continues as leaving samples 6..11 (stroke 0 there, moving right).
-    assert np.allclose(at_end, 0.5 * np.repeat([right, up], 6, axis=0), atol=1e-9), at_end
+    # (By position, stroke 0's samples would take stroke 1's: they lie exactly there.)
+    later = np.concatenate([np.c_[dense, np.zeros((16, 2))], np.c_[dense, np.zeros((16, 2))] + 1e-6])
+    motion = np.repeat([right, up], 16, axis=0)  # stroke 1 (listed first) goes right
+    later_places = key_places(np.repeat([1, 0], 16), np.tile(dense, 2))
+    arriving = IntervalEnds(both - 6 * up, both, 6 * up, 6 * up, 6.0, places, places)
+    leaving = IntervalEnds(later, later + 6 * motion, 6 * motion, 6 * motion, 6.0, later_places, later_places)
+    at_end, at_start = key_velocities(arriving, leaving)
+    assert np.allclose(at_end, np.repeat([up, 0.5 * (up + right)], 6, axis=0), atol=1e-9), at_end
+    assert np.allclose(at_start, np.repeat([0.5 * (up + right), up], 16, axis=0), atol=1e-9), at_start
     no_strokes = IntervalEnds(both, both, 0 * both, 0 * both, 6.0)
     assert smooth_chain([no_strokes, IntervalEnds(*(np.zeros((0, 3)),) * 4, 6.0)], [True]) == [None, None]
+
+
+def test_a_sample_whose_stroke_has_no_partner_across_the_key_takes_the_nearest_by_position():
+    key = np.c_[np.linspace(0, 1, 5), np.zeros(5), np.zeros(5)]
+    right = np.array([1.0, 0.0, 0.0])
+    arriving = IntervalEnds(key, key, 0 * key, 0 * key, 6.0, None, key_places(np.zeros(5), np.linspace(0, 1, 5)))
+    leaving = IntervalEnds(key, key + 6 * right, 0 * key, 0 * key, 6.0, key_places(np.full(5, 3), np.zeros(5)), None)
+    at_end, _ = key_velocities(arriving, leaving)
+    assert np.allclose(at_end, 0.5 * right, atol=1e-12), at_end
 
 
 def test_a_plan_says_which_key_stroke_each_sample_leaves_and_reaches():
@@ -219,11 +234,13 @@ def test_a_plan_says_which_key_stroke_each_sample_leaves_and_reaches():
     key_a = bm.StrokeSet.from_strokes([ring, line], cyclic=[True, False])
     key_b = bm.StrokeSet.from_strokes([line + 0.5, 1.2 * ring], cyclic=[False, True])  # swapped order
     plan = bm.plan_inbetween(key_a, key_b)
-    stroke_a, stroke_b = plan.sample_strokes()
+    stroke_a, u_a, stroke_b, u_b = plan.sample_sources()
     k = plan.samples([0.0]).shape[1]
-    assert stroke_a.shape == stroke_b.shape == (k,)
+    assert stroke_a.shape == u_a.shape == stroke_b.shape == u_b.shape == (k,)
     assert np.array_equal(stroke_b, 1 - stroke_a), (stroke_a, stroke_b)  # the ring is stroke 1 of B
     assert sorted(set(stroke_a.tolist())) == [0, 1]
+    line = stroke_a == 1  # the line moved by (0.5, 0.5): the same fraction along both keys
+    assert np.allclose(u_a[line], u_b[line], atol=1e-9) and np.allclose([u_a[line].min(), u_a[line].max()], [0, 1])
 
 
 def test_a_bouncing_ball_runs_on_one_parabola_per_bounce_with_its_contacts_as_corners():
