@@ -215,8 +215,8 @@ def _nearest(points, among, places=None, among_places=None):
     """Index of the sample of ``among`` (M, 3), M > 0, matching each of ``points`` (K, 3): shape (K,).
 
     With places (:func:`key_places`, shapes (K,) and (M,)) the nearest place along the same key
-    stroke (one sort); by position for the points whose stroke has no sample in ``among``, or
-    without places."""
+    stroke (one sort), -1 for a point whose stroke has no sample in ``among``; without places,
+    the nearest by position."""
     if places is None or among_places is None:
         return _nearest_any(points, among)
     order = np.argsort(among_places, kind="stable")
@@ -225,9 +225,7 @@ def _nearest(points, among, places=None, among_places=None):
     left = np.maximum(right - 1, 0)
     pick = np.where(np.abs(places - ranked[left]) <= np.abs(ranked[right] - places), left, right)
     out = order[pick]
-    lonely = np.abs(ranked[pick] - places) > 1.0  # the nearest place is on another stroke
-    if lonely.any():
-        out[lonely] = _nearest_any(points[lonely], among)
+    out[np.abs(ranked[pick] - places) > 1.0] = -1  # the nearest place is on another stroke
     return out
 
 
@@ -253,14 +251,19 @@ def key_velocities(arriving, leaving):
         Velocities per frame of the arriving interval's samples at its end.
     at_start : ndarray, shape (K_leaving, 3)
         Those of the leaving interval's samples at its start.
+
+    A sample whose key stroke has no sample on the other side (its stroke has no partner
+    there) keeps its own path's velocity.
     """
     x, y = arriving.end, leaving.start
     k = _nearest(x, y, arriving.reaches, leaving.leaves)
     after = leaving.end[k] + (x - y[k])
     at_end = _key_velocity(arriving.start, x, after, arriving.frames, leaving.frames)
+    at_end[k < 0] = arriving.d_end[k < 0] / arriving.frames
     n = _nearest(y, x, leaving.leaves, arriving.reaches)
     before = arriving.start[n] + (y - x[n])
     at_start = _key_velocity(before, y, leaving.end, arriving.frames, leaving.frames)
+    at_start[n < 0] = leaving.d_start[n < 0] / leaving.frames
     return at_end, at_start
 
 

@@ -210,7 +210,7 @@ def test_samples_are_matched_along_their_key_stroke():
     later = np.concatenate([np.c_[dense, np.zeros((16, 2))], np.c_[dense, np.zeros((16, 2))] + 1e-6])
     motion = np.repeat([right, up], 16, axis=0)  # stroke 1 (listed first) goes right
     later_places = key_places(np.repeat([1, 0], 16), np.tile(dense, 2))
-    arriving = IntervalEnds(both - 6 * up, both, 6 * up, 6 * up, 6.0, places, places)
+    arriving = IntervalEnds(both - 6 * up, both, 0 * both + 6 * up, 0 * both + 6 * up, 6.0, places, places)
     leaving = IntervalEnds(later, later + 6 * motion, 6 * motion, 6 * motion, 6.0, later_places, later_places)
     at_end, at_start = key_velocities(arriving, leaving)
     assert np.allclose(at_end, np.repeat([up, 0.5 * (up + right)], 6, axis=0), atol=1e-9), at_end
@@ -219,13 +219,15 @@ def test_samples_are_matched_along_their_key_stroke():
     assert smooth_chain([no_strokes, IntervalEnds(*(np.zeros((0, 3)),) * 4, 6.0)], [True]) == [None, None]
 
 
-def test_a_sample_whose_stroke_has_no_partner_across_the_key_takes_the_nearest_by_position():
+def test_a_sample_whose_stroke_has_no_partner_across_the_key_keeps_its_own_velocity_there():
     key = np.c_[np.linspace(0, 1, 5), np.zeros(5), np.zeros(5)]
-    right = np.array([1.0, 0.0, 0.0])
-    arriving = IntervalEnds(key, key, 0 * key, 0 * key, 6.0, None, key_places(np.zeros(5), np.linspace(0, 1, 5)))
-    leaving = IntervalEnds(key, key + 6 * right, 0 * key, 0 * key, 6.0, key_places(np.full(5, 3), np.zeros(5)), None)
-    at_end, _ = key_velocities(arriving, leaving)
-    assert np.allclose(at_end, 0.5 * right, atol=1e-12), at_end
+    up, right = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
+    arriving = IntervalEnds(
+        key - 6 * up, key, 6 * up + 0 * key, 2 * up + 0 * key, 6.0, None, key_places(np.zeros(5), key[:, 0])
+    )
+    leaving = IntervalEnds(key, key + 6 * right, 0 * key, 0 * key, 6.0, key_places(np.full(5, 3), key[:, 0]), None)
+    at_end, at_start = key_velocities(arriving, leaving)
+    assert np.allclose(at_end, up / 3.0, atol=1e-15) and np.allclose(at_start, 0.0), (at_end, at_start)
 
 
 def test_a_plan_says_which_key_stroke_each_sample_leaves_and_reaches():
