@@ -216,7 +216,8 @@ def _nearest(points, among, places=None, among_places=None):
 
     With places (:func:`key_places`, shapes (K,) and (M,)) the nearest place along the same key
     stroke (one sort), -1 for a point whose stroke has no sample in ``among``; without places,
-    the nearest by position."""
+    the nearest by position. (A loop's seam is not wrapped: a sample beside it may take one a
+    sample spacing further, which the offset by their distance makes up for.)"""
     if places is None or among_places is None:
         return _nearest_any(points, among)
     order = np.argsort(among_places, kind="stable")
