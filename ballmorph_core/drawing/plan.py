@@ -279,14 +279,20 @@ class InbetweenPlan:
             return np.zeros((0, frames.shape[1], 3))
         return np.stack([self.plane.to_3d(frame) for frame in frames])
 
-    def sample_strokes(self):
-        """The key strokes every sample (:meth:`samples`) leaves and reaches: stroke indices
-        into ``key_a`` and ``key_b`` (a line drawn in pieces: its piece), shapes (K,) and (K,)."""
+    def sample_sources(self):
+        """Where every sample (:meth:`samples`) leaves and reaches the keys, as drawn: its key
+        strokes (indices into ``key_a`` and ``key_b``; a line drawn in pieces: its piece) and
+        arc-length fractions along them.
+
+        Returns
+        -------
+        stroke_a, u_a, stroke_b, u_b : ndarray, shape (K,)
+        """
         parts = self.pieces.merge(self.pairs.frames([0.0]))[0]
         # As an evaluation reads them (the fractions copied first: they may be the layout's own).
         parts.u_a, parts.u_b = parts.u_a.copy(), _as_drawn(parts, self.strokes)
         self._sources(parts)
-        return parts.stroke_a, parts.stroke_b
+        return parts.stroke_a, parts.u_a, parts.stroke_b, parts.u_b
 
     def _frames(self, times, finite_only=True, correction=None):
         """The pairs' frames at ``times`` (PairFrames) and the in-betweens (list of StrokeSet);

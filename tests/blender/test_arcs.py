@@ -15,13 +15,12 @@ ON_ARC = 0.01
 STEP_RATIO, STEP_TURN = 0.10, 5.0
 
 
-def ball_on_an_arc(selected=KEYS, extreme=()):
+def ball_on_an_arc(selected=KEYS, extreme=(), degrees=DEGREES, radius=RADIUS):
     """A ball (a loop of radius 0.2) keyed on a circular arc at frames 1, 7, 13 of layer 'Ink'."""
     obj = gp_data.new_object()
     layer = obj.data.layers["Ink"]
-    for number, degrees in zip(KEYS, DEGREES):
-        angle = np.radians(degrees)
-        centre = (RADIUS * np.cos(angle), RADIUS * np.sin(angle))
+    for number, angle in zip(KEYS, np.radians(degrees)):
+        centre = (radius * np.cos(angle), radius * np.sin(angle))
         frame = gp_data.add_key(layer, number, [gp_data.loop(0.2, n=40, centre=centre)], cyclic=[True])
         frame.select = number in selected
         if number in extreme:
@@ -71,6 +70,52 @@ def test_smooth_runs_the_ball_on_the_arc_with_no_corner_at_the_middle_key(addon,
     message = f"off the arc {off:.3%} of the path, step ratio {ratio:.3f}, turn {turn:.2f} degrees at frame 7"
     assert off < ON_ARC and abs(ratio - 1) < STEP_RATIO and turn < STEP_TURN, message
     assert "joined smoothly at frame 7" in said, said
+
+
+def _one_sided_velocities(c, k):
+    """Second-order one-sided velocity estimates at frame index ``k`` from before and after."""
+    return 1.5 * c[k] - 2.0 * c[k - 1] + 0.5 * c[k - 2], -1.5 * c[k] + 2.0 * c[k + 1] - 0.5 * c[k + 2]
+
+
+@pytest.mark.parametrize("key_motion", ["SMOOTH", "PER_INTERVAL"])
+def test_a_wide_arc_runs_on_the_smooth_curve_through_the_keys(addon, capfd, key_motion):
+    # The issue's geometry: 120 degrees of arc over 12 frames (10 degrees a frame, so single
+    # frame steps turn as much on any smooth curve): chords 7.7% of the path off the arc. The
+    # smooth curve through the keys' centres is the one Smooth builds for three keys: each
+    # centre's parabola in time through them; velocities from both sides to second order.
+    obj = ball_on_an_arc(degrees=(150.0, 90.0, 30.0), radius=2.0)
+    assert run(capfd, key_motion=key_motion)[0] == {"FINISHED"}
+    c = centres(obj)
+    frames = np.arange(13.0)
+    keyed = c[[0, 6, 12]]
+    weights = np.stack([np.prod([(frames - b) / (a - b) for b in (0, 6, 12) if b != a], axis=0) for a in (0, 6, 12)])
+    curve = weights.T @ keyed  # the parabola through the keyed centres, frame by frame
+    size = float(np.ptp(keyed, axis=0).max())
+    off_curve = float(np.linalg.norm(c - curve, axis=1).max()) / size
+    off_circle = float(np.abs(np.hypot(c[:, 0], c[:, 1]) - 2.0).max()) / size
+    before, after = _one_sided_velocities(c, 6)
+    ratio = float(np.linalg.norm(after) / np.linalg.norm(before))
+    turn = float(np.degrees(np.arccos(before @ after / np.linalg.norm(before) / np.linalg.norm(after))))
+    message = (
+        f"{key_motion}: {off_curve:.3%} of the path off the smooth curve ({off_circle:.2%} off the circle); "
+        f"velocity at frame 7 from both sides: ratio {ratio:.3f}, {turn:.2f} degrees apart"
+    )
+    if key_motion == "SMOOTH":
+        assert off_curve < ON_ARC and abs(ratio - 1) < STEP_RATIO and turn < STEP_TURN, message
+    else:
+        assert off_curve > 0.05 and turn > 50.0, message
+
+
+def test_timing_still_applies_per_interval_on_the_smooth_path(addon, capfd):
+    obj = ball_on_an_arc()
+    options = {"easing_type": "QUAD", "easing": "EASE_IN_OUT", "favor": 0.3, "key_motion": "SMOOTH"}
+    assert run(capfd, **options)[0] == {"FINISHED"}
+    c = centres(obj)
+    off = figures(c)[0]
+    steps = np.linalg.norm(np.diff(c, axis=0), axis=1)
+    # Eased in and out of every key: the first and last steps of each interval are the shortest.
+    message = f"off the arc {off:.3%} of the path; steps {np.round(steps, 4).tolist()}"
+    assert off < ON_ARC and steps[0] < steps[2] and steps[5] < steps[3] and steps[6] < steps[8], message
 
 
 def test_per_interval_is_each_interval_alone_bit_for_bit_with_its_corner(addon, capfd):

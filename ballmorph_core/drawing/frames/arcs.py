@@ -19,9 +19,12 @@ that keeps its corner) an interval whose other key is smooth takes its parabola'
 there (``2 chord - velocity at the smooth key``), so a chain of three keys runs on one parabola
 per sample; an interval between two corners is left as it is.
 
-A sample of one interval is matched to the samples of the next at their shared key by its
-nearest one there on the same key stroke (the two plans sample the key differently), offset by
-their distance: a first-order transfer, exact for strokes that move without deforming.
+A sample of one interval is matched to the sample of the next nearest to it along the same key
+stroke at their shared key (the two plans sample the key differently; a sort, however long the
+strokes), offset by their distance: exact for strokes that translate, first order in the
+sample spacing otherwise.
+The velocities are linear in the key positions, so a stroke that moves, turns and grows as a
+whole (a similarity) keeps its shape, and its position, turn and scale join C1 too.
 
 Timing (easing, favor, charts) still applies per interval: the correction is a function of the
 morph time, so a velocity per frame is continuous across a key when both intervals are timed
@@ -41,6 +44,7 @@ __all__ = [
     "chain_corrections",
     "hermite_bumps",
     "interval_ends",
+    "key_places",
     "key_velocities",
     "smooth_chain",
 ]
@@ -92,9 +96,9 @@ class IntervalEnds:
         The paths' derivatives there, per unit of morph time.
     frames : float
         The interval's length in frames (> 0).
-    stroke_start, stroke_end : ndarray of int, shape (K,), optional
-        The key stroke each sample leaves and reaches (samples are matched across a key within
-        their stroke); None: any sample matches any.
+    leaves, reaches : ndarray, shape (K,), optional
+        Where each sample leaves the first key and reaches the second (:func:`key_places`):
+        samples are matched across a key along their key stroke; None: by their positions.
     """
 
     start: np.ndarray
@@ -102,8 +106,8 @@ class IntervalEnds:
     d_start: np.ndarray
     d_end: np.ndarray
     frames: float
-    stroke_start: np.ndarray = None
-    stroke_end: np.ndarray = None
+    leaves: np.ndarray = None
+    reaches: np.ndarray = None
 
     @property
     def chord(self):
@@ -111,7 +115,31 @@ class IntervalEnds:
         return (self.end - self.start) / self.frames
 
 
-def interval_ends(samples, frames, strokes=(None, None)):
+def key_places(strokes, fractions):
+    """One number per sample that orders samples along the key strokes: ``4 stroke + fraction``.
+
+    Parameters
+    ----------
+    strokes : ndarray of int, shape (K,)
+        Each sample's key stroke.
+    fractions : ndarray, shape (K,)
+        Its arc-length fraction along the stroke, in [0, 1].
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        Strokes lie 4 apart, so a place's nearest is on its own stroke whenever that stroke has
+        one (within 1), and never nearer than 3 on another.
+
+    Examples
+    --------
+    >>> key_places(np.array([0, 2]), np.array([0.25, 1.0])).tolist()
+    [0.25, 9.0]
+    """
+    return 4.0 * np.asarray(strokes, dtype=np.float64) + np.asarray(fractions, dtype=np.float64)
+
+
+def interval_ends(samples, frames, sources=None):
     """The :class:`IntervalEnds` of an interval, from its sample paths.
 
     Parameters
@@ -122,9 +150,9 @@ def interval_ends(samples, frames, strokes=(None, None)):
         :meth:`InbetweenPlan.samples <.plan.InbetweenPlan.samples>`.
     frames : float
         The interval's length in frames.
-    strokes : (ndarray of int, ndarray of int), optional
-        The key strokes the samples leave and reach, shapes (K,) (e.g.
-        :meth:`InbetweenPlan.sample_strokes <.plan.InbetweenPlan.sample_strokes>`).
+    sources : (stroke_a, u_a, stroke_b, u_b), optional
+        Where the samples leave and reach the keys, each shape (K,) (e.g.
+        :meth:`InbetweenPlan.sample_sources <.plan.InbetweenPlan.sample_sources>`).
 
     Returns
     -------
@@ -137,7 +165,8 @@ def interval_ends(samples, frames, strokes=(None, None)):
     h = DERIVATIVE_STEP
     d_start = (-3.0 * f[0] + 4.0 * f[1] - f[2]) / (2.0 * h)
     d_end = (3.0 * f[5] - 4.0 * f[4] + f[3]) / (2.0 * h)
-    return IntervalEnds(f[0], f[5], d_start, d_end, float(frames), *strokes)
+    places = (None, None) if sources is None else (key_places(*sources[:2]), key_places(*sources[2:]))
+    return IntervalEnds(f[0], f[5], d_start, d_end, float(frames), *places)
 
 
 @dataclass
@@ -182,27 +211,22 @@ def _nearest_any(points, among):
     return out
 
 
-def _nearest(points, among, groups=None, among_groups=None):
-    """Index of the nearest point of ``among`` (M, 3) to each of ``points`` (K, 3), shape (K,),
-    within the same group (a key stroke) when groups (K,) and (M,) are given; a point whose
-    group has no point in ``among`` takes the nearest of all."""
-    if groups is None or among_groups is None:
+def _nearest(points, among, places=None, among_places=None):
+    """Index of the sample of ``among`` (M, 3), M > 0, matching each of ``points`` (K, 3): shape (K,).
+
+    With places (:func:`key_places`, shapes (K,) and (M,)) the nearest place along the same key
+    stroke (one sort), -1 for a point whose stroke has no sample in ``among``; without places,
+    the nearest by position. (A loop's seam is not wrapped: a sample beside it may take one a
+    sample spacing further, which the offset by their distance makes up for.)"""
+    if places is None or among_places is None:
         return _nearest_any(points, among)
-    out = np.empty(len(points), dtype=np.int64)
-    lonely = np.ones(len(points), dtype=bool)
-    # Both sides sorted by group once: each group is then one range of each.
-    mine_order, their_order = np.argsort(groups, kind="stable"), np.argsort(among_groups, kind="stable")
-    mine_sorted, their_sorted = groups[mine_order], among_groups[their_order]
-    for group in np.unique(groups):
-        lo, hi = np.searchsorted(their_sorted, [group, group + 1])
-        if lo == hi:
-            continue
-        mine = mine_order[slice(*np.searchsorted(mine_sorted, [group, group + 1]))]
-        candidates = their_order[lo:hi]
-        out[mine] = candidates[_nearest_any(points[mine], among[candidates])]
-        lonely[mine] = False
-    if lonely.any():
-        out[lonely] = _nearest_any(points[lonely], among)
+    order = np.argsort(among_places, kind="stable")
+    ranked = among_places[order]
+    right = np.clip(np.searchsorted(ranked, places), 0, len(ranked) - 1)
+    left = np.maximum(right - 1, 0)
+    pick = np.where(np.abs(places - ranked[left]) <= np.abs(ranked[right] - places), left, right)
+    out = order[pick]
+    out[np.abs(ranked[pick] - places) > 1.0] = -1  # the nearest place is on another stroke
     return out
 
 
@@ -228,14 +252,19 @@ def key_velocities(arriving, leaving):
         Velocities per frame of the arriving interval's samples at its end.
     at_start : ndarray, shape (K_leaving, 3)
         Those of the leaving interval's samples at its start.
+
+    A sample whose key stroke has no sample on the other side (its stroke has no partner
+    there) keeps its own path's velocity.
     """
     x, y = arriving.end, leaving.start
-    k = _nearest(x, y, arriving.stroke_end, leaving.stroke_start)
+    k = _nearest(x, y, arriving.reaches, leaving.leaves)
     after = leaving.end[k] + (x - y[k])
     at_end = _key_velocity(arriving.start, x, after, arriving.frames, leaving.frames)
-    n = _nearest(y, x, leaving.stroke_start, arriving.stroke_end)
+    at_end[k < 0] = arriving.d_end[k < 0] / arriving.frames
+    n = _nearest(y, x, leaving.leaves, arriving.reaches)
     before = arriving.start[n] + (y - x[n])
     at_start = _key_velocity(before, y, leaving.end, arriving.frames, leaving.frames)
+    at_start[n < 0] = leaving.d_start[n < 0] / leaving.frames
     return at_end, at_start
 
 
@@ -323,7 +352,7 @@ def chain_corrections(plans, lengths, smooth, key_motion="smooth"):
     if key_motion == "per-interval" or len(plans) < 2:
         return [None] * len(plans)
     ends = [
-        None if plan is None else interval_ends(plan.samples, length, plan.sample_strokes())
+        None if plan is None else interval_ends(plan.samples, length, plan.sample_sources())
         for plan, length in zip(plans, lengths)
     ]
     return smooth_chain(ends, smooth)

@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from golden_cases import cases
 
 import ballmorph_core as bm
 from ballmorph_core.drawing.frames.arcs import (
@@ -9,6 +10,7 @@ from ballmorph_core.drawing.frames.arcs import (
     IntervalEnds,
     hermite_bumps,
     interval_ends,
+    key_places,
     key_velocities,
     smooth_chain,
 )
@@ -195,21 +197,37 @@ def test_a_turning_growing_stroke_keeps_its_shape_and_turns_and_grows_smoothly_t
     assert turn_out > 1.8 * turn_in, message
 
 
-def test_samples_are_matched_within_their_key_stroke():
-    # Two strokes lying on each other at the key, one going up, one going right afterwards:
-    # each sample takes its own stroke's motion, not its nearest neighbour's on the other.
-    key = np.c_[np.linspace(0, 1, 6), np.zeros(6), np.zeros(6)]
+def test_samples_are_matched_along_their_key_stroke():
+    # Two strokes lying on each other at the key, one going up, one going right afterwards, the
+    # second sampled three times as densely, in the other order: each sample takes the motion
+    # of its own stroke at its own place (not its nearest neighbour's on the other stroke).
+    u, dense = np.linspace(0, 1, 6), np.linspace(0, 1, 16)
+    key = np.c_[u, np.zeros(6), np.zeros(6)]
     both = np.concatenate([key, key + 1e-9])
-    groups = np.repeat([0, 1], 6)
+    places = key_places(np.repeat([0, 1], 6), np.tile(u, 2))
     up, right = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
-    motion = np.repeat([up, right], 6, axis=0)
-    arriving = IntervalEnds(both, both, 0 * both, 0 * both, 6.0, groups, groups)
-    leaving = IntervalEnds(both, both + 6 * motion, 6 * motion, 6 * motion, 6.0, groups[::-1], groups)
-    at_end, _ = key_velocities(arriving, leaving)
-    # Arriving stroke 0 continues as leaving samples 6..11 (stroke 0 there, moving right).
-    assert np.allclose(at_end, 0.5 * np.repeat([right, up], 6, axis=0), atol=1e-9), at_end
+    # (By position, stroke 0's samples would take stroke 1's: they lie exactly there.)
+    later = np.concatenate([np.c_[dense, np.zeros((16, 2))], np.c_[dense, np.zeros((16, 2))] + 1e-6])
+    motion = np.repeat([right, up], 16, axis=0)  # stroke 1 (listed first) goes right
+    later_places = key_places(np.repeat([1, 0], 16), np.tile(dense, 2))
+    arriving = IntervalEnds(both - 6 * up, both, 0 * both + 6 * up, 0 * both + 6 * up, 6.0, places, places)
+    leaving = IntervalEnds(later, later + 6 * motion, 6 * motion, 6 * motion, 6.0, later_places, later_places)
+    at_end, at_start = key_velocities(arriving, leaving)
+    assert np.allclose(at_end, np.repeat([up, 0.5 * (up + right)], 6, axis=0), atol=1e-9), at_end
+    assert np.allclose(at_start, np.repeat([0.5 * (up + right), up], 16, axis=0), atol=1e-9), at_start
     no_strokes = IntervalEnds(both, both, 0 * both, 0 * both, 6.0)
     assert smooth_chain([no_strokes, IntervalEnds(*(np.zeros((0, 3)),) * 4, 6.0)], [True]) == [None, None]
+
+
+def test_a_sample_whose_stroke_has_no_partner_across_the_key_keeps_its_own_velocity_there():
+    key = np.c_[np.linspace(0, 1, 5), np.zeros(5), np.zeros(5)]
+    up, right = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
+    arriving = IntervalEnds(
+        key - 6 * up, key, 6 * up + 0 * key, 2 * up + 0 * key, 6.0, None, key_places(np.zeros(5), key[:, 0])
+    )
+    leaving = IntervalEnds(key, key + 6 * right, 0 * key, 0 * key, 6.0, key_places(np.full(5, 3), key[:, 0]), None)
+    at_end, at_start = key_velocities(arriving, leaving)
+    assert np.allclose(at_end, up / 3.0, atol=1e-15) and np.allclose(at_start, 0.0), (at_end, at_start)
 
 
 def test_a_plan_says_which_key_stroke_each_sample_leaves_and_reaches():
@@ -218,11 +236,13 @@ def test_a_plan_says_which_key_stroke_each_sample_leaves_and_reaches():
     key_a = bm.StrokeSet.from_strokes([ring, line], cyclic=[True, False])
     key_b = bm.StrokeSet.from_strokes([line + 0.5, 1.2 * ring], cyclic=[False, True])  # swapped order
     plan = bm.plan_inbetween(key_a, key_b)
-    stroke_a, stroke_b = plan.sample_strokes()
+    stroke_a, u_a, stroke_b, u_b = plan.sample_sources()
     k = plan.samples([0.0]).shape[1]
-    assert stroke_a.shape == stroke_b.shape == (k,)
+    assert stroke_a.shape == u_a.shape == stroke_b.shape == u_b.shape == (k,)
     assert np.array_equal(stroke_b, 1 - stroke_a), (stroke_a, stroke_b)  # the ring is stroke 1 of B
     assert sorted(set(stroke_a.tolist())) == [0, 1]
+    line = stroke_a == 1  # the line moved by (0.5, 0.5): the same fraction along both keys
+    assert np.allclose(u_a[line], u_b[line], atol=1e-9) and np.allclose([u_a[line].min(), u_a[line].max()], [0, 1])
 
 
 def test_a_bouncing_ball_runs_on_one_parabola_per_bounce_with_its_contacts_as_corners():
@@ -243,3 +263,26 @@ def test_a_bouncing_ball_runs_on_one_parabola_per_bounce_with_its_contacts_as_co
     want = np.array([centre(6 * (k + x)) for k in range(4) for x in s])
     off = float(np.abs(got - want).max())
     assert off < 1e-9, f"{off:.3g} off the bounces' parabolas"
+
+
+#: The golden drawings, the mixed one once (its other cases only change the morph).
+GOLDEN = [c for c in cases() if not c[0].startswith("mixed-") or c[0] == "mixed-circular-ball"]
+
+
+@pytest.mark.parametrize("case", GOLDEN, ids=lambda c: c[0])
+def test_there_and_back_through_the_golden_drawings_keeps_every_guarantee(case):
+    # key_a -> key_b -> key_a: pieces, hints, strokes without a partner, loops, non-planar keys.
+    name, key_a, key_b, options = case
+    plans = [bm.plan_inbetween(key_a, key_b, **options), bm.plan_inbetween(key_b, key_a, **options)]
+    corrections = bm.chain_corrections(plans, [4, 4], [True])
+    times = np.array([0.0, 0.25, 0.5, 0.75, 1.0])
+    size = float(np.ptp(np.concatenate([key_a.positions, key_b.positions]), axis=0).max())
+    for plan, correction in zip(plans, corrections):
+        plain, moved = plan.evaluate(times).frames, plan.evaluate(times, correction).frames
+        for t, a, b in zip(times, plain, moved):
+            assert np.array_equal(a.offsets, b.offsets), f"{name} t={t}: strokes changed"
+            assert np.isfinite(b.positions).all(), f"{name} t={t}: not finite"
+            moved_by = float(np.abs(a.positions - b.positions).max(initial=0.0))
+            if t in (0.0, 1.0):
+                assert moved_by == 0.0, f"{name}: the key at t={t} moved by {moved_by:.3g}"
+            assert moved_by <= size, f"{name} t={t}: moved {moved_by:.3g}, drawing size {size:.3g}"
