@@ -356,17 +356,23 @@ _PROPERTIES = {
 }
 
 
-def draw_options(layout, data, compact=False):
-    """Draw the options of ``data`` (operator, scene settings or preferences)."""
+def draw_options(layout, data, compact=False, current_frame=False):
+    """Draw the options of ``data`` (operator, scene settings or preferences).
+
+    ``current_frame``: the run writes one in-between on the current frame, so the frame count
+    and the timing chart do not apply (drawn inactive).
+    """
     layout.use_property_split = True
     layout.use_property_decorate = False
     col = layout.column()
     col.prop(data, "method")
-    charted = bool(data.timing_chart.strip())  # a chart sets the frames and the times itself
+    charted = bool(data.timing_chart.strip()) and not current_frame  # a chart sets the frames and times itself
     sub = col.column()
-    sub.active = not charted
+    sub.active = not charted and not current_frame
     sub.prop(data, "frame_count")
-    col.prop(data, "timing_chart")
+    sub = col.column()
+    sub.active = not current_frame
+    sub.prop(data, "timing_chart")
     col = layout.column()
     sub = col.column()
     sub.active = not charted

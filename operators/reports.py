@@ -32,6 +32,7 @@ __all__ = [
     "too_few_keys",
     "no_key_around",
     "no_frame_between",
+    "on_a_key",
     "no_room_between_keys",
     "all_drawn",
     "both_keys_empty",
@@ -176,6 +177,14 @@ def no_key_around(layer_name, side, current_frame):
     return (
         f"layer '{layer_name}' has no keyframe {side} frame {current_frame}: select two keyframes, "
         "or go to a frame between two keys"
+    )
+
+
+def on_a_key(layer_name, frame):
+    """The current frame holds a key, and the run asked for one in-between on the current frame."""
+    return (
+        f"layer '{layer_name}': the current frame {frame} is a keyframe: "
+        "go to a frame between two keys to in-between it"
     )
 
 

@@ -22,7 +22,7 @@ reports itself, so both callers say the same things.
 from dataclasses import dataclass, field
 
 from ..ballmorph_core import FALLBACK_METHOD, BallMorphError, apply_favor, parse_timing_chart
-from . import charts, keys, morph, options, pairing, reports, writer
+from . import charts, keys, morph, options, pairing, playhead, reports, writer
 from .plans import PLANS
 
 __all__ = ["LayerResult", "ObjectResult", "Progress", "check_options", "inbetween_object"]
@@ -121,7 +121,7 @@ def check_options(values):
     return ""
 
 
-def inbetween_object(obj, values, rule, progress=None):
+def inbetween_object(obj, values, rule, progress=None, only_frame=None):
     """In-between the key intervals of a Grease Pencil object's chosen layers.
 
     Parameters
@@ -134,6 +134,9 @@ def inbetween_object(obj, values, rule, progress=None):
         ``rule(layer_keys) -> (pairs, problems)``, e.g. :func:`.pairing.every_pair` or
         ``functools.partial(pairing.selected_or_current, current_frame=...)``.
     progress : Progress, optional
+    only_frame : int, optional
+        Write one in-between on this frame only (``current_frame_only``, :mod:`.playhead`): the
+        frame count and timing charts do not apply then.
 
     Returns
     -------
@@ -162,6 +165,10 @@ def inbetween_object(obj, values, rule, progress=None):
         found = keys.layer_keys(data, layer)
         pairs, problems = rule(found)
         layer_result.reports.extend((problem_level, text) for text in problems)
+        if only_frame is not None:
+            every_frame = pairing.intervals(found, pairs, 0)
+            work.extend((layer, layer_result, playhead.at_frame(interval, only_frame)) for interval in every_frame)
+            continue
         try:
             layer_charts, notes = charts.charts_for(data, layer.name, pairs, values["timing_chart"])
         except ValueError as exc:  # the chart does not fit an interval: refuse the run, write nothing

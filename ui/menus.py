@@ -18,6 +18,8 @@ class BALLMORPH_MT_inbetween(bpy.types.Menu):
     def draw(self, context):
         layout = self.layout
         layout.operator(BALLMORPH_OT_inbetween.bl_idname, text="In-between", icon="IPO_EASE_IN_OUT")
+        at_frame = layout.operator(BALLMORPH_OT_inbetween.bl_idname, text="In-between at Current Frame")
+        at_frame.current_frame_only = True
         layout.separator()
         layout.operator_enum(BALLMORPH_OT_inbetween.bl_idname, "method")
 

@@ -15,7 +15,14 @@ import types
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PACKAGE = "ballmorph_inbetween_plain"
 #: The add-on's modules that must never import bpy.
-MODULES = ("operators.pairing", "operators.reports", "operators.charts", "operators.id_keys", "operators.hint_numbers")
+MODULES = (
+    "operators.pairing",
+    "operators.playhead",
+    "operators.reports",
+    "operators.charts",
+    "operators.id_keys",
+    "operators.hint_numbers",
+)
 
 
 def _stand_in(name, path):

@@ -11,6 +11,19 @@ from conftest import MODULE
 ICONS = set(bpy.types.UILayout.bl_rna.functions["prop"].parameters["icon"].enum_items.keys())
 
 
+class OperatorProperties:
+    """What ``layout.operator`` returns: records each property a menu entry sets, checking it exists."""
+
+    def __init__(self, idname, log):
+        category, name = idname.split(".")
+        object.__setattr__(self, "_properties", getattr(getattr(bpy.ops, category), name).get_rna_type().properties)
+        object.__setattr__(self, "_log", log)
+
+    def __setattr__(self, name, value):
+        assert name in self._properties, f"the operator has no property {name!r}"
+        self._log.append(("set", name, value))
+
+
 class Layout:
     """Records what a draw function puts in a layout and checks that every name is real."""
 
@@ -44,7 +57,7 @@ class Layout:
         category, name = idname.split(".")
         assert getattr(getattr(bpy.ops, category), name).idname(), idname
         self.log.append(("operator", idname))
-        return types.SimpleNamespace()
+        return OperatorProperties(idname, self.log)
 
     def operator_enum(self, idname, prop, **kwargs):
         category, name = idname.split(".")
@@ -78,7 +91,12 @@ def test_dopesheet_entries_only_in_grease_pencil_mode(ui):
 
 def test_submenu_offers_a_run_and_every_morph(ui):
     log = draw(bpy.types.BALLMORPH_MT_inbetween.draw, bpy.context)
-    assert log == [("operator", "ballmorph.inbetween"), ("operator_enum", "ballmorph.inbetween", "method")]
+    assert log == [
+        ("operator", "ballmorph.inbetween"),
+        ("operator", "ballmorph.inbetween"),
+        ("set", "current_frame_only", True),
+        ("operator_enum", "ballmorph.inbetween", "method"),
+    ]
 
 
 def test_sidebar_panels_show_the_scene_settings_and_run(ui):
