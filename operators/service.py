@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from ..ballmorph_core import FALLBACK_METHOD, BallMorphError, apply_favor, parse_timing_chart
 from . import charts, keys, morph, options, pairing, playhead, reports, writer
 from .plans import PLANS
+from .report_data import Report
 
 __all__ = ["LayerResult", "ObjectResult", "Progress", "check_options", "inbetween_object"]
 
@@ -36,9 +37,10 @@ class LayerResult:
     ----------
     name : str
         The layer's name.
-    reports : list of (level, text)
-        In order: why the layer or some keys were skipped, then per interval what was written
-        (or why not) and what the morph said.
+    reports : list of report_data.Report
+        ``(level, text)`` pairs that also say what they are about (kind, layer, frames,
+        strokes). In order: why the layer or some keys were skipped, then per interval what was
+        written (or why not) and what the morph said.
     written : list of (pairing.Interval, str)
         The intervals written and the core method that made each.
     """
@@ -160,11 +162,11 @@ def inbetween_object(obj, values, rule, progress=None, only_frame=None):
         result.layers.append(layer_result)
         blocker = keys.layer_blocker(layer)
         if blocker:
-            layer_result.reports.append((reports.WARNING, blocker))
+            layer_result.reports.append(Report(reports.WARNING, blocker, kind="layer-skipped", layer=layer.name))
             continue
         found = keys.layer_keys(data, layer)
         pairs, problems = rule(found)
-        layer_result.reports.extend((problem_level, text) for text in problems)
+        layer_result.reports.extend(Report(problem_level, text, kind="keys", layer=layer.name) for text in problems)
         if only_frame is not None:
             every_frame = pairing.intervals(found, pairs, 0)
             work.extend((layer, layer_result, playhead.at_frame(interval, only_frame)) for interval in every_frame)
@@ -174,7 +176,7 @@ def inbetween_object(obj, values, rule, progress=None, only_frame=None):
         except ValueError as exc:  # the chart does not fit an interval: refuse the run, write nothing
             result.error = str(exc)
             return result
-        layer_result.reports.extend(notes)
+        layer_result.reports.extend(Report(*note, kind="timing-chart", layer=layer.name) for note in notes)
         found_intervals = pairing.intervals(found, pairs, values["frame_count"], layer_charts)
         work.extend((layer, layer_result, interval) for interval in found_intervals)
 
@@ -187,13 +189,15 @@ def inbetween_object(obj, values, rule, progress=None, only_frame=None):
             result.error = reports.write_failed(exc)
             return result
     for layer_result, interval, item, problem in outcomes:
+        about = {"layer": interval.layer, "frames": (interval.frame_a, interval.frame_b)}
         if item is None:
-            layer_result.reports.append(problem)
+            layer_result.reports.append(Report(*problem, kind="failed", **about))
             continue
         charts.keep(data, interval)
         layer_result.written.append((interval, item.method))
         label = options.label("method", item.method)
-        layer_result.reports.extend(reports.interval_reports(interval, label, item.messages, item.strays))
+        found = reports.interval_reports(interval, label, item.messages, item.strays)
+        layer_result.reports.extend(report.about(**about) for report in found)
     return result
 
 

@@ -19,6 +19,7 @@ MODULES = (
     "operators.pairing",
     "operators.playhead",
     "operators.reports",
+    "operators.report_data",
     "operators.charts",
     "operators.id_keys",
     "operators.hint_numbers",
