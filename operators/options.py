@@ -197,12 +197,20 @@ OPTIONS = (
         "STRING",
         "Timing Chart",
         "Fractions of the morph in (0, 1), ascending, such as '0.1 0.3 0.6 0.9': one in-between per fraction, "
-        "spread evenly between the keys, not eased (empty: In-betweens and Easing; a chart is kept with its "
+        "spread evenly between the keys, not eased (empty: In-betweens, Type and Easing; a chart is kept with its "
         "keys, and a later run with an empty chart uses it again)",
         "",
     ),
-    Option("easing_type", "ENUM", "Easing", "Interpolation easing (Blender's easing types)", "linear", _EASING_TYPES),
-    Option("easing", "ENUM", "Ease", "Which ends of the motion the easing affects", "ease-in", _EASING_MODES),
+    # Labelled as Blender's Interpolate Sequence labels them: its "Type" and "Easing".
+    Option(
+        "easing_type",
+        "ENUM",
+        "Type",
+        "How the in-betweens are spaced in time (Blender's interpolation types)",
+        "linear",
+        _EASING_TYPES,
+    ),
+    Option("easing", "ENUM", "Easing", "Which ends of the motion the type's easing affects", "ease-in", _EASING_MODES),
     Option(
         "favor",
         "FLOAT",

@@ -11,6 +11,7 @@ help most.
 """
 
 import functools
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -47,6 +48,7 @@ __all__ = [
     "summary",
     "is_warning",
     "bad_chart",
+    "labelled",
     "chart_does_not_fit",
     "kept_chart_ignored",
     "Stray",
@@ -112,6 +114,20 @@ def no_object(active_name=None, active_type=None):
         f"The active object '{active_name}' is a {object_kind(active_type)}, not a Grease Pencil object: "
         f"make a Grease Pencil object active and run {_NAME} again"
     )
+
+
+def labelled(text, name, label):
+    """``text`` with an option's argument name (the core's words: ``'timing_chart: ...'``,
+    ``'favor must be ...'``) replaced by the option's label as the UI shows it.
+
+    Examples
+    --------
+    >>> labelled("Ink 1→4: timing_chart: 3 fractions", "timing_chart", "Timing Chart")
+    'Ink 1→4: Timing Chart: 3 fractions'
+    >>> labelled("favor must be a number in [-1, 1], got 2", "favor", "Favor")
+    'Favor must be a number in [-1, 1], got 2'
+    """
+    return re.sub(rf"\b{re.escape(name)}\b", label, text)
 
 
 def bad_chart(problem):

@@ -115,12 +115,23 @@ def check_options(values):
     try:
         apply_favor([], values["favor"])
     except ValueError as exc:
-        return str(exc)
+        return _labelled(str(exc))
     try:
         parse_timing_chart(values["timing_chart"])
     except ValueError as exc:
-        return reports.bad_chart(str(exc))
+        return _labelled(reports.bad_chart(str(exc)))
     return ""
+
+
+#: Options the core names in its errors (its arguments' names): said with their labels instead.
+_NAMED_BY_THE_CORE = ("timing_chart", "favor")
+
+
+def _labelled(text):
+    """The core's words with the options named as the animator sees them (``Timing Chart``)."""
+    for name in _NAMED_BY_THE_CORE:
+        text = reports.labelled(text, name, options.option(name).label)
+    return text
 
 
 def inbetween_object(obj, values, rule, progress=None, only_frame=None):
@@ -174,9 +185,11 @@ def inbetween_object(obj, values, rule, progress=None, only_frame=None):
         try:
             layer_charts, notes = charts.charts_for(data, layer.name, pairs, values["timing_chart"])
         except ValueError as exc:  # the chart does not fit an interval: refuse the run, write nothing
-            result.error = str(exc)
+            result.error = _labelled(str(exc))
             return result
-        layer_result.reports.extend(Report(*note, kind="timing-chart", layer=layer.name) for note in notes)
+        layer_result.reports.extend(
+            Report(level, _labelled(text), kind="timing-chart", layer=layer.name) for level, text in notes
+        )
         found_intervals = pairing.intervals(found, pairs, values["frame_count"], layer_charts)
         work.extend((layer, layer_result, interval) for interval in found_intervals)
 

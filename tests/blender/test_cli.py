@@ -291,7 +291,7 @@ def test_a_timing_chart_too_long_for_an_interval_writes_nothing_for_that_object(
     assert code == 3
     other = next(o for o in summary["objects"] if o["name"] == "Other")
     assert other["frames_written"] == 0
-    assert "Ink 1\u21924: timing_chart: 3 fractions but only 2 frame(s) between the keys" in other["error"]
+    assert "Ink 1\u21924: Timing Chart: 3 fractions but only 2 frame(s) between the keys" in other["error"]
     assert next(o for o in summary["objects"] if o["name"] == "Drawing")["frames_written"] == 6
 
 
@@ -311,8 +311,8 @@ def test_a_timing_chart_too_long_for_an_interval_writes_nothing_for_that_object(
         (["{in}", "--layers", "some"], "argument --layers: invalid choice: 'some'"),
         (["{in}", "--favor", "2"], "argument --favor: expected a number from -1 to 1, got '2'"),
         (["{in}", "--favor", "nan"], "argument --favor: expected a number from -1 to 1, got 'nan'"),
-        (["{in}", "--timing-chart", "0.5 0.2"], "timing_chart: 0.2 comes after 0.5 (the fractions must rise)"),
-        (["{in}", "--timing-chart", "soon"], "timing_chart: 'soon' is not a number"),
+        (["{in}", "--timing-chart", "0.5 0.2"], "Timing Chart: 0.2 comes after 0.5 (the fractions must rise)"),
+        (["{in}", "--timing-chart", "soon"], "Timing Chart: 'soon' is not a number"),
         (["{dir}/missing.blend"], "cannot read {dir}/missing.blend: no such file"),
         (["{dir}/notes.blend"], 'cannot read {dir}/notes.blend: File format is not supported in file "'),
         (["{in}", "--object", "Nobody"], "has no object of that name (its Grease Pencil objects: 'Drawing', 'Other')"),

@@ -71,6 +71,9 @@ def test_operator_options(addon):
     interpolate = bpy.ops.grease_pencil.interpolate_sequence.get_rna_type().properties
     assert enum["easing_type"] == [i.identifier for i in interpolate["type"].enum_items if i.identifier != "CUSTOM"]
     assert enum["easing"] == [i.identifier for i in interpolate["easing"].enum_items]
+    # ... and its labels: Type (Linear, Sine, ...) and Easing (Ease In, ...)
+    labels = (properties["easing_type"].name, properties["easing"].name)
+    assert labels == (interpolate["type"].name, interpolate["easing"].name) == ("Type", "Easing")
     for name in ("frame_count", "layers", "selected_only", "carrier", "matching", "unmatched"):
         assert name in properties
 

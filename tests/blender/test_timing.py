@@ -83,10 +83,10 @@ def test_favor_applies_to_chart_fractions_too(addon):
 @pytest.mark.parametrize(
     ("chart", "said"),
     [
-        ("0.1 half", "timing_chart: 'half' is not a number"),
-        ("0.2 1.5", "timing_chart: 1.5 is not between 0 and 1"),
-        ("0.6 0.3", "timing_chart: 0.3 comes after 0.6 (the fractions must rise)"),
-        ("0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8", "Ink 1\u21929: timing_chart: 8 fractions but only 7 frame(s) between"),
+        ("0.1 half", "Timing Chart: 'half' is not a number"),
+        ("0.2 1.5", "Timing Chart: 1.5 is not between 0 and 1"),
+        ("0.6 0.3", "Timing Chart: 0.3 comes after 0.6 (the fractions must rise)"),
+        ("0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8", "Ink 1\u21929: Timing Chart: 8 fractions but only 7 frame(s) between"),
     ],
     ids=["word", "out-of-range", "descending", "too-many"],
 )
@@ -96,6 +96,7 @@ def test_a_malformed_chart_is_refused_saying_what_is_wrong_and_writes_nothing(ad
     with pytest.raises(RuntimeError) as refused:
         bpy.ops.ballmorph.inbetween(timing_chart=chart, **CIRCLES)
     assert said in str(refused.value) and "nothing was written" in str(refused.value)
+    assert "timing_chart" not in str(refused.value), "the option is named as the UI shows it"
     assert gp_data.snapshot(obj) == before
     assert "ballmorph_timing_charts" not in obj.data and "ballmorph_inbetween" not in obj.data
 
