@@ -13,6 +13,7 @@ changes are remembered.
 from functools import partial
 
 import bpy
+from bpy.app.translations import pgettext_rpt as rpt_
 
 from . import keys, options, pairing, playhead, reports, service
 
@@ -60,7 +61,7 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
         if context.scene is None:
             return False
         if keys.grease_pencil_object(context) is None:
-            cls.poll_message_set(_no_object(context))
+            cls.poll_message_set(rpt_(_no_object(context)))
             return False
         return True
 
@@ -89,10 +90,10 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
         if not result.frames:
             return self._cancel(reports.nothing_to_do([text for _, text in result.reports()]))
         for level, text in result.reports():
-            self.report({level}, text)
+            self.report({level}, rpt_(text))
         # The status bar shows the last report: the summary, a warning when anything warned.
         level, text = reports.summary(result.frames, result.layers_written, result.warnings)
-        self.report({level}, text)
+        self.report({level}, rpt_(text))
         self._store_options(context)
         return {"FINISHED"}
 
@@ -110,7 +111,7 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
                 setattr(settings, name, getattr(self, name))
 
     def _cancel(self, text):
-        self.report({"ERROR"}, text)
+        self.report({"ERROR"}, rpt_(text))
         return {"CANCELLED"}
 
 

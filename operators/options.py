@@ -34,13 +34,18 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Item:
-    """One enum item: Blender's id, the lowercase value it stands for, what the animator reads."""
+    """One enum item: Blender's id, the lowercase value it stands for, what the animator reads.
+
+    ``research``: a comparison morph from the paper, offered in the sidebar's Morph list but
+    not in the menus' quick list.
+    """
 
     id: str
     value: str
     label: str
     description: str
     icon: str = "NONE"
+    research: bool = False
 
 
 _METHODS = (
@@ -68,24 +73,28 @@ _METHODS = (
         "closest-projection",
         "Closest Projection",
         "Each point moves to its closest point on the other stroke (comparison morph)",
+        research=True,
     ),
     Item(
         "CURVATURE_INTERPOLATION",
         "curvature-interpolation",
         "Curvature Interpolation",
         "Edge lengths and turning angles are blended (Sederberg et al.; comparison morph)",
+        research=True,
     ),
     Item(
         "LAPLACE_BLENDING",
         "laplace-blending",
         "Laplace Blending",
         "Laplacian coordinates are blended (comparison morph)",
+        research=True,
     ),
     Item(
         "HEAT_PROPAGATION",
         "heat-propagation",
         "Heat Propagation",
         "In-betweens are iso-contours of heat flowing from one stroke to the other (comparison morph)",
+        research=True,
     ),
 )
 

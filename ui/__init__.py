@@ -1,9 +1,9 @@
 """User interface: Dope Sheet and 3D viewport menus, the shortcut, sidebar panels, preferences,
-the path preview, the hints' numbered dots."""
+the path preview, the hints' numbered dots, the translation table."""
 
 import bpy
 
-from . import hint_dots, keymap, menus, panels, path_preview, preferences
+from . import hint_dots, keymap, menus, panels, path_preview, preferences, translations
 
 classes = (*preferences.classes, *menus.classes, *panels.classes)
 
@@ -11,6 +11,7 @@ _register_classes, _unregister_classes = bpy.utils.register_classes_factory(clas
 
 
 def register():
+    translations.register()
     _register_classes()
     menus.register()
     keymap.register()
@@ -24,3 +25,4 @@ def unregister():
     keymap.unregister()
     menus.unregister()
     _unregister_classes()
+    translations.unregister()

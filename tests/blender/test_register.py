@@ -1,17 +1,13 @@
 """The add-on registers and unregisters cleanly, twice, in real Blender, with all its UI."""
 
+import importlib
 import importlib.util
 import os
 
 import bpy
 from conftest import MODULE, disable_addon, enable_addon
 
-MENUS = (
-    "DOPESHEET_MT_key",
-    "DOPESHEET_MT_context_menu",
-    "VIEW3D_MT_paint_grease_pencil",
-    "VIEW3D_MT_edit_greasepencil",
-)
+MENUS = ("DOPESHEET_MT_key", "DOPESHEET_MT_context_menu", "VIEW3D_MT_edit_greasepencil_animation")
 CLASSES = (
     "BALLMORPH_OT_inbetween",
     "BALLMORPH_MT_inbetween",
@@ -147,3 +143,19 @@ def test_shortcut_is_free_in_blenders_default_keymap():
         "grease_pencil.interpolate": ("E", True, False),
         "grease_pencil.interpolate_sequence": ("E", True, True),
     }
+
+
+def test_the_translation_table_is_registered_and_removed_under_the_addons_name(addon, monkeypatch):
+    import types
+
+    module = importlib.import_module(f"{MODULE}.ui.translations")
+    assert module.DOMAIN == MODULE
+    calls = []
+    recorder = types.SimpleNamespace(
+        register=lambda name, table: calls.append(("+", name, table)), unregister=lambda name: calls.append(("-", name))
+    )
+    # (bpy.app.translations' functions are read-only: the module's view of bpy is replaced instead)
+    monkeypatch.setattr(module, "bpy", types.SimpleNamespace(app=types.SimpleNamespace(translations=recorder)))
+    module.register()
+    module.unregister()
+    assert calls == [("+", MODULE, module.TRANSLATIONS), ("-", MODULE)]

@@ -6,7 +6,7 @@ import types
 import bpy
 import gp_data
 import pytest
-from conftest import MODULE
+from conftest import MODULE, disable_addon
 
 ICONS = set(bpy.types.UILayout.bl_rna.functions["prop"].parameters["icon"].enum_items.keys())
 
@@ -89,14 +89,38 @@ def test_dopesheet_entries_only_in_grease_pencil_mode(ui):
     assert draw(entry, action) == []
 
 
-def test_submenu_offers_a_run_and_every_morph(ui):
+def test_submenu_offers_a_run_a_run_at_the_current_frame_and_the_animators_morphs(ui):
     log = draw(bpy.types.BALLMORPH_MT_inbetween.draw, bpy.context)
+    animators = ["CIRCULAR_BALL", "LINEAR_BALL", "PARABOLIC_BALL", "LINEAR_INTERPOLATION"]
     assert log == [
         ("operator", "ballmorph.inbetween"),
         ("operator", "ballmorph.inbetween"),
         ("set", "current_frame_only", True),
-        ("operator_enum", "ballmorph.inbetween", "method"),
+        *[entry for method in animators for entry in (("operator", "ballmorph.inbetween"), ("set", "method", method))],
     ]
+    # the paper's comparison morphs stay in the sidebar's Morph list
+    methods = [item.identifier for item in bpy.context.scene.ballmorph_inbetween.bl_rna.properties["method"].enum_items]
+    assert len(methods) == 8 and set(animators) < set(methods)
+
+
+def test_the_viewport_entry_sits_in_the_animation_menu_just_above_interpolate_sequence(ui):
+    """Blender's Draw (Draw mode) and Grease Pencil (Edit mode) menus show the Animation submenu and
+    then Interpolate Sequence; the add-on's entry closes that Animation submenu."""
+    owners = {name for name, draw in ui.menus.MENU_ENTRIES if draw is ui.menus._draw_entry}
+    assert owners == {"VIEW3D_MT_edit_greasepencil_animation"}
+    for menu in ("VIEW3D_MT_paint_grease_pencil", "VIEW3D_MT_edit_greasepencil"):
+        obj = types.SimpleNamespace(mode="PAINT_GREASE_PENCIL")
+        context = types.SimpleNamespace(active_object=obj, object=obj, tool_settings=bpy.context.tool_settings)
+        log = []
+        try:
+            getattr(bpy.types, menu).draw(types.SimpleNamespace(layout=Layout(log)), context)
+        except AttributeError:  # what the stand-in context lacks comes after the entries checked here
+            pass
+        shown = [entry[1] for entry in log if entry[0] in ("menu", "operator")]
+        at = shown.index("VIEW3D_MT_edit_greasepencil_animation")
+        assert shown[at + 1] == "grease_pencil.interpolate_sequence", (menu, shown)
+    log = draw(ui.menus._draw_entry, bpy.context)
+    assert log == [("menu", "BALLMORPH_MT_inbetween")]
 
 
 def test_sidebar_panels_show_the_scene_settings_and_run(ui):
@@ -123,3 +147,24 @@ def test_redo_panel_and_preferences_draw_every_option(ui):
         log = []
         options.draw_options(Layout(log), data)
         assert [name for _, name in log] == list(options.OPTION_NAMES)
+
+
+def test_hint_dots_follow_the_overlays_and_their_toggle_and_scale_with_the_ui(ui):
+    hint_dots = ui.hint_dots
+    settings = bpy.context.scene.ballmorph_inbetween
+    viewport = types.SimpleNamespace(overlay=types.SimpleNamespace(show_overlays=True))
+    context = types.SimpleNamespace(scene=bpy.context.scene, space_data=viewport)
+    assert settings.hint_dots and hint_dots.shown(context)
+    viewport.overlay.show_overlays = False
+    assert not hint_dots.shown(context), "drawn with the viewport's overlays off"
+    viewport.overlay.show_overlays = True
+    settings.hint_dots = False
+    assert not hint_dots.shown(context), "drawn with its toggle off"
+    dot, text, offset = hint_dots.sizes(2.0)
+    assert (dot, text, offset) == (2 * hint_dots.DOT_SIZE, 2 * hint_dots.TEXT_SIZE, (12.0, 12.0))
+    # the toggle is in the Overlays popover (Grease Pencil Options), and only while enabled
+    panel = getattr(bpy.types, hint_dots.TOGGLE_PANEL)
+    assert hint_dots.draw_toggle in panel._dyn_ui_initialize()
+    assert draw(hint_dots.draw_toggle, bpy.context) == [("prop", "hint_dots")]
+    disable_addon()
+    assert all(f.__module__ != hint_dots.__name__ for f in panel._dyn_ui_initialize())
