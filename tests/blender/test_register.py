@@ -3,9 +3,10 @@
 import importlib
 import importlib.util
 import os
+import sys
 
 import bpy
-from conftest import MODULE, disable_addon, enable_addon
+from conftest import MODULE, ROOT, disable_addon, enable_addon
 
 MENUS = ("DOPESHEET_MT_key", "DOPESHEET_MT_context_menu", "VIEW3D_MT_edit_greasepencil_animation")
 CLASSES = (
@@ -78,6 +79,18 @@ def test_core_is_vendored_and_bpy_free(addon):
     core = __import__(f"{MODULE}.ballmorph_core", fromlist=["make_morph"])
     assert "circular-ball" in core.METHODS
     assert not any(name.startswith("bpy") for name in core.__dict__)
+    # the paper's measures are not loaded with the add-on (and not shipped in its zip)
+    assert f"{MODULE}.ballmorph_core.study" not in sys.modules
+
+
+def test_manifest_has_no_dead_link_and_declares_file_access():
+    import tomllib
+
+    with open(os.path.join(ROOT, "blender_manifest.toml"), "rb") as f:
+        manifest = tomllib.load(f)
+    assert "example.invalid" not in manifest.get("website", "")
+    assert "blender -c ballmorph" in manifest["permissions"]["files"]
+    assert "/ballmorph_core/study/" in manifest["build"]["paths_exclude_pattern"]
 
 
 # -- the shortcut ----------------------------------------------------------------------------------
