@@ -118,6 +118,8 @@ def test_shortcut_is_added_on_register_and_removed_on_unregister(addon):
     assert _our_keymap_items() == {}, "the shortcut outlived unregister()"
     enable_addon()
     assert _our_keymap_items() == dict.fromkeys(SHORTCUT_SPACES, want), "registered twice, or not again"
+    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+        assert "**Ctrl+Alt+E** in the 3D viewport or the Dope Sheet" in f.read()
 
 
 def _default_keymaps():

@@ -168,3 +168,42 @@ def test_hint_dots_follow_the_overlays_and_their_toggle_and_scale_with_the_ui(ui
     assert draw(hint_dots.draw_toggle, bpy.context) == [("prop", "hint_dots")]
     disable_addon()
     assert all(f.__module__ != hint_dots.__name__ for f in panel._dyn_ui_initialize())
+
+
+def _readme_block(start, end):
+    import os
+
+    from conftest import ROOT
+
+    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+        text = f.read()
+    return text.split(f"<!-- {start} -->")[1].split(f"<!-- {end} -->")[0].strip().strip("`").strip()
+
+
+def test_the_readmes_menu_picture_is_the_submenu(ui):
+    lines = _readme_block("menu", "panel").splitlines()
+    shown = [line.rpartition(">")[2].split("(")[0].strip() for line in lines]
+    shown = [entry for entry in shown if entry and not entry.startswith("-")]
+    expected = ["In-between", "In-between at Current Frame", *(item.label for item in ui.menus.QUICK_METHODS)]
+    assert shown == expected
+
+
+def test_the_readmes_panel_picture_lists_the_panels_settings_in_order(ui):
+    gp_data.new_object()
+    settings = bpy.context.scene.ballmorph_inbetween
+    labels = [
+        settings.bl_rna.properties[entry[1]].name
+        for entry in draw(ui.panels.BALLMORPH_PT_dopesheet.draw, bpy.context)
+        if entry[0] == "prop"
+    ]
+    picture = _readme_block("panel", "end")
+    at = 0
+    for label in labels:
+        found = picture.find(label, at)
+        assert found >= 0, f"the README's panel lacks {label!r} after position {at}"
+        at = found + len(label)
+    pairing = [
+        settings.bl_rna.properties[name].name
+        for _, name in draw(ui.panels.BALLMORPH_PT_dopesheet_pairing.draw, bpy.context)
+    ]
+    assert picture.splitlines()[-1].endswith(": " + ", ".join(pairing))
