@@ -491,7 +491,7 @@ class _Summary:
         # Found by hand before parsing, so that bad arguments are said in JSON too.
         self.json = "--json" in argv
         self.json_file = _value_of("--json-file", argv)
-        self.file = next((arg for arg in argv if not arg.startswith("-")), None)
+        self.file = _input_in(argv)
 
     def failed(self, code, kind, message, details=""):
         """Say why the run stopped (stderr, and the JSON error object); returns ``code``."""
@@ -531,6 +531,19 @@ class _Summary:
         if self.json:
             sys.stdout.write(text)
             _seal_stdout()
+
+
+def _input_in(argv):
+    """The input file among arguments that did not parse: the first word that is neither an
+    option nor an option's value (``--output OUT.blend IN.blend`` -> ``IN.blend``), or None."""
+    takes_value = {flag for action in parser()._actions if action.nargs != 0 for flag in action.option_strings}
+    words = iter(argv)
+    for word in words:
+        if word in takes_value:
+            next(words, None)
+        elif not word.startswith("-"):
+            return word
+    return None
 
 
 def _value_of(flag, argv):

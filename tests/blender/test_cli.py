@@ -429,7 +429,10 @@ def test_version_prints_the_manifests_version(addon, capfd):
 
 @pytest.mark.parametrize(
     ("argv", "said"),
-    [(["{dir}/missing.blend"], "no such file"), (["{dir}/missing.blend", "--bogus"], "unrecognized arguments")],
+    [
+        (["{dir}/missing.blend"], "no such file"),
+        (["--output", "{dir}/out.blend", "{dir}/missing.blend", "--bogus"], "unrecognized arguments"),
+    ],
     ids=["missing-file", "bad-argument"],
 )
 def test_json_says_an_error_as_a_json_object_with_exit_2(addon, tmp_path, capfd, argv, said):
@@ -437,6 +440,7 @@ def test_json_says_an_error_as_a_json_object_with_exit_2(addon, tmp_path, capfd,
     assert code == 2
     summary = json.loads(out)
     assert summary["exit_code"] == 2 and summary["saved"] is False
+    assert summary["input"] == str(tmp_path / "missing.blend")
     assert summary["error"]["kind"] == "bad-arguments" and said in summary["error"]["message"]
     assert said in err
 
