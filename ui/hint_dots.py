@@ -35,8 +35,7 @@ def sizes(ui_scale):
 
 def shown(context):
     """Whether the dots are wanted: the viewport shows overlays and the hint dots are on."""
-    overlay = getattr(getattr(context, "space_data", None), "overlay", None)
-    if overlay is not None and not overlay.show_overlays:
+    if not overlay.overlays_shown(context):
         return False
     settings = getattr(context.scene, "ballmorph_inbetween", None) if context.scene is not None else None
     return settings is None or settings.hint_dots
@@ -52,7 +51,7 @@ def draw():
         return
     marks = MARKS.marks(context)
     if marks is not None:
-        _draw_marks(region, view, *marks, sizes(context.preferences.system.ui_scale))
+        _draw_marks(region, view, *marks, sizes(overlay.ui_scale(context)))
 
 
 def _draw_marks(region, view, points, numbers, side, scaled):

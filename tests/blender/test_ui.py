@@ -157,9 +157,11 @@ def test_hint_dots_follow_the_overlays_and_their_toggle_and_scale_with_the_ui(ui
     assert settings.hint_dots and hint_dots.shown(context)
     viewport.overlay.show_overlays = False
     assert not hint_dots.shown(context), "drawn with the viewport's overlays off"
+    assert not ui.overlay.overlays_shown(context)  # the path preview asks the same
     viewport.overlay.show_overlays = True
     settings.hint_dots = False
     assert not hint_dots.shown(context), "drawn with its toggle off"
+    assert ui.overlay.ui_scale(bpy.context) == 1.0  # background Blender reads 0: drawn unscaled
     dot, text, offset = hint_dots.sizes(2.0)
     assert (dot, text, offset) == (2 * hint_dots.DOT_SIZE, 2 * hint_dots.TEXT_SIZE, (12.0, 12.0))
     # the toggle is in the Overlays popover (Grease Pencil Options), and only while enabled
