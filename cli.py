@@ -3,12 +3,14 @@
 ::
 
     blender -c ballmorph IN.blend [--output OUT.blend] [--object NAME]... [--layers active|all]
-                                  [--method circular-ball|...] [--frame-count N] [--json] ...
+                                  [--method circular-ball|...] [--frame-count N] [--json]
+                                  [--json-file PATH] [--version] ...
 
 opens IN.blend, in-betweens every key interval (every consecutive pair of keys with a frame
 between them) on the chosen layers of the chosen Grease Pencil objects (all of them by default),
 and saves to OUT.blend, or in place, keeping ``IN.blend1`` as Blender does. With ``--output`` it
-never modifies IN.blend.
+never modifies IN.blend; an empty ``--output`` or one that names a directory is refused before
+anything is read.
 
 It runs the operator's own service (:func:`.operators.service.inbetween_object`) with the
 operator's options (:data:`.operators.options.OPTIONS`, their lowercase values: ``--method
@@ -17,10 +19,16 @@ the operator's: keys and drawn frames are never modified, an object is written a
 re-running replaces only the add-on's own in-betweens. Only the rule choosing the keys differs
 (every pair, not the selection or the current frame), and ``--layers`` defaults to ``all``.
 
-It prints a summary on stdout (JSON with ``--json``) and its progress, and Blender's own
-messages, on stderr. Exit status: 0 when everything asked was in-betweened; 1 when anything was
-skipped, failed or warned (said per object and layer), or nothing was written; 2 for bad
-arguments or an unreadable file (nothing saved then).
+It prints a summary on stdout and its progress, and Blender's own messages, on stderr. With
+``--json`` the summary is one JSON object, printed on every exit (an ``error`` object for bad
+arguments, an unreadable file or an internal error); after it, stdout is closed to Blender's own
+late messages (they go to stderr), so stdout parses as JSON. ``--json-file PATH`` writes the same
+object to a file instead, for pipelines that keep stdout for something else.
+
+Exit status (:data:`EXIT_CODES`): 0 everything asked was in-betweened and saved; 3 finished
+with warnings (saved what could be in-betweened, or nothing to do: the summary says what and
+where); 2 bad arguments or an unreadable input file (nothing read or saved); 1 an internal
+error or a failed save (nothing saved; please report an internal error).
 
 The extension registers the command on ``register()`` (``bpy.utils.register_cli_command``) and
 removes it on ``unregister()``.
@@ -32,17 +40,27 @@ import ctypes
 import json
 import os
 import sys
+import tomllib
 import traceback
 
 import bpy
 
-from .addon_logic import pairing, reports
+from .addon_logic import pairing, report_data, reports
 from .operators import options, service
 
 __all__ = ["COMMAND", "main", "register", "unregister"]
 
 COMMAND = "ballmorph"
-OK, NOT_ALL_DONE, BAD_ARGUMENTS = 0, 1, 2
+OK, FAILED, BAD_ARGUMENTS, WARNINGS = 0, 1, 2, 3
+#: What each exit status means (the help's epilog and the README say the same).
+EXIT_CODES = {
+    OK: "everything asked was in-betweened and saved",
+    WARNINGS: "finished with warnings: what could be in-betweened was saved (or there was nothing to do); "
+    "the summary says what and where",
+    BAD_ARGUMENTS: "bad arguments or an unreadable input file: nothing was read or saved",
+    FAILED: "an internal error (please report it) or the save failed: nothing was saved",
+}
+_MANIFEST = os.path.join(os.path.dirname(os.path.abspath(__file__)), "blender_manifest.toml")
 # Defaults that differ from the operator's: a batch in-betweens every layer.
 _DEFAULTS = {"layers": "all"}
 _LEVEL_WORDS = {reports.INFO: "Info", reports.WARNING: "Warning", reports.ERROR: "Error"}
@@ -52,6 +70,17 @@ _handle = None  # what register_cli_command returned
 
 class BadArgumentsError(Exception):
     """Arguments or an input file the command cannot work with (exit status 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, but a bad argument raises :class:`BadArgumentsError` (so ``--json`` can say it too)."""
+
+    def error(self, message):
+        raise BadArgumentsError(f"{message} (see blender -c {COMMAND} --help)")
+
+    def __init__(self, **kwargs):
+        # No abbreviations: --json and --json-file are found before parsing (see _Summary).
+        super().__init__(allow_abbrev=False, **kwargs)
 
 
 def register():
@@ -77,37 +106,51 @@ def main(argv):
     Returns
     -------
     int
-        0 when everything was in-betweened, 1 when anything was skipped, failed or warned (or
-        nothing was written), 2 for bad arguments or an unreadable file.
+        The exit status (:data:`EXIT_CODES`): 0 done, 3 done with warnings, 2 bad arguments or
+        an unreadable file, 1 an internal error or a failed save.
     """
+    argv = [str(arg) for arg in argv]
+    summary = _Summary(argv)
     try:
-        args = parser().parse_args(list(argv))
-    except SystemExit as exc:  # argparse printed the help, or the usage and what is wrong
+        args = parser().parse_args(argv)
+    except SystemExit as exc:  # --help or --version: printed
         return OK if exc.code in (0, None) else BAD_ARGUMENTS
-    try:
-        return _Run(args).run()
     except BadArgumentsError as exc:
-        _say(f"error: {exc}")
-        return BAD_ARGUMENTS
-    except Exception:  # a bug: nothing was saved; say where, for the bug report
-        _say("internal error, nothing was saved; please report this:\n" + traceback.format_exc())
-        return NOT_ALL_DONE
+        return summary.failed(BAD_ARGUMENTS, "bad-arguments", str(exc))
+    summary.file = args.file
+    run = None
+    try:
+        run = _Run(args)
+        return summary.done(run.run(), run)
+    except BadArgumentsError as exc:
+        return summary.failed(BAD_ARGUMENTS, "bad-arguments", str(exc))
+    except Exception:  # a bug: say where, for the bug report
+        saved = f"after saving {run.target}" if run is not None and run.saved else "nothing was saved"
+        message = f"internal error, {saved}; please report this"
+        return summary.failed(FAILED, "internal", message, traceback.format_exc())
+
+
+def version():
+    """The add-on's version, as its manifest says (``'0.1.0'``)."""
+    with open(_MANIFEST, "rb") as f:
+        return tomllib.load(f)["version"]
 
 
 def parser():
     """The command's argument parser: its in-between options come from the operator's option table."""
-    parser = argparse.ArgumentParser(
+    exits = "; ".join(f"{code} {meaning}" for code, meaning in sorted(EXIT_CODES.items()))
+    parser = _Parser(
         prog=f"blender -c {COMMAND}",
         description="In-between every key interval of the Grease Pencil objects in a .blend file, as the "
         "Ball-morph In-between operator does, and save the result.",
-        epilog="Exit status: 0 done; 1 something was skipped, failed or warned (see the summary), or nothing "
-        "was written; 2 bad arguments or unreadable file.",
+        epilog=f"Exit status: {exits}.",
+        add_help=False,
     )
-    parser.add_argument("file", metavar="IN.blend", help="the file to in-between")
+    parser.add_argument("file", metavar="IN.blend", help="The file to in-between")
     parser.add_argument(
         "--output",
         metavar="OUT.blend",
-        help="save the result here and leave IN.blend untouched (default: save IN.blend in place, keeping IN.blend1)",
+        help="Save the result here and leave IN.blend untouched (default: save IN.blend in place, keeping IN.blend1)",
     )
     parser.add_argument(
         "--object",
@@ -115,10 +158,19 @@ def parser():
         action="append",
         dest="objects",
         default=[],
-        help="a Grease Pencil object to in-between (repeat for more; default: all of them)",
+        help="A Grease Pencil object to in-between (repeat for more; default: all of them)",
     )
-    parser.add_argument("--json", action="store_true", help="print the summary as JSON")
-    group = parser.add_argument_group("in-between options (the operator's)")
+    parser.add_argument(
+        "--json", action="store_true", help="Print the summary as one JSON object, on every exit (errors too)"
+    )
+    parser.add_argument(
+        "--json-file", metavar="PATH", help="Write the JSON summary to this file (on every exit) instead of stdout"
+    )
+    parser.add_argument("-h", "--help", action="help", help="Show this help and exit")
+    parser.add_argument(
+        "--version", action="version", version=f"%(prog)s {version()}", help="Show the add-on's version and exit"
+    )
+    group = parser.add_argument_group("In-between options (the operator's)")
     for option in options.OPTIONS:
         default = _DEFAULTS.get(option.name, option.default)
         group.add_argument(
@@ -194,16 +246,30 @@ def _blender_output_to_stderr():
             yield
     finally:
         if saved is not None:
-            _flush_c_stdio()
-            os.dup2(saved, 1)
-            os.close(saved)
+            try:
+                _flush_c_stdio()
+            finally:  # stdout comes back whatever happened
+                os.dup2(saved, 1)
+                os.close(saved)
 
 
 def _flush_c_stdio():
+    """Flush C stdio's buffers (Blender's printf lines) before file descriptor 1 changes: best effort."""
     try:
+        # POSIX: the process's own C library. Windows raises TypeError (CDLL needs a name there);
+        # Blender's lines then reach their destination when it flushes them itself.
         ctypes.CDLL(None).fflush(None)
-    except (OSError, AttributeError):  # no C library to ask (not POSIX): Blender flushes its own lines
+    except (OSError, AttributeError, TypeError):
         pass
+
+
+def _seal_stdout():
+    """Send everything printed on stdout from now on to stderr (Blender's exit messages, such as
+    "Not freed memory blocks"), so that stdout holds the JSON summary alone."""
+    sys.stdout.flush()
+    _flush_c_stdio()
+    with contextlib.suppress(OSError):
+        os.dup2(2, 1)
 
 
 class _StderrProgress(service.Progress):
@@ -223,36 +289,38 @@ class _Run:
     def __init__(self, args):
         self.args = args
         self.source = os.path.abspath(args.file)
-        self.target = os.path.abspath(args.output) if args.output else self.source
+        self.in_place = args.output is None
+        self.target = self.source if self.in_place else os.path.abspath(args.output)
         self.values = {name: getattr(args, name) for name in options.OPTION_NAMES}
         self.results = []  # (object name, ObjectResult or None, name of the object it shares data with)
         self.notes = []  # (level, text) about the whole run
         self.saved = False
 
     def run(self):
+        """Everything but the summary (:class:`_Summary` prints it); returns the exit status."""
         self._check()
         with _blender_output_to_stderr():
             self._open()
             chosen = self._chosen_objects()
             self._inbetween(chosen)
-            self._save()
-        code = NOT_ALL_DONE if self._incomplete() else OK
-        sys.stdout.write(self._json(code) if self.args.json else self._text())
-        sys.stdout.flush()
-        return code
+            save_failed = not self._save()
+        if save_failed:
+            return FAILED
+        return WARNINGS if self._incomplete() else OK
 
     # -- before anything is opened
 
     def _check(self):
         if not os.path.isfile(self.source):
             raise BadArgumentsError(f"cannot read {self.args.file}: no such file")
-        if self.args.output:
+        if not self.in_place:
+            _check_writable("--output", self.args.output, self.target)
             if os.path.realpath(self.target) == os.path.realpath(self.source):
                 raise BadArgumentsError(
                     "--output names the input file: leave --output out to save in place (keeping a .blend1)"
                 )
-            if not os.path.isdir(os.path.dirname(self.target)):
-                raise BadArgumentsError(f"cannot write {self.args.output}: no directory {os.path.dirname(self.target)}")
+        if self.args.json_file is not None:
+            _check_writable("--json-file", self.args.json_file, os.path.abspath(self.args.json_file))
         problem = service.check_options(self.values)
         if problem:
             raise BadArgumentsError(problem)
@@ -304,21 +372,22 @@ class _Run:
         return sum(result.frames for _, result, _ in self.results if result is not None)
 
     def _save(self):
-        in_place = not self.args.output
-        if in_place and not self._frames():
+        """Save (unless nothing was written in place); False when saving failed."""
+        if self.in_place and not self._frames():
             self.notes.append((reports.INFO, f"nothing was written: {self.args.file} was not saved"))
-            return
+            return True
         _say(f"saving {self.target}")
         try:
-            if in_place:
+            if self.in_place:
                 self._save_in_place()
             else:
                 bpy.ops.wm.save_as_mainfile(filepath=self.target, copy=True)
         except RuntimeError as exc:
             reason = str(exc).strip().removeprefix("Error: ")
             self.notes.append((reports.ERROR, f"saving {self.target} failed, nothing was saved: {reason}"))
-            return
+            return False
         self.saved = True
+        return True
 
     def _save_in_place(self):
         """Save over IN.blend, keeping at least one backup (IN.blend1) whatever the preferences say."""
@@ -339,9 +408,9 @@ class _Run:
 
     def _backup(self):
         backup = self.source + "1"
-        return backup if self.saved and not self.args.output and os.path.exists(backup) else None
+        return backup if self.saved and self.in_place and os.path.exists(backup) else None
 
-    def _text(self):
+    def text(self):
         frames = self._frames()
         warnings = sum(result.warnings + bool(result.error) for _, result, _ in self.results if result is not None)
         warnings += sum(reports.is_warning(level) for level, _ in self.notes)
@@ -360,10 +429,8 @@ class _Run:
         lines.extend(f"{_LEVEL_WORDS[level]}: {text}" for level, text in self.notes)
         return "\n".join(lines) + "\n"
 
-    def _json(self, code):
-        def report(level, text):
-            return {"level": level.lower(), "text": text}
-
+    def fields(self):
+        """The summary as JSON-ready fields (without the exit status)."""
         objects = []
         for name, result, shared in self.results:
             entry = {"name": name, "frames_written": 0, "same_data_as": shared, "error": "", "layers": []}
@@ -383,12 +450,12 @@ class _Run:
                             }
                             for interval, method in layer.written
                         ],
-                        "reports": [report(level, text) for level, text in layer.reports],
+                        "reports": [report_data.fields(report, layer=layer.name) for report in layer.reports],
                     }
                     for layer in result.layers
                 ]
             objects.append(entry)
-        summary = {
+        return {
             "input": self.source,
             "output": self.target,
             "saved": self.saved,
@@ -396,7 +463,95 @@ class _Run:
             "options": self.values,
             "frames_written": self._frames(),
             "objects": objects,
-            "notes": [report(level, text) for level, text in self.notes],
-            "exit_code": code,
+            "notes": [report_data.fields(note) for note in self.notes],
+            "error": None,
         }
-        return json.dumps(summary, indent=2) + "\n"
+
+
+def _check_writable(flag, given, path):
+    """Refuse an output path that cannot be a new file: empty, a directory, in no directory."""
+    if not given:
+        raise BadArgumentsError(
+            f"{flag} is empty: give a file name"
+            + (", or leave --output out to save IN.blend in place (keeping IN.blend1)" if flag == "--output" else "")
+        )
+    if os.path.isdir(path):
+        raise BadArgumentsError(f"cannot write {given}: it is a directory; give a file name")
+    folder = os.path.dirname(path)
+    if not os.path.isdir(folder):
+        raise BadArgumentsError(f"cannot write {given}: no directory {folder}")
+    if not os.access(folder, os.W_OK):
+        raise BadArgumentsError(f"cannot write {given}: the directory {folder} is not writable")
+
+
+class _Summary:
+    """The run's summary, on every exit: text on stdout, or one JSON object (``--json`` on stdout,
+    ``--json-file`` in a file), the same fields whether the run finished or failed."""
+
+    def __init__(self, argv):
+        # Found by hand before parsing, so that bad arguments are said in JSON too.
+        self.json = "--json" in argv
+        self.json_file = _value_of("--json-file", argv)
+        self.file = _input_in(argv)
+
+    def failed(self, code, kind, message, details=""):
+        """Say why the run stopped (stderr, and the JSON error object); returns ``code``."""
+        _say(f"error: {message}" + (f"\n{details}" if details else ""))
+        source = os.path.abspath(self.file) if self.file else None
+        self._write_json(
+            {
+                "input": source,
+                "output": None,
+                "saved": False,
+                "backup": None,
+                "frames_written": 0,
+                "objects": [],
+                "notes": [],
+                "error": {"kind": kind, "message": message},
+            },
+            code,
+        )
+        return code
+
+    def done(self, code, run):
+        """Print the finished run's summary; returns ``code``."""
+        if not self.json:
+            sys.stdout.write(run.text())
+            sys.stdout.flush()
+        self._write_json(run.fields(), code)
+        return code
+
+    def _write_json(self, fields, code):
+        text = json.dumps({**fields, "exit_code": code}, indent=2) + "\n"
+        if self.json_file:
+            try:
+                with open(self.json_file, "w", encoding="utf-8") as f:
+                    f.write(text)
+            except OSError as exc:
+                _say(f"error: cannot write {self.json_file}: {exc}")
+        if self.json:
+            sys.stdout.write(text)
+            _seal_stdout()
+
+
+def _input_in(argv):
+    """The input file among arguments that did not parse: the first word that is neither an
+    option nor an option's value (``--output OUT.blend IN.blend`` -> ``IN.blend``), or None."""
+    takes_value = {flag for action in parser()._actions if action.nargs != 0 for flag in action.option_strings}
+    words = iter(argv)
+    for word in words:
+        if word in takes_value:
+            next(words, None)
+        elif not word.startswith("-"):
+            return word
+    return None
+
+
+def _value_of(flag, argv):
+    """The value given to ``flag`` in ``argv`` (``--flag VALUE`` or ``--flag=VALUE``), or None."""
+    for i, arg in enumerate(argv):
+        if arg == flag and i + 1 < len(argv):
+            return argv[i + 1]
+        if arg.startswith(flag + "="):
+            return arg[len(flag) + 1 :]
+    return None

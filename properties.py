@@ -47,6 +47,11 @@ class BALLMORPH_PG_settings(bpy.types.PropertyGroup):
             "around the current frame (active layer)",
             update=path_preview.toggled,
         ),
+        "hint_dots": bpy.props.BoolProperty(
+            name="Hint Dots",
+            description="Show the hints' numbered dots on the keys around the current frame (3D viewport)",
+            default=True,
+        ),
     }
 
 

@@ -10,11 +10,13 @@ in-betweens stray from what the keys suggest, each with the frame where a breakd
 help most.
 """
 
-from dataclasses import dataclass
+import re
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..ballmorph_core import FALLBACK_MORPHS
+from .report_data import Report, StrokeRef
 
 __all__ = [
     "INFO",
@@ -31,6 +33,7 @@ __all__ = [
     "too_few_keys",
     "no_key_around",
     "no_frame_between",
+    "on_a_key",
     "no_room_between_keys",
     "all_drawn",
     "both_keys_empty",
@@ -46,6 +49,7 @@ __all__ = [
     "summary",
     "is_warning",
     "bad_chart",
+    "labelled",
     "chart_does_not_fit",
     "kept_chart_ignored",
     "Stray",
@@ -113,6 +117,20 @@ def no_object(active_name=None, active_type=None):
     )
 
 
+def labelled(text, name, label):
+    """``text`` with an option's argument name (the core's words: ``'timing_chart: ...'``,
+    ``'favor must be ...'``) replaced by the option's label as the UI shows it.
+
+    Examples
+    --------
+    >>> labelled("Ink 1→4: timing_chart: 3 fractions", "timing_chart", "Timing Chart")
+    'Ink 1→4: Timing Chart: 3 fractions'
+    >>> labelled("favor must be a number in [-1, 1], got 2", "favor", "Favor")
+    'Favor must be a number in [-1, 1], got 2'
+    """
+    return re.sub(rf"\b{re.escape(name)}\b", label, text)
+
+
 def bad_chart(problem):
     """A ``timing_chart`` option that is not a chart (``problem``: the core's words for what is wrong)."""
     return (
@@ -177,6 +195,14 @@ def no_key_around(layer_name, side, current_frame):
     return (
         f"layer '{layer_name}' has no keyframe {side} frame {current_frame}: select two keyframes, "
         "or go to a frame between two keys"
+    )
+
+
+def on_a_key(layer_name, frame):
+    """The current frame holds a key, and the run asked for one in-between on the current frame."""
+    return (
+        f"layer '{layer_name}': the current frame {frame} is a keyframe: "
+        "go to a frame between two keys to in-between it"
     )
 
 
@@ -274,33 +300,37 @@ def interval_reports(interval, method_label, messages, found_strays=()):
 
     Returns
     -------
-    list of (level, text)
+    list of report_data.Report
+        Each with its kind (``'written'``, ``'timing-chart'``, ``'drawn-frames'``, ``'morph'``,
+        ``'stray'``), the interval's layer and keys.
     """
     name = interval.name
+    about = {"layer": interval.layer, "frames": (interval.frame_a, interval.frame_b)}
     replaced = f", replacing {len(interval.replace)} earlier" if interval.replace else ""
     chart = interval.chart
     charted = f", timing chart {chart.text}" if chart is not None and not chart.kept else ""
-    reports = [
-        (
-            INFO,
-            f"{name}: {len(interval.targets)} in-between(s) on frame(s) {frames_text(interval.targets)} "
-            f"({method_label}{charted}{replaced})",
-        )
-    ]
+    written = (
+        f"{name}: {len(interval.targets)} in-between(s) on frame(s) {frames_text(interval.targets)} "
+        f"({method_label}{charted}{replaced})"
+    )
+    reports = [Report(INFO, written, kind="written", **about)]
     if chart is not None and chart.kept:
         kept = f"timed by the chart {chart.text} kept from an earlier run on these keys (type a chart to change it)"
-        reports.append((INFO, f"{name}: {kept}"))
+        reports.append(Report(INFO, f"{name}: {kept}", kind="timing-chart", **about))
     if interval.skipped:
-        reports.append((WARNING, f"{name}: frame(s) {frames_text(interval.skipped)} already drawn: left untouched"))
+        drawn = f"{name}: frame(s) {frames_text(interval.skipped)} already drawn: left untouched"
+        reports.append(Report(WARNING, drawn, kind="drawn-frames", **about))
     elif interval.occupied:
-        reports.append((INFO, f"{name}: frame(s) {frames_text(interval.occupied)} between the keys left untouched"))
+        drawn = f"{name}: frame(s) {frames_text(interval.occupied)} between the keys left untouched"
+        reports.append(Report(INFO, drawn, kind="drawn-frames", **about))
     for level in (WARNING, INFO):
         texts = [text for lvl, text in messages if (lvl == INFO) == (level == INFO)]
         if texts:
             more = len(texts) - MESSAGES_PER_REPORT
             shown = "; ".join(texts[:MESSAGES_PER_REPORT]) + (f"; and {more} more" if more > 0 else "")
-            reports.append((level, f"{name}: {shown}"))
-    return reports + stray_reports(name, found_strays)
+            reports.append(Report(level, f"{name}: {shown}", kind="morph", **about))
+    keys = (interval.frame_a, interval.frame_b)
+    return reports + [report.about(**about) for report in stray_reports(name, found_strays, keys)]
 
 
 def nothing_to_do(problems):
@@ -330,16 +360,20 @@ class Stray:
     Attributes
     ----------
     what : str
-        The pair as the animator reads it: ``'stroke 0 -> 1'``, ``'stroke 2 of the first key'``.
+        The pair as the animator reads it, strokes numbered from 1: ``'stroke 1 -> 2'``.
     why : str
         ``'ink 34% longer than the keys' blend'``, ``'made with linear-interpolation (a fallback)'``, ...
     frame : int
         The in-between where it strays most: where a breakdown key would help.
+    indices : tuple of (int or None)
+        ``(stroke_a, stroke_b)``: the pair's stroke indices in the two keys (from 0; None: no
+        stroke there), for :class:`.report_data.StrokeRef`.
     """
 
     what: str
     why: str
     frame: int
+    indices: tuple = field(default=(None, None), compare=False)  # the text names the pair already
 
 
 def _fallbacks_used(used, method):
@@ -363,10 +397,7 @@ def _stray(pair, method, off, size, worst, middle):
     """``(Stray fields without the frame number, frame index, rank)`` for one pair, or None;
     ``off`` and ``size`` are its deviation and its size at its worst frame ``worst``."""
     if pair.stroke_a is None or pair.stroke_b is None:
-        key, other, index = (
-            ("first", "second", pair.stroke_a) if pair.stroke_b is None else ("second", "first", pair.stroke_b)
-        )
-        return f"stroke {index} of the {key} key", f"no partner in the {other} key", middle, (0, 0.0)
+        return None  # the morph's own warning says it already: one warning per stroke
     whys = []
     fallbacks = _fallbacks_used(pair.used, method)
     if fallbacks:
@@ -375,18 +406,20 @@ def _stray(pair, method, off, size, worst, middle):
         whys.append(_length_why(off))
     if not whys:
         return None
-    return f"stroke {pair.stroke_a} -> {pair.stroke_b}", "; ".join(whys), worst, (0 if fallbacks else 1, -size)
+    # numbered from 1, as the animator counts the strokes of a key
+    what = f"stroke {pair.stroke_a + 1} -> {pair.stroke_b + 1}"
+    return what, "; ".join(whys), worst, (0 if fallbacks else 1, -size)
 
 
 def strays(pairs, method, deviation, times, frames):
     """The stroke pairs whose in-betweens stray from what their keys suggest, worst first.
 
     A pair strays when its in-betweens' ink length is off the keys' linear blend of lengths by
-    more than :data:`LENGTH_STRAY`, when it was made with a fallback morph
-    (:data:`ballmorph_core.FALLBACK_MORPHS`, other than the one asked for), or when a stroke has
-    no partner. Its worst frame is the in-between whose length is farthest from the blend; for
-    a stroke without a partner (or a pair whose length stays on the blend) the in-between
-    nearest the middle of the morph, where such a stroke switches.
+    more than :data:`LENGTH_STRAY`, or when it was made with a fallback morph
+    (:data:`ballmorph_core.FALLBACK_MORPHS`, other than the one asked for). A stroke without a
+    partner is not a stray: the morph's own warning says it, once. Its worst frame is the
+    in-between whose length is farthest from the blend; for a pair whose length stays on the
+    blend, the in-between nearest the middle of the morph.
 
     Parameters
     ----------
@@ -405,7 +438,7 @@ def strays(pairs, method, deviation, times, frames):
     Returns
     -------
     list of Stray
-        Pairs that fell back or lost their partner first, then the others by how far they stray.
+        Pairs that fell back first, then the others by how far they stray.
 
     Examples
     --------
@@ -415,8 +448,8 @@ def strays(pairs, method, deviation, times, frames):
     >>> deviation = [[0.05, -0.3, 0.1], [0.0, 0.02, 0.0]]
     >>> for s in strays(pairs, "circular-ball", deviation, [0.25, 0.5, 0.75], [3, 5, 7]):
     ...     print(s.what, "|", s.why, "|", s.frame)
-    stroke 1 -> 1 | made with linear-interpolation (a fallback) | 5
-    stroke 0 -> 0 | ink 30% shorter than the keys' blend of lengths | 5
+    stroke 2 -> 2 | made with linear-interpolation (a fallback) | 5
+    stroke 1 -> 1 | ink 30% shorter than the keys' blend of lengths | 5
     """
     times = np.clip(np.asarray(times, dtype=np.float64).reshape(-1), 0.0, 1.0)
     frames = np.asarray(frames).reshape(-1)
@@ -433,11 +466,11 @@ def strays(pairs, method, deviation, times, frames):
         stray = _stray(pair, method, off, at, index, middle)
         if stray is not None:
             what, why, frame, rank = stray
-            found.append((rank, Stray(what, why, int(frames[frame]))))
+            found.append((rank, Stray(what, why, int(frames[frame]), (pair.stroke_a, pair.stroke_b))))
     return [stray for _, stray in sorted(found, key=lambda item: item[0])]
 
 
-def stray_reports(interval_name, found_strays):
+def stray_reports(interval_name, found_strays, keys=None):
     """The warnings for the pairs that stray in an interval: a few one by one, the rest in one line.
 
     Parameters
@@ -445,34 +478,52 @@ def stray_reports(interval_name, found_strays):
     interval_name : str
     found_strays : sequence of Stray
         Worst first (:func:`strays`).
+    keys : (int, int), optional
+        The interval's key frames: each report then names its strokes (``strokes``).
 
     Returns
     -------
-    list of (level, text)
-        At most :data:`STRAYS_LISTED` + 1 reports.
+    list of report_data.Report
+        At most :data:`STRAYS_LISTED` + 1 reports, of kind ``'stray'``.
 
     Examples
     --------
-    >>> stray_reports("Ink 1→9", [Stray("stroke 0 -> 0", "ink 30% shorter than the keys' blend of lengths", 5)])
-    [('WARNING', "Ink 1→9: stroke 0 -> 0 strays from its keys (ink 30% shorter than the keys' blend of lengths), \
+    >>> stray_reports("Ink 1→9", [Stray("stroke 1 -> 1", "ink 30% shorter than the keys' blend of lengths", 5)])
+    [('WARNING', "Ink 1→9: stroke 1 -> 1 strays from its keys (ink 30% shorter than the keys' blend of lengths), \
 most on frame 5: draw a breakdown key on frame 5")]
     """
     listed, rest = list(found_strays[:STRAYS_LISTED]), list(found_strays[STRAYS_LISTED:])
     reports = [
-        (
+        Report(
             WARNING,
             f"{interval_name}: {s.what} strays from its keys ({s.why}), most on frame {s.frame}: "
             f"draw a breakdown key on frame {s.frame}",
+            kind="stray",
+            strokes=_stroke_refs([s], keys),
         )
         for s in listed
     ]
     if rest:
         where = frames_text(sorted({s.frame for s in rest}))
         reports.append(
-            (
+            Report(
                 WARNING,
                 f"{interval_name}: {len(rest)} more stroke pair(s) stray from their keys, most on frame(s) {where}: "
                 "breakdown keys there would help",
+                kind="stray",
+                strokes=_stroke_refs(rest, keys),
             )
         )
     return reports
+
+
+def _stroke_refs(found_strays, keys):
+    """The strokes of some strays, in their keys (none without ``keys``)."""
+    if keys is None:
+        return ()
+    return tuple(
+        StrokeRef.of_index(key, index)
+        for stray in found_strays
+        for key, index in zip(keys, stray.indices)
+        if index is not None
+    )

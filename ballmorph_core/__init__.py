@@ -42,7 +42,6 @@ from .errors import BallMorphError, IncompatibleCurvesError, InvalidCurveError
 from .morphs import METHODS, Morph, make_morph
 from .morphs.paths import BallPaths, midpoint_locus
 from .options import CARRIERS, EASING_MODES, EASING_TYPES, KEY_MOTIONS, MATCHINGS, UNMATCHED
-from .study import measure
 
 __all__ = [
     "METHODS",
@@ -91,3 +90,18 @@ __all__ = [
     "ball_map",
     "classify",
 ]
+
+
+def __getattr__(name):
+    """``measure`` on first use: the paper's measures (``study``) are not imported with the core,
+    so the add-on, which never measures, does not load them (and its zip leaves them out)."""
+    if name == "measure":
+        try:
+            from .study import measure
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.study":
+                raise
+            # the add-on's zip: study is not shipped
+            raise ImportError("ballmorph_core.measure needs the study package, which the add-on does not ship") from exc
+        return measure
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

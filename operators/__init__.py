@@ -4,12 +4,13 @@
 (the command line, ``cli.py``, calls it too). The service's steps: ``keys`` reads which layers
 and keys there are, ``pairing`` decides which keys pair up and which frames to write,
 ``morph`` computes an interval with the core, ``writer`` writes the frames all or nothing, and
-``reports`` words what happened. ``generated`` remembers which frames the add-on made,
+``reports`` words what happened; ``playhead`` narrows a run to one in-between on the current
+frame (``current_frame_only``). ``generated`` remembers which frames the add-on made,
 ``grease_pencil`` is the only code that moves stroke data, ``options`` declares the options
 once (with their core values) for the operator, the scene settings, the preferences and the
 command line, and ``plans`` keeps the last run's plans for a redo. ``preview`` keeps the path
 preview's trajectories (drawn by ``ui/path_preview.py``); ``hints`` holds the two hint
-operators (their numbering is ``hint_numbers``). ``pairing`` and ``reports`` never
+operators (their numbering is ``hint_numbers``). ``pairing``, ``playhead`` and ``reports`` never
 import bpy: plain CPython tests them (tests/addon).
 """
 

@@ -3,15 +3,19 @@
 Thin: take the options (unset ones from the scene's settings, the sidebar panel, which fall
 back to the add-on preferences), let the service (:mod:`.service`) in-between the active
 object with the operator's pairing rule (selected keys, else the keys around the current frame),
-and pass its reports on. Runs from the Dope Sheet, the 3D viewport and scripts (no editor
-needed in poll). Every run stores its options back in the scene, so F9 changes are remembered.
+and pass its reports on. With ``current_frame_only`` it writes one in-between on the current
+frame, as Blender's Interpolate does (:mod:`.playhead`). Runs from the Dope Sheet, the 3D
+viewport and scripts (no editor needed in poll, which only asks for an active Grease Pencil
+object and says so when there is none). Every run stores its options back in the scene, so F9
+changes are remembered.
 """
 
 from functools import partial
 
 import bpy
+from bpy.app.translations import pgettext_rpt as rpt_
 
-from ..addon_logic import pairing, reports
+from ..addon_logic import pairing, playhead, reports
 from . import keys, options, service
 
 __all__ = ["BALLMORPH_OT_inbetween"]
@@ -40,38 +44,57 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
     bl_label = "Ball-morph In-between"
     bl_options = {"REGISTER", "UNDO"}
 
-    __annotations__ = options.property_annotations(flags={"SKIP_SAVE"})
+    __annotations__ = {
+        **options.property_annotations(flags={"SKIP_SAVE"}),
+        # The operator's own: a scene setting would turn every later run into a one-frame run.
+        "current_frame_only": bpy.props.BoolProperty(
+            name="Current Frame Only",
+            description="One in-between on the current frame, at the fraction it sits between the keys around it "
+            "(eased as set), as Blender's Interpolate does; other in-betweens stay",
+            default=False,
+            options={"SKIP_SAVE"},
+        ),
+    }
 
     @classmethod
     def poll(cls, context):
-        # Deliberately permissive: execute() explains what is missing (no Grease Pencil object,
-        # one key only, ...) instead of a greyed-out entry.
-        return context.scene is not None
+        # Only what every run needs; execute() explains the rest (one key only, locked layer, ...).
+        if context.scene is None:
+            return False
+        if keys.grease_pencil_object(context) is None:
+            cls.poll_message_set(rpt_(_no_object(context)))
+            return False
+        return True
 
     def draw(self, context):
-        options.draw_options(self.layout, self)
+        self.layout.prop(self, "current_frame_only")
+        options.draw_options(self.layout, self, current_frame=self.current_frame_only)
 
     def execute(self, context):
         self._fill_options(context)
         obj = keys.grease_pencil_object(context)
         if obj is None:
-            active = getattr(context, "active_object", None)
-            return self._cancel(reports.no_object(*((active.name, active.type) if active else ())))
+            return self._cancel(_no_object(context))
         values = options.values_of(self)
         problem = service.check_options(values)
         if problem:
             return self._cancel(problem)
-        rule = partial(pairing.selected_or_current, current_frame=context.scene.frame_current)
-        result = service.inbetween_object(obj, values, rule, _WindowProgress(context.window_manager))
+        frame = context.scene.frame_current
+        progress = _WindowProgress(context.window_manager)
+        if self.current_frame_only:
+            result = service.inbetween_object(obj, values, playhead.around(frame), progress, only_frame=frame)
+        else:
+            rule = partial(pairing.selected_or_current, current_frame=frame)
+            result = service.inbetween_object(obj, values, rule, progress)
         if result.error:
             return self._cancel(result.error)
         if not result.frames:
             return self._cancel(reports.nothing_to_do([text for _, text in result.reports()]))
         for level, text in result.reports():
-            self.report({level}, text)
+            self.report({level}, rpt_(text))
         # The status bar shows the last report: the summary, a warning when anything warned.
         level, text = reports.summary(result.frames, result.layers_written, result.warnings)
-        self.report({level}, text)
+        self.report({level}, rpt_(text))
         self._store_options(context)
         return {"FINISHED"}
 
@@ -89,5 +112,11 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
                 setattr(settings, name, getattr(self, name))
 
     def _cancel(self, text):
-        self.report({"ERROR"}, text)
+        self.report({"ERROR"}, rpt_(text))
         return {"CANCELLED"}
+
+
+def _no_object(context):
+    """Why there is nothing to in-between: no active object, or one of another type."""
+    active = getattr(context, "active_object", None)
+    return reports.no_object(*((active.name, active.type) if active else ()))

@@ -34,13 +34,18 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Item:
-    """One enum item: Blender's id, the lowercase value it stands for, what the animator reads."""
+    """One enum item: Blender's id, the lowercase value it stands for, what the animator reads.
+
+    ``research``: a comparison morph from the paper, offered in the sidebar's Morph list but
+    not in the menus' quick list.
+    """
 
     id: str
     value: str
     label: str
     description: str
     icon: str = "NONE"
+    research: bool = False
 
 
 _METHODS = (
@@ -68,24 +73,28 @@ _METHODS = (
         "closest-projection",
         "Closest Projection",
         "Each point moves to its closest point on the other stroke (comparison morph)",
+        research=True,
     ),
     Item(
         "CURVATURE_INTERPOLATION",
         "curvature-interpolation",
         "Curvature Interpolation",
         "Edge lengths and turning angles are blended (Sederberg et al.; comparison morph)",
+        research=True,
     ),
     Item(
         "LAPLACE_BLENDING",
         "laplace-blending",
         "Laplace Blending",
         "Laplacian coordinates are blended (comparison morph)",
+        research=True,
     ),
     Item(
         "HEAT_PROPAGATION",
         "heat-propagation",
         "Heat Propagation",
         "In-betweens are iso-contours of heat flowing from one stroke to the other (comparison morph)",
+        research=True,
     ),
 )
 
@@ -197,12 +206,20 @@ OPTIONS = (
         "STRING",
         "Timing Chart",
         "Fractions of the morph in (0, 1), ascending, such as '0.1 0.3 0.6 0.9': one in-between per fraction, "
-        "spread evenly between the keys, not eased (empty: In-betweens and Easing; a chart is kept with its "
+        "spread evenly between the keys, not eased (empty: In-betweens, Type and Easing; a chart is kept with its "
         "keys, and a later run with an empty chart uses it again)",
         "",
     ),
-    Option("easing_type", "ENUM", "Easing", "Interpolation easing (Blender's easing types)", "linear", _EASING_TYPES),
-    Option("easing", "ENUM", "Ease", "Which ends of the motion the easing affects", "ease-in", _EASING_MODES),
+    # Labelled as Blender's Interpolate Sequence labels them: its "Type" and "Easing".
+    Option(
+        "easing_type",
+        "ENUM",
+        "Type",
+        "How the in-betweens are spaced in time (Blender's interpolation types)",
+        "linear",
+        _EASING_TYPES,
+    ),
+    Option("easing", "ENUM", "Easing", "Which ends of the motion the type's easing affects", "ease-in", _EASING_MODES),
     Option(
         "favor",
         "FLOAT",
@@ -380,17 +397,23 @@ _PROPERTIES = {
 }
 
 
-def draw_options(layout, data, compact=False):
-    """Draw the options of ``data`` (operator, scene settings or preferences)."""
+def draw_options(layout, data, compact=False, current_frame=False):
+    """Draw the options of ``data`` (operator, scene settings or preferences).
+
+    ``current_frame``: the run writes one in-between on the current frame, so the frame count
+    and the timing chart do not apply (drawn inactive).
+    """
     layout.use_property_split = True
     layout.use_property_decorate = False
     col = layout.column()
     col.prop(data, "method")
-    charted = bool(data.timing_chart.strip())  # a chart sets the frames and the times itself
+    charted = bool(data.timing_chart.strip()) and not current_frame  # a chart sets the frames and times itself
     sub = col.column()
-    sub.active = not charted
+    sub.active = not charted and not current_frame
     sub.prop(data, "frame_count")
-    col.prop(data, "timing_chart")
+    sub = col.column()
+    sub.active = not current_frame
+    sub.prop(data, "timing_chart")
     col = layout.column()
     sub = col.column()
     sub.active = not charted

@@ -23,7 +23,8 @@ reports itself, so both callers say the same things.
 
 from dataclasses import dataclass, field
 
-from ..addon_logic import charts, pairing, reports
+from ..addon_logic import charts, pairing, playhead, reports
+from ..addon_logic.report_data import Report
 from ..ballmorph_core import (
     FALLBACK_METHOD,
     KEY_MOTIONS,
@@ -47,9 +48,10 @@ class LayerResult:
     ----------
     name : str
         The layer's name.
-    reports : list of (level, text)
-        In order: why the layer or some keys were skipped, then per interval what was written
-        (or why not) and what the morph said.
+    reports : list of report_data.Report
+        ``(level, text)`` pairs that also say what they are about (kind, layer, frames,
+        strokes). In order: why the layer or some keys were skipped, then per interval what was
+        written (or why not) and what the morph said.
     written : list of (pairing.Interval, str)
         The intervals written and the core method that made each.
     """
@@ -130,15 +132,26 @@ def check_options(values):
         apply_favor([], values["favor"])
         check_option("key_motion", values["key_motion"], KEY_MOTIONS)
     except ValueError as exc:
-        return str(exc)
+        return _labelled(str(exc))
     try:
         parse_timing_chart(values["timing_chart"])
     except ValueError as exc:
-        return reports.bad_chart(str(exc))
+        return _labelled(reports.bad_chart(str(exc)))
     return ""
 
 
-def inbetween_object(obj, values, rule, progress=None):
+#: Options the core names in its errors (its arguments' names): said with their labels instead.
+_NAMED_BY_THE_CORE = ("timing_chart", "favor")
+
+
+def _labelled(text):
+    """The core's words with the options named as the animator sees them (``Timing Chart``)."""
+    for name in _NAMED_BY_THE_CORE:
+        text = reports.labelled(text, name, options.option(name).label)
+    return text
+
+
+def inbetween_object(obj, values, rule, progress=None, only_frame=None):
     """In-between the key intervals of a Grease Pencil object's chosen layers.
 
     Parameters
@@ -151,6 +164,9 @@ def inbetween_object(obj, values, rule, progress=None):
         ``rule(layer_keys) -> (pairs, problems)``, e.g. :func:`.pairing.every_pair` or
         ``functools.partial(pairing.selected_or_current, current_frame=...)``.
     progress : Progress, optional
+    only_frame : int, optional
+        Write one in-between on this frame only (``current_frame_only``, :mod:`.playhead`): the
+        frame count and timing charts do not apply then.
 
     Returns
     -------
@@ -174,18 +190,24 @@ def inbetween_object(obj, values, rule, progress=None):
         result.layers.append(layer_result)
         blocker = keys.layer_blocker(layer)
         if blocker:
-            layer_result.reports.append((reports.WARNING, blocker))
+            layer_result.reports.append(Report(reports.WARNING, blocker, kind="layer-skipped", layer=layer.name))
             continue
         found = keys.layer_keys(data, layer)
         corners[layer.name] = found.corners
         pairs, problems = rule(found)
-        layer_result.reports.extend((problem_level, text) for text in problems)
+        layer_result.reports.extend(Report(problem_level, text, kind="keys", layer=layer.name) for text in problems)
+        if only_frame is not None:
+            every_frame = pairing.intervals(found, pairs, 0)
+            work.extend((layer, layer_result, playhead.at_frame(interval, only_frame)) for interval in every_frame)
+            continue
         try:
             layer_charts, notes = charts.charts_for(data, layer.name, pairs, values["timing_chart"])
         except ValueError as exc:  # the chart does not fit an interval: refuse the run, write nothing
-            result.error = str(exc)
+            result.error = _labelled(str(exc))
             return result
-        layer_result.reports.extend(notes)
+        layer_result.reports.extend(
+            Report(level, _labelled(text), kind="timing-chart", layer=layer.name) for level, text in notes
+        )
         found_intervals = pairing.intervals(found, pairs, values["frame_count"], layer_charts)
         work.extend((layer, layer_result, interval) for interval in found_intervals)
 
@@ -198,13 +220,15 @@ def inbetween_object(obj, values, rule, progress=None):
             result.error = reports.write_failed(exc)
             return result
     for layer_result, interval, item, problem in outcomes:
+        about = {"layer": interval.layer, "frames": (interval.frame_a, interval.frame_b)}
         if item is None:
-            layer_result.reports.append(problem)
+            layer_result.reports.append(Report(*problem, kind="failed", **about))
             continue
         charts.keep(data, interval)
         layer_result.written.append((interval, item.method))
         label = options.label("method", item.method)
-        layer_result.reports.extend(reports.interval_reports(interval, label, item.messages, item.strays))
+        found = reports.interval_reports(interval, label, item.messages, item.strays)
+        layer_result.reports.extend(report.about(**about) for report in found)
     return result
 
 

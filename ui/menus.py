@@ -1,14 +1,26 @@
-"""Menu entries: Dope Sheet Key and context menus (Grease Pencil mode), 3D viewport Draw/Edit menus.
+"""Menu entries: next to Blender's own Interpolate entries in the 3D viewport, and in the Dope
+Sheet's Key and context menus (Grease Pencil mode).
 
-Every entry opens one submenu: "In-between" runs with the scene settings (sidebar panel); the
-morph list runs with one morph chosen there.
+In the 3D viewport, Blender's Draw menu (Draw mode) and Grease Pencil menu (Edit mode) both show
+the *Animation* submenu (``VIEW3D_MT_edit_greasepencil_animation``, checked on 4.5.15 and 5.0.1)
+directly above *Interpolate Sequence*: the add-on's submenu closes that Animation menu, the
+nearest an appended entry can sit to Interpolate. Blender has no Interpolate in the Dope Sheet;
+there the submenu closes the Key and context menus.
+
+The submenu: "In-between" runs with the scene settings (sidebar panel), "In-between at Current
+Frame" writes one in-between on the current frame (``current_frame_only``), then the animator's
+morphs, each a run with that morph; the paper's comparison morphs stay in the sidebar's Morph list.
 """
 
 import bpy
 
+from ..operators import options
 from ..operators.inbetween import BALLMORPH_OT_inbetween
 
-__all__ = ["BALLMORPH_MT_inbetween", "MENU_ENTRIES"]
+__all__ = ["BALLMORPH_MT_inbetween", "MENU_ENTRIES", "QUICK_METHODS"]
+
+#: The morphs the submenu offers (the comparison morphs of the paper are left to the sidebar).
+QUICK_METHODS = tuple(item for item in options.option("method").items if not item.research)
 
 
 class BALLMORPH_MT_inbetween(bpy.types.Menu):
@@ -18,8 +30,11 @@ class BALLMORPH_MT_inbetween(bpy.types.Menu):
     def draw(self, context):
         layout = self.layout
         layout.operator(BALLMORPH_OT_inbetween.bl_idname, text="In-between", icon="IPO_EASE_IN_OUT")
+        at_frame = layout.operator(BALLMORPH_OT_inbetween.bl_idname, text="In-between at Current Frame")
+        at_frame.current_frame_only = True
         layout.separator()
-        layout.operator_enum(BALLMORPH_OT_inbetween.bl_idname, "method")
+        for item in QUICK_METHODS:
+            layout.operator(BALLMORPH_OT_inbetween.bl_idname, text=item.label).method = item.id
 
 
 def _draw_entry(self, context):
@@ -38,8 +53,7 @@ def _draw_dopesheet_entry(self, context):
 MENU_ENTRIES = (
     ("DOPESHEET_MT_key", _draw_dopesheet_entry),
     ("DOPESHEET_MT_context_menu", _draw_dopesheet_entry),
-    ("VIEW3D_MT_paint_grease_pencil", _draw_entry),  # Draw mode: next to Interpolate Sequence
-    ("VIEW3D_MT_edit_greasepencil", _draw_entry),
+    ("VIEW3D_MT_edit_greasepencil_animation", _draw_entry),  # just above Interpolate Sequence
 )
 
 classes = (BALLMORPH_MT_inbetween,)

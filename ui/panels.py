@@ -22,7 +22,9 @@ class _InbetweenPanel:
         layout = self.layout
         settings = context.scene.ballmorph_inbetween
         draw_options(layout.column(), settings, compact=True)
-        layout.prop(settings, "path_preview", icon="CURVE_PATH")
+        row = layout.row(align=True)
+        row.prop(settings, "path_preview", icon="CURVE_PATH")
+        row.prop(settings, "hint_dots", icon="PINNED")
         row = layout.row(align=True)
         row.operator("ballmorph.hint_add", text="Add Hint", icon="PINNED")
         row.operator("ballmorph.hint_clear", text="Clear Hints", icon="UNPINNED")

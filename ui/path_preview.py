@@ -22,7 +22,7 @@ __all__ = ["draw", "installed", "sync", "toggled", "register", "unregister"]
 
 #: The built-in shader the trajectories are drawn with (the same name in Blender 4.5 and 5.0).
 SHADER = "POLYLINE_SMOOTH_COLOR"
-#: Trajectory width in pixels, and opacity.
+#: Trajectory width in pixels at a Resolution Scale of 1 (scaled by the UI scale), and opacity.
 LINE_WIDTH = 2.0
 ALPHA = 0.9
 
@@ -40,7 +40,7 @@ def draw():
     if bpy.app.background:
         return
     context = bpy.context
-    if not _toggle_on(context.scene):
+    if not _toggle_on(context.scene) or not overlay.overlays_shown(context):
         return
     preview = PREVIEW.world(context)
     if preview is not None and len(preview):
@@ -63,7 +63,7 @@ def _draw_lines(preview):
         _batch = (preview, batch_for_shader(shader, "LINES", content, indices=indices.astype(np.int32)))
     gpu.state.blend_set("ALPHA")
     shader.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
-    shader.uniform_float("lineWidth", LINE_WIDTH)
+    shader.uniform_float("lineWidth", LINE_WIDTH * overlay.ui_scale(bpy.context))
     _batch[1].draw(shader)
     gpu.state.blend_set("NONE")
 

@@ -16,7 +16,9 @@ PACKAGE = "ballmorph_inbetween_plain"
 #: The add-on's modules that must never import bpy.
 MODULES = (
     "addon_logic.pairing",
+    "addon_logic.playhead",
     "addon_logic.reports",
+    "addon_logic.report_data",
     "addon_logic.charts",
     "addon_logic.id_keys",
     "addon_logic.hint_numbers",

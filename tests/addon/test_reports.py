@@ -203,7 +203,7 @@ def pair(a, b, morphs=("circular-ball",), carrier=""):
 )
 def test_a_pair_strays_when_its_length_is_off_the_blend_by_more_than_a_fifth(row, stray):
     found = reports.strays([pair(0, 1)], "circular-ball", [row], TIMES, FRAMES)
-    assert found == ([] if stray is None else [reports.Stray("stroke 0 -> 1", *stray)])
+    assert found == ([] if stray is None else [reports.Stray("stroke 1 -> 2", *stray)])
     assert reports.LENGTH_STRAY == 0.2
 
 
@@ -223,7 +223,7 @@ def test_a_pair_strays_when_it_fell_back_and_its_worst_frame_is_the_middle_when_
     morphs, carrier, asked, why
 ):
     found = reports.strays([pair(2, 2, morphs, carrier)], asked, [[0.0, 0.0, 0.0]], TIMES, FRAMES)
-    assert found == ([] if why is None else [reports.Stray("stroke 2 -> 2", f"made with {why} (a fallback)", 5)])
+    assert found == ([] if why is None else [reports.Stray("stroke 3 -> 3", f"made with {why} (a fallback)", 5)])
 
 
 def test_a_fallback_that_also_strays_in_length_says_both_at_its_worst_frame():
@@ -232,7 +232,7 @@ def test_a_fallback_that_also_strays_in_length_says_both_at_its_worst_frame():
     )
     assert found == [
         reports.Stray(
-            "stroke 0 -> 0",
+            "stroke 1 -> 1",
             "made with linear-interpolation (a fallback); ink 30% shorter than the keys' blend of lengths",
             7,
         )
@@ -243,20 +243,18 @@ def test_a_fallback_that_also_strays_in_length_says_both_at_its_worst_frame():
     ("times", "frames", "middle"),
     [([0.25, 0.5, 0.75], [3, 5, 7], 5), ([0.2, 0.4, 0.6, 0.8], [2, 3, 4, 5], 4), ([0.1, 0.2], [2, 3], 3)],
 )
-def test_a_stroke_without_a_partner_strays_where_it_switches(times, frames, middle):
+def test_a_stroke_without_a_partner_is_not_a_stray_its_morph_warning_says_it_once(times, frames, middle):
     pairs = [pair(3, None), pair(None, 1)]
     found = reports.strays(pairs, "circular-ball", np.full((2, len(times)), np.nan), times, frames)
-    assert found == [
-        reports.Stray("stroke 3 of the first key", "no partner in the second key", middle),
-        reports.Stray("stroke 1 of the second key", "no partner in the first key", middle),
-    ]
+    assert found == []
 
 
 def test_strays_come_worst_first_fallbacks_and_lost_partners_before_lengths():
     pairs = [pair(0, 0), pair(1, 1), pair(2, 2, ("linear-interpolation",)), pair(3, 3), pair(None, 4)]
     rows = [[0.25, 0, 0], [0, 0.6, 0], [0, 0, 0], [0.01, 0, 0], [np.nan] * 3]
     found = reports.strays(pairs, "circular-ball", rows, TIMES, FRAMES)
-    assert [s.what for s in found] == ["stroke 2 -> 2", "stroke 4 of the second key", "stroke 1 -> 1", "stroke 0 -> 0"]
+    assert [s.what for s in found] == ["stroke 3 -> 3", "stroke 2 -> 2", "stroke 1 -> 1"]
+    assert [s.indices for s in found] == [(2, 2), (1, 1), (0, 0)]
     assert reports.strays(pairs, "circular-ball", np.zeros((5, 0)), [], []) == []
 
 

@@ -153,7 +153,7 @@ def test_in_place_keeps_the_previous_file_as_blend1_whatever_the_preferences_say
 def test_every_key_interval_of_every_object_and_what_is_skipped_is_said_per_object_and_layer(addon, tmp_path, capfd):
     path = build_file(tmp_path / "shot.blend", locked=True)
     code, summary, err = run_json(capfd, path, "--output", tmp_path / "out.blend")
-    assert code == 1  # the locked layer was skipped
+    assert code == 3  # saved, with a warning: the locked layer was skipped
     objects = {entry["name"]: entry for entry in summary["objects"]}
     assert list(objects) == ["Drawing", "Other"]  # every Grease Pencil object, not the cube
     layers = {name: {layer["name"]: layer for layer in entry["layers"]} for name, entry in objects.items()}
@@ -162,10 +162,19 @@ def test_every_key_interval_of_every_object_and_what_is_skipped_is_said_per_obje
     assert [i["frames"] for i in layers["Other"]["Ink"]["intervals"]] == [[2, 3]]
     paint = layers["Other"]["Paint"]
     assert paint["frames_written"] == 0 and paint["intervals"] == []
-    assert paint["reports"] == [{"level": "warning", "text": "layer 'Paint' is locked: unlock it to in-between it"}]
+    assert paint["reports"] == [
+        {
+            "level": "warning",
+            "text": "layer 'Paint' is locked: unlock it to in-between it",
+            "kind": "layer-skipped",
+            "layer": "Paint",
+            "frames": [],
+            "strokes": [],
+        }
+    ]
     notes = layers["Other"]["Notes"]  # one key: nothing to do there, and every layer was asked for
-    assert notes["reports"] == [
-        {"level": "info", "text": "layer 'Notes' has 1 keyframe(s): draw a second key to in-between"}
+    assert [(r["level"], r["text"], r["kind"], r["layer"]) for r in notes["reports"]] == [
+        ("info", "layer 'Notes' has 1 keyframe(s): draw a second key to in-between", "keys", "Notes")
     ]
     assert summary["frames_written"] == 8 and summary["saved"]
     written = frames_of(tmp_path / "out.blend")
@@ -190,7 +199,7 @@ def test_active_layer_only_warns_about_a_layer_with_nothing_to_do(saved, tmp_pat
     obj.data.layers.active = obj.data.layers["Notes"]
     bpy.ops.wm.save_mainfile()
     code, summary, _ = run_json(capfd, saved, "--output", tmp_path / "out.blend", "--layers", "active")
-    assert code == 1
+    assert code == 3
     assert summary["objects"][1]["layers"][0]["reports"][0]["level"] == "warning"
 
 
@@ -280,10 +289,10 @@ def test_a_timing_chart_too_long_for_an_interval_writes_nothing_for_that_object(
     # Other's Ink keys are on frames 1 and 4: two frames between them, for three fractions.
     out = tmp_path / "o.blend"
     code, summary, _ = run_json(capfd, saved, "--output", out, "--timing-chart", "0.25 0.5 0.75")
-    assert code == 1
+    assert code == 3
     other = next(o for o in summary["objects"] if o["name"] == "Other")
     assert other["frames_written"] == 0
-    assert "Ink 1\u21924: timing_chart: 3 fractions but only 2 frame(s) between the keys" in other["error"]
+    assert "Ink 1\u21924: Timing Chart: 3 fractions but only 2 frame(s) between the keys" in other["error"]
     assert next(o for o in summary["objects"] if o["name"] == "Drawing")["frames_written"] == 6
 
 
@@ -303,14 +312,17 @@ def test_a_timing_chart_too_long_for_an_interval_writes_nothing_for_that_object(
         (["{in}", "--layers", "some"], "argument --layers: invalid choice: 'some'"),
         (["{in}", "--favor", "2"], "argument --favor: expected a number from -1 to 1, got '2'"),
         (["{in}", "--favor", "nan"], "argument --favor: expected a number from -1 to 1, got 'nan'"),
-        (["{in}", "--timing-chart", "0.5 0.2"], "timing_chart: 0.2 comes after 0.5 (the fractions must rise)"),
-        (["{in}", "--timing-chart", "soon"], "timing_chart: 'soon' is not a number"),
+        (["{in}", "--timing-chart", "0.5 0.2"], "Timing Chart: 0.2 comes after 0.5 (the fractions must rise)"),
+        (["{in}", "--timing-chart", "soon"], "Timing Chart: 'soon' is not a number"),
         (["{dir}/missing.blend"], "cannot read {dir}/missing.blend: no such file"),
         (["{dir}/notes.blend"], 'cannot read {dir}/notes.blend: File format is not supported in file "'),
         (["{in}", "--object", "Nobody"], "has no object of that name (its Grease Pencil objects: 'Drawing', 'Other')"),
         (["{in}", "--object", "Drawing", "--object", "Cube"], "--object 'Cube' is a mesh, not a Grease Pencil object"),
         (["{in}", "--output", "{in}"], "--output names the input file: leave --output out to save in place"),
         (["{in}", "--output", "{dir}/nowhere/out.blend"], "cannot write {dir}/nowhere/out.blend: no directory"),
+        (["{in}", "--output", ""], "--output is empty: give a file name, or leave --output out to save IN.blend in"),
+        (["{in}", "--output", "{dir}"], "cannot write {dir}: it is a directory; give a file name"),
+        (["{in}", "--json-file", "{dir}"], "cannot write {dir}: it is a directory; give a file name"),
     ],
     ids=[
         "no-file",
@@ -331,6 +343,9 @@ def test_a_timing_chart_too_long_for_an_interval_writes_nothing_for_that_object(
         "not-grease-pencil",
         "output-is-input",
         "no-output-directory",
+        "empty-output",
+        "output-is-a-directory",
+        "json-file-is-a-directory",
     ],
 )
 def test_bad_arguments_exit_2_with_a_clear_message_and_save_nothing(saved, tmp_path, capfd, argv, said):
@@ -346,15 +361,25 @@ def test_bad_arguments_exit_2_with_a_clear_message_and_save_nothing(saved, tmp_p
     assert sorted(os.listdir(tmp_path)) == ["notes.blend", "shot.blend"]
 
 
-def test_a_file_without_grease_pencil_exits_1_and_is_not_saved(addon, tmp_path, capfd):
+@pytest.mark.parametrize("output", ["", "{dir}"], ids=["empty", "directory"])
+def test_an_output_that_cannot_be_a_file_is_refused_before_anything_is_read(saved, tmp_path, capfd, output):
+    before = sha(saved)
+    code, out, err = run(capfd, saved, "--output", output.format(dir=tmp_path), "--json")
+    assert code == 2
+    assert json.loads(out)["error"]["kind"] == "bad-arguments"
+    assert "ballmorph: reading" not in err, "the input was opened before the output was checked"
+    assert sha(saved) == before and sorted(os.listdir(tmp_path)) == ["shot.blend"]
+
+
+def test_a_file_without_grease_pencil_exits_3_and_is_not_saved(addon, tmp_path, capfd):
     path = tmp_path / "empty.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(path))
     before = sha(path)
     code, summary, _ = run_json(capfd, path)
-    assert code == 1
-    assert summary["notes"] == [
-        {"level": "warning", "text": f"{path} has no Grease Pencil object: nothing to do"},
-        {"level": "info", "text": f"nothing was written: {path} was not saved"},
+    assert code == 3
+    assert [(note["level"], note["text"]) for note in summary["notes"]] == [
+        ("warning", f"{path} has no Grease Pencil object: nothing to do"),
+        ("info", f"nothing was written: {path} was not saved"),
     ]
     assert not summary["saved"] and sha(path) == before and not os.path.exists(f"{path}1")
 
@@ -372,6 +397,119 @@ def test_linked_duplicates_are_in_betweened_once(saved, tmp_path, capfd):
     ]
 
 
+# -- exit codes, --json on every exit, --version, the Windows C library --------------------------------
+
+
+def test_the_exit_codes_are_the_documented_ones(addon, capfd):
+    module = cli()
+    assert (module.OK, module.FAILED, module.BAD_ARGUMENTS, module.WARNINGS) == (0, 1, 2, 3)
+    code, out, _ = run(capfd, "--help")
+    assert code == 0
+    flat = " ".join(out.split())
+    for status, meaning in module.EXIT_CODES.items():
+        assert f"{status} {meaning}" in flat, f"the help does not document exit status {status}"
+    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+        readme = f.read()
+    for status in module.EXIT_CODES:
+        assert f"| {status} |" in readme, f"the README's exit status table lacks {status}"
+
+
+def test_help_texts_are_sentences_alike(addon):
+    helps = [action.help for action in cli().parser()._actions if action.help]
+    assert helps and all(text[0].isupper() and not text.endswith(".") for text in helps), helps
+
+
+def test_version_prints_the_manifests_version(addon, capfd):
+    import tomllib
+
+    with open(os.path.join(ROOT, "blender_manifest.toml"), "rb") as f:
+        version = tomllib.load(f)["version"]
+    code, out, err = run(capfd, "--version")
+    assert (code, out) == (0, f"blender -c ballmorph {version}\n"), err
+
+
+@pytest.mark.parametrize(
+    ("argv", "said"),
+    [
+        (["{dir}/missing.blend"], "no such file"),
+        (["--output", "{dir}/out.blend", "{dir}/missing.blend", "--bogus"], "unrecognized arguments"),
+    ],
+    ids=["missing-file", "bad-argument"],
+)
+def test_json_says_an_error_as_a_json_object_with_exit_2(addon, tmp_path, capfd, argv, said):
+    code, out, err = run(capfd, *[a.format(dir=tmp_path) for a in argv], "--json")
+    assert code == 2
+    summary = json.loads(out)
+    assert summary["exit_code"] == 2 and summary["saved"] is False
+    assert summary["input"] == str(tmp_path / "missing.blend")
+    assert summary["error"]["kind"] == "bad-arguments" and said in summary["error"]["message"]
+    assert said in err
+
+
+def test_json_file_holds_the_summary_and_stdout_the_text(saved, tmp_path, capfd):
+    report = tmp_path / "report.json"
+    code, out, _ = run(capfd, saved, "--output", tmp_path / "out.blend", "--json-file", report)
+    assert code == 0
+    assert out.startswith(f"{saved}: 11 frame(s) written")
+    with open(report, encoding="utf-8") as f:
+        summary = json.load(f)
+    assert summary["exit_code"] == 0 and summary["frames_written"] == 11 and summary["error"] is None
+    code, _, _ = run(capfd, tmp_path / "missing.blend", "--json-file", report)
+    with open(report, encoding="utf-8") as f:
+        assert code == 2 and json.load(f)["error"]["kind"] == "bad-arguments"
+
+
+def test_json_reports_say_their_kind_layer_frames_and_strokes(addon, tmp_path, capfd):
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    obj = gp_data.new_object("Drawing")
+    ink = obj.data.layers["Ink"]
+    gp_data.add_key(ink, 1, [gp_data.arc(0.3)])
+    gp_data.add_key(ink, 9, [gp_data.arc(-0.3), gp_data.loop(0.3, centre=(2, 0))], cyclic=[False, True])
+    path = tmp_path / "extra.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    code, summary, _ = run_json(capfd, path, "--output", tmp_path / "out.blend")
+    assert code == 3  # saved, with the warning about the stroke without a partner
+    said = summary["objects"][0]["layers"][0]["reports"]
+    kinds = {report["kind"] for report in said}
+    assert {"written", "morph"} <= kinds, said
+    for report in said:
+        assert report["layer"] == "Ink" and report["frames"] == [1, 9], report
+    warnings = [r for r in said if r["level"] == "warning"]
+    assert len(warnings) == 1, f"one stroke without a partner, {len(warnings)} warnings: {warnings}"
+
+
+def test_windows_c_library_lookup_failing_still_saves_summarises_and_exits_0(saved, tmp_path, capfd, monkeypatch):
+    import ctypes
+
+    def windows_cdll(name, *args, **kwargs):
+        raise TypeError("expected str, bytes or os.PathLike object, not NoneType")  # CDLL(None) on Windows
+
+    monkeypatch.setattr(ctypes, "CDLL", windows_cdll)
+    code, out, err = run(capfd, saved, "--output", tmp_path / "out.blend", "--frame-count", "1")
+    assert code == 0, err
+    assert out.startswith(f"{saved}: 4 frame(s) written, 0 warning(s); saved {tmp_path / 'out.blend'}"), out
+    assert "internal error" not in err
+    assert os.path.exists(tmp_path / "out.blend")
+    print("stdout is stdout again")
+    assert capfd.readouterr().out == "stdout is stdout again\n"
+
+
+def test_an_internal_error_exits_1_says_so_in_json_and_saves_nothing(saved, tmp_path, capfd, monkeypatch):
+    service = importlib.import_module(f"{MODULE}.operators.service")
+
+    def broken(*args, **kwargs):
+        raise ZeroDivisionError("a bug")
+
+    monkeypatch.setattr(service, "inbetween_object", broken)
+    before = sha(saved)
+    code, out, err = run(capfd, saved, "--json")
+    assert code == 1
+    summary = json.loads(out)
+    assert summary["error"]["kind"] == "internal" and "nothing was saved" in summary["error"]["message"]
+    assert "ZeroDivisionError: a bug" in err
+    assert sha(saved) == before and not os.path.exists(f"{saved}1")
+
+
 # -- a fresh process, as Blender runs the command ---------------------------------------------------
 
 SCRIPT = """
@@ -384,6 +522,9 @@ os.symlink({root!r}, os.path.join(repo, "ballmorph_inbetween"))
 bpy.context.preferences.extensions.repos.new(name="dev", module="cli_dev", custom_directory=repo, source="USER")
 addon_utils.enable("bl_ext.cli_dev.ballmorph_inbetween", default_set=True)
 code = importlib.import_module("bl_ext.cli_dev.ballmorph_inbetween.cli").main(sys.argv[1:])
+# Blender prints after the command, on stdout ("Not freed memory blocks" and the like)
+print("Not freed memory blocks: 1, total unfreed memory 0.000000 MB")
+os.write(1, b"Error: Not freed memory blocks: 1\\n")
 addon_utils.disable("bl_ext.cli_dev.ballmorph_inbetween", default_set=True)  # bpy 4.5 hangs at exit otherwise
 sys.exit(code)
 """
@@ -399,6 +540,7 @@ def test_in_a_fresh_process_stdout_holds_only_the_summary_and_the_status_is_the_
     done = command(saved, "--output", tmp_path / "out.blend", "--json", "--frame-count", "1")
     assert done.returncode == 0, done.stderr
     summary = json.loads(done.stdout)  # nothing else on stdout: Blender's messages went to stderr
+    assert "Not freed memory blocks" in done.stderr  # what Blender printed after the JSON
     assert summary["frames_written"] == 4 and summary["exit_code"] == 0
     assert "Read blend" in done.stderr
     assert command(saved, "--frame-count", "-2").returncode == 2

@@ -331,3 +331,77 @@ def test_preferences_are_the_defaults_and_runs_are_remembered(shot, addon):
     assert (settings.method, settings.frame_count) == ("PARABOLIC_BALL", 1)
     preferences.method = "CIRCULAR_BALL"
     assert settings.method == "PARABOLIC_BALL"  # the scene now has its own choice
+
+
+# -- one in-between on the current frame (current_frame_only), as Blender's Interpolate -----------
+
+
+@pytest.mark.parametrize(("easing_type", "easing"), [("LINEAR", "EASE_IN"), ("QUAD", "EASE_IN_OUT")])
+def test_current_frame_only_writes_the_current_frame_at_its_fraction(shot, capfd, easing_type, easing):
+    layer = ink(shot)
+    key_a = gp_data.read_strokes(gp_data.frame_at(layer, 1).drawing)
+    key_b = gp_data.read_strokes(gp_data.frame_at(layer, 9).drawing)
+    bpy.context.scene.frame_current = 3  # a quarter of the way from key 1 to key 9
+    t = ease(np.array([0.25]), easing_type, easing)
+    [want] = bm.inbetween(key_a, key_b, t).frames
+
+    result, text = run(capfd, current_frame_only=True, easing_type=easing_type, easing=easing, frame_count=5)
+    assert result == {"FINISHED"}, text
+    assert gp_data.frame_numbers(layer) == [1, 3, 9], "one in-between, on the current frame only"
+    assert gp_data.frame_at(layer, 3).keyframe_type == "BREAKDOWN"
+    got = gp_data.read_strokes(gp_data.frame_at(layer, 3).drawing)
+    np.testing.assert_array_equal(got.offsets, want.offsets)
+    error = np.abs(got.positions - want.positions).max()
+    assert error < 1e-6, f"frame 3 is not the morph at t = {t[0]:.4f} (max distance {error:.2e})"
+    assert "1 in-between(s) on frame(s) 3" in text
+
+
+def test_current_frame_only_keeps_the_other_inbetweens(shot):
+    layer = ink(shot)
+    assert bpy.ops.ballmorph.inbetween(frame_count=3) == {"FINISHED"}  # frames 3, 5, 7
+    before = {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in (5, 7)}
+    bpy.context.scene.frame_current = 3
+    assert bpy.ops.ballmorph.inbetween(current_frame_only=True, method="LINEAR_BALL") == {"FINISHED"}
+    assert gp_data.frame_numbers(layer) == [1, 3, 5, 7, 9]
+    assert {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in (5, 7)} == before
+
+
+def test_current_frame_only_on_a_key_says_where_to_go(shot):
+    before = gp_data.snapshot(shot)
+    bpy.context.scene.frame_current = 9
+    with pytest.raises(RuntimeError) as info:
+        bpy.ops.ballmorph.inbetween(current_frame_only=True)
+    assert "the current frame 9 is a keyframe: go to a frame between two keys" in str(info.value)
+    assert gp_data.snapshot(shot) == before
+
+
+# -- poll: an active Grease Pencil object ---------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("active", "expected"),
+    [
+        (None, "No Grease Pencil object is active: select one and run Ball-morph In-between again"),
+        (
+            "MESH",
+            "The active object 'Cube' is a mesh, not a Grease Pencil object: make a Grease Pencil object "
+            "active and run Ball-morph In-between again",
+        ),
+    ],
+    ids=["nothing", "mesh"],
+)
+def test_poll_fails_without_an_active_grease_pencil_object_and_says_why(shot, active, expected):
+    before = gp_data.snapshot(shot)
+    assert bpy.ops.ballmorph.inbetween.poll()
+    if active is None:
+        bpy.context.view_layer.objects.active = None
+    else:
+        cube = bpy.data.objects.new("Cube", bpy.data.meshes.new("Cube"))
+        bpy.context.scene.collection.objects.link(cube)
+        bpy.context.view_layer.objects.active = cube
+    assert shot.select_get()  # the drawing is still selected: only the active object counts
+    assert not bpy.ops.ballmorph.inbetween.poll()
+    with pytest.raises(RuntimeError) as info:
+        bpy.ops.ballmorph.inbetween()
+    assert expected in str(info.value), "poll_message_set did not say why"
+    assert gp_data.snapshot(shot) == before

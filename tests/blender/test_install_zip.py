@@ -48,7 +48,7 @@ def test_built_zip_installs_and_runs(zip_repo):
     assert os.path.isfile(os.path.join(installed, "blender_manifest.toml"))
     assert os.path.isfile(os.path.join(installed, "ballmorph_core", "__init__.py"))
     assert os.path.isfile(os.path.join(installed, "cli.py"))  # blender -c ballmorph
-    for left_out in ("tests", "tools", "Makefile", "pyproject.toml", "README.md"):
+    for left_out in ("tests", "tools", "Makefile", "pyproject.toml", "README.md", "ballmorph_core/study"):
         assert not os.path.exists(os.path.join(installed, left_out)), left_out
 
     obj = gp_data.new_object()
@@ -60,3 +60,6 @@ def test_built_zip_installs_and_runs(zip_repo):
     assert [f.keyframe_type for f in layer.frames if 1 < f.frame_number < 5] == ["BREAKDOWN"] * 3
     assert bpy.types.BALLMORPH_OT_inbetween.__module__.startswith(module)
     assert sys.modules[f"{module}.cli"]._handle is not None  # the command is registered
+    core = sys.modules[f"{module}.ballmorph_core"]
+    with pytest.raises(ImportError, match="does not ship"):
+        core.measure  # noqa: B018 (the lazy attribute is the point)

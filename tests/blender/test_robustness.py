@@ -71,29 +71,7 @@ def two_layer_shot(layers=("Ink", "Paint")):
 # -- no Grease Pencil object, too few keys, empty or broken keys --------------------------------
 
 
-@pytest.mark.parametrize(
-    ("active", "expected"),
-    [
-        (None, "No Grease Pencil object is active: select one and run Ball-morph In-between again"),
-        (
-            "MESH",
-            "The active object 'Cube' is a mesh, not a Grease Pencil object: make a Grease Pencil object "
-            "active and run Ball-morph In-between again",
-        ),
-    ],
-    ids=["nothing", "mesh"],
-)
-def test_no_grease_pencil_object_active(shot, active, expected):
-    before = gp_data.snapshot(shot)
-    if active is None:
-        bpy.context.view_layer.objects.active = None
-    else:
-        cube = bpy.data.objects.new("Cube", bpy.data.meshes.new("Cube"))
-        bpy.context.scene.collection.objects.link(cube)
-        bpy.context.view_layer.objects.active = cube
-    assert shot.select_get()  # the drawing is still selected: only the active object counts
-    assert cancelled() == expected
-    assert gp_data.snapshot(shot) == before
+# (no active Grease Pencil object: the operator's poll fails and says why, test_inbetween.py)
 
 
 @pytest.mark.parametrize("count", [0, 1])
