@@ -64,7 +64,7 @@ from .fallbacks import (
 )
 from .pair_plans import PairPlans
 from .point_routes import dot_road, guarded, own_points_road, polyline_road
-from .registration import Motions, identity_residual
+from .registration import Motions, identity_residual, orientation_free
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 
@@ -464,6 +464,20 @@ def _comparison_road(plans, pairs, ready, method, spacing):
         plans.add_morph(c, morph, loop, (Ps.length[k], Qs.length[k]))
 
 
+def _witnessed(drawing, pairs, ready):
+    """The drawing's motion, or None when no stroke of it has an orientation of its own (dots,
+    circles): their centroids alone fit any turn (two dots fit a similarity exactly), so nothing
+    shows the drawing turning, and strokes without an orientation must not ride that turn."""
+    if drawing is None:
+        return None
+    if any(not pairs[c].closed for c in ready):
+        return drawing  # an open stroke has a direction: it shows how the drawing turns
+    if not ready:
+        return None
+    P = Ragged.from_list([pairs[c].P for c in ready], np.ones(len(ready), bool))
+    return None if orientation_free(P).all() else drawing
+
+
 def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None, drawing=None):
     """Plan every stroke pair of a drawing (see the module docstring).
 
@@ -492,6 +506,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
+    drawing = _witnessed(drawing, pairs, ready)
     dot_road(plans, pairs, dots, carrier, drawing)
     # Pieces of hinted pairs share their pair's carrier: only the ball road takes them.
     pieces = [c for c in ready if pairs[c].motion is not None]

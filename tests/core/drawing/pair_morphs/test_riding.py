@@ -58,3 +58,16 @@ def test_a_circle_on_a_drawing_turning_less_than_the_agreement_keeps_its_path():
     got = frame.positions[frame.points(len(a) - 1)][:, [0, 2]].mean(axis=0)
     straight = (1 - t) * a[-1].mean(axis=0) + t * b[-1].mean(axis=0)
     assert np.linalg.norm(got - straight) <= 1e-9
+
+
+def test_dots_alone_show_no_turn_to_ride():
+    """Two dots: their centroids fit a similarity exactly (here a
+    27-degree turn growing 2.2 times), but nothing in the drawing turns, so the dot moves
+    straight (Blender test: test_dots_and_zero_length_strokes_move_point_by_point)."""
+    other_a = np.full((5, 2), 0.5)  # a stroke of five points in one place: a dot
+    other_b = other_a + 1.0
+    key_a = bm.StrokeSet.from_strokes([[[0.0, 0.0]], other_a])
+    key_b = bm.StrokeSet.from_strokes([[[1.0, 0.0]], other_b])
+    middle = bm.inbetween(key_a, key_b, [0.5], matching="index").frames[0]
+    dot = middle.positions[middle.offsets[0] : middle.offsets[1]]
+    np.testing.assert_allclose(dot[:, [0, 1]] if dot.shape[1] == 2 else dot[:, [0, 2]], [[0.5, 0.0]], atol=1e-9)
