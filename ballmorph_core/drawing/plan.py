@@ -19,11 +19,12 @@ from .frames.attributes import Extras, FrameValues, Held, Recycled, assemble_fra
 from .frames.layout import PairFrames
 from .keys.hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
 from .keys.projected import KeyStroke, ProjectedKey, StrokePair
-from .pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, STRAIGHT_POINT_MOTION, point_motion
+from .pair_morphs.fallbacks import STRAIGHT_POINT_MOTION, point_motion
 from .pair_morphs.pipeline import PairCurves, plan_pairs
 from .pairing.matching import match_strokes, pair_direction
 from .pairing.redrawn import Joined, cut_frame, join_pieces, joined_stroke
-from .strokes import InbetweenResult, Message, PairMorphs, PairOutcome, PairReport, StrokeSet
+from .reports.pair_reports import pair_report, piece_report, unmatched_report
+from .strokes import InbetweenResult, Message, PairMorphs, StrokeSet
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
 
@@ -402,19 +403,18 @@ class InbetweenPlan:
                 break
             result.frames += frames
         for k, (a, b, flip) in enumerate(self.strokes):
-            _report_pair(result, a, b, flip, parts.used[k], parts.notes[k], (a.index, b.index) in self.travelled)
+            travelled = (a.index, b.index) in self.travelled
+            report, messages = pair_report(a, b, flip, parts.used[k], parts.notes[k], travelled)
+            result.pairs.append(report)
+            result.messages += messages
             if k in self.joined:  # the other pieces of a line drawn in pieces: part of this pair
                 joined = self.joined[k][0]
-                for piece in joined.strokes[1:]:
-                    stroke_a, stroke_b = (piece, None) if joined.side == "a" else (None, piece)
-                    whole = b.index if joined.side == "a" else a.index
-                    result.pairs.append(
-                        PairReport(
-                            stroke_a, stroke_b, f"piece of the line of stroke {whole}", outcome=PairOutcome.PIECE
-                        )
-                    )
+                whole = b.index if joined.side == "a" else a.index
+                result.pairs += [piece_report(piece, joined.side, whole) for piece in joined.strokes[1:]]
         for h in self.held:
-            _report_unmatched(result, h.index, h.from_a, self.unmatched)
+            report, message = unmatched_report(h.index, h.from_a, self.unmatched)
+            result.pairs.append(report)
+            result.messages.append(message)
         result.messages.extend(self.planarity)
         self._recycled.end()
         return result
@@ -552,37 +552,6 @@ def _check_key(name, key):
             f"{name}: stroke(s) {bad[:10]} have coordinates up to {largest:.3g}, beyond the {MAX_COORDINATE:g} "
             "the geometry can square and multiply: scale the drawing down"
         )
-
-
-def _report_pair(result, a, b, flipped, used, notes, travelled=False):
-    result.pairs.append(PairReport(a.index, b.index, str(used), "; ".join(notes), used=used, travelled=travelled))
-    if flipped:
-        notes = ["the second key's stroke runs the other way: flipped", *notes]
-    first = used.morphs[0] if used.morphs else ""
-    fell_back = first in (FALLBACK_METHOD, ALIGNED_METHOD) or first == STRAIGHT_POINT_MOTION
-    for note in notes:
-        level = "WARNING" if fell_back and note is notes[-1] else "INFO"
-        result.messages.append(Message(level, f"stroke {a.index} -> {b.index}: {note}"))
-
-
-#: How the report says what a stroke without a partner does: (going, coming) per option.
-_UNMATCHED_WORDS = {
-    "middle": ("disappears at the middle", "appears at the middle"),
-    "hold": ("held", "held"),
-    "fade": ("fades out", "fades in"),
-    "shrink": ("shrinks into its middle", "grows out of its middle"),
-    "neighbour": ("shrinks into its nearest stroke", "grows out of its nearest stroke"),
-}
-
-
-def _report_unmatched(result, index, from_a, unmatched):
-    key = "first" if from_a else "second"
-    what = _UNMATCHED_WORDS[unmatched][0 if from_a else 1]
-    outcome = PairOutcome.HOLD if unmatched == "hold" else (PairOutcome.DISAPPEAR if from_a else PairOutcome.APPEAR)
-    result.pairs.append(
-        PairReport(index if from_a else None, None if from_a else index, outcome.value, outcome=outcome)
-    )
-    result.messages.append(Message("WARNING", f"stroke {index} of the {key} key has no partner: {what}"))
 
 
 def _planarity_messages(pts, plane):
