@@ -9,7 +9,8 @@ Run by ``make demo`` (tools/demo.sh) with bpy (Blender as a Python module), head
      (strokes sharing endpoints, frames 1-9), once with the circular ball-morph and once with
      linear interpolation (what Blender's own Interpolate does) for comparison,
    - "Squash and stretch": a ball falling (round, stretched, squashed on the floor: three
-     selected keys, frames 1, 7, 9) with a gravity ease-in,
+     selected keys, frames 1, 7, 9; the contact at 7 typed Extreme, so the fall keeps its corner
+     there) with a gravity ease-in,
    - "Head turn": keys drawn the way animators draw them (frames 1-11): the head moves and
      turns so its outline crosses its first position, and the second key's outline starts
      elsewhere and runs the other way; the brow is drawn the other way too; no stroke shares an
@@ -155,6 +156,10 @@ def build_scene():
     for number, ball in ball_keys:
         frame = add_key(obj, number, [ball, floor()], [True, False], [0, 1], [0.03, 0.02])
         frame.select = True  # the animator selected the three keys in the Dope Sheet
+        if number == 7:
+            # The contact, typed Extreme as animators mark one: the fall keeps its corner there
+            # (passed through smoothly, the squash's spread would swing the fall sideways).
+            frame.keyframe_type = "EXTREME"
     # Paired by drawing order: the ball travels too far for the automatic matching to pair it.
     options = {"method": "CIRCULAR_BALL", "easing_type": "QUAD", "easing": "EASE_IN", "matching": "INDEX"}
     shots.append((obj, 2, options))
