@@ -282,6 +282,12 @@ class _StderrProgress(service.Progress):
     def step(self, done, interval):
         _say(f"{self.object_name}: {interval.name} ({done + 1}/{self.total})")
 
+    def writing(self, done, total):
+        # About ten lines over a long write (the writer calls about a hundred times).
+        if total >= 1000 and (done == total or done * 10 // total != getattr(self, "_tenth", -1)):
+            self._tenth = done * 10 // total
+            _say(f"{self.object_name}: writing frames {done}/{total}")
+
 
 class _Run:
     """One run of the command: check, open, in-between, save, summarise."""

@@ -36,6 +36,16 @@ class _WindowProgress(service.Progress):
     def end(self):
         self.window_manager.progress_end()
 
+    def writing(self, done, total):
+        # The frames' writing on the same indicator, from 0 again: a long interval moves it too.
+        if done == 0 or not getattr(self, "_writing", False):
+            self.window_manager.progress_begin(0, max(total, 1))
+            self._writing = True
+        self.window_manager.progress_update(done)
+        if done >= total:
+            self.window_manager.progress_end()
+            self._writing = False
+
 
 class BALLMORPH_OT_inbetween(bpy.types.Operator):
     """Write in-between frames between two Grease Pencil keys, morphing each stroke along ball-morph paths"""

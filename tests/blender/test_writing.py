@@ -100,3 +100,39 @@ def test_a_stop_in_the_middle_leaves_nothing_half_written(shot, addon, stop):
         writer.write_all(shot.data, [item], progress=progress)
     assert gp_data.snapshot(shot) == before
     assert gp_data.marks(shot) == before_marks
+
+
+class _Recorder:
+    """A window manager that records its progress calls."""
+
+    def __init__(self):
+        self.calls = []
+
+    def __getattr__(self, name):
+        return lambda *args: self.calls.append((name, *args))
+
+
+def test_the_operator_shows_the_writing_on_the_progress_indicator(addon):
+    inbetween = importlib.import_module(f"{addon.__name__}.operators.inbetween")
+    window = _Recorder()
+    progress = inbetween._WindowProgress(window)
+    for done in (0, 150, 300):
+        progress.writing(done, 300)
+    assert window.calls == [
+        ("progress_begin", 0, 300),
+        ("progress_update", 0),
+        ("progress_update", 150),
+        ("progress_update", 300),
+        ("progress_end",),
+    ]
+
+
+def test_the_command_line_says_how_far_a_long_write_is(addon, capfd):
+    cli = importlib.import_module(f"{addon.__name__}.cli")
+    progress = cli._StderrProgress("Shot")
+    for done in range(0, 5001, 50):
+        progress.writing(done, 5000)
+    lines = [line for line in capfd.readouterr().err.splitlines() if "writing frames" in line]
+    assert 10 <= len(lines) <= 12 and lines[-1].endswith("Shot: writing frames 5000/5000"), lines
+    progress.writing(10, 20)  # a short write says nothing
+    assert "writing frames" not in capfd.readouterr().err
