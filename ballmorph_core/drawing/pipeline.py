@@ -15,7 +15,8 @@ Ball-morph methods::
    ``NEAR`` of each other that cross (the same stroke redrawn) are matched by arc length on the
    carrier; nested loops and
    strokes sharing their endpoints are ball-mapped whole; crossing pairs are cut into lenses;
-   pairs no ball-morph can follow take aligned interpolation when their curves lie over each
+   loops that change shape where they lie (:mod:`.deforming`) are tangent-aligned, their
+   crossings not sought; pairs no ball-morph can follow take aligned interpolation when their curves lie over each
    other (tangled crossings, a stroke crossing itself), else linear interpolation (loops side
    by side, strokes that do not share their endpoints without a carrier); the report says why.
 5. *cut chains* (:mod:`.splitting`): the lenses, overlaps and whole pairs the ball-maps run on.
@@ -50,6 +51,7 @@ from ..geometry.polyline import (
 )
 from ..geometry.ragged import Ragged
 from .carrier_choice import carrier_motions, note_shape_changes
+from .deforming import DEFORMING_NOTE, deforms, similar_in_place, tangent_morphs
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
@@ -433,8 +435,11 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     near = (residual <= NEAR * scale) & motions.moving & ~coincident
     # A near pair that crosses takes the near road whatever its events: they are not sought.
     crossing_near = cross(Rc, Qc, scale, near)
-    events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near)
+    # Loops that change shape where they lie slide through their crossings: not sought.
+    deforming = deforms(motions, shape_change) & ~coincident & ~crossing_near
+    events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near & ~deforming)
     roads = choose_roads(Rc, Qc, events, coincident, crossing_near | (near & (events.count > 0)), carrier, scale)
+    roads.kind[deforming | similar_in_place(P, Q, (roads.kind == "whole") & ~motions.moving & closed)] = "tangent"
     plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
     whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
     for c in np.flatnonzero(roads.kind == "linear"):
@@ -448,6 +453,7 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
         for c, note in zip(aligned, notes):
             plans.notes[index[c]].append(note)
         _add_pieces(plans, ends, index, aligned, morphs, closed[aligned], np.zeros(len(aligned)), whole_ranges[aligned])
+    _tangent_road(plans, ends, index, np.flatnonzero(roads.kind == "tangent"), Rc, Qc, closed, whole_ranges)
     near = np.flatnonzero(roads.kind == "near")
     if len(near):
         morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])
@@ -464,6 +470,17 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     for c in np.flatnonzero(lensed & (pieces > 1)):
         plans.notes[index[c]].append(f"split at {pieces[c]} crossing/overlap pieces")
     return motions
+
+
+def _tangent_road(plans, ends, index, rows, R, Q, closed, ranges):
+    """The pairs ``rows`` that change shape where they lie: tangent-aligned, straight paths
+    (:mod:`.deforming`), warped together."""
+    if not len(rows):
+        return
+    morphs = tangent_morphs([(R.curve(c), Q.curve(c), bool(closed[c])) for c in rows])
+    for c in rows:
+        plans.notes[index[c]].append(DEFORMING_NOTE)
+    _add_pieces(plans, ends, index, rows, morphs, closed[rows], np.zeros(len(rows)), ranges[rows])
 
 
 def _add_overhangs(plans, index, R, Q, ends, spacing):

@@ -1,0 +1,77 @@
+"""Pairs that change shape where they lie (issue 38): the tangent-aligned road, chosen per pair."""
+
+import numpy as np
+import pytest
+
+from ballmorph_core.drawing.pipeline import PairMorph
+
+from .shapes import circle, distance_to_polyline
+
+#: An in-between within this fraction of the pair's size of the designer's (vertex-wise) blend.
+BOLDER_TOLERANCE = 0.015
+
+
+def _even(corners, n):
+    """``n`` points evenly spaced along the closed polygon ``corners`` (K, 2)."""
+    c = np.asarray(corners, dtype=float)
+    edges = np.roll(c, -1, axis=0) - c
+    lengths = np.linalg.norm(edges, axis=1)
+    cum = np.r_[0.0, np.cumsum(lengths)]
+    s = np.linspace(0.0, cum[-1], n, endpoint=False)
+    k = np.searchsorted(cum, s, side="right") - 1
+    return c[k] + ((s - cum[k]) / lengths[k])[:, None] * edges[k]
+
+
+def rounded_l(stem, n, foot=0.6, height=1.0, radius=0.03):
+    """An L-shaped outline (stem width ``stem``, corners rounded by ``radius``), ``n`` points."""
+    c = np.array([(0, 0), (foot, 0), (foot, stem), (stem, stem), (stem, height), (0, height)], dtype=float)
+    arcs = []
+    for i, p in enumerate(c):
+        u, v = c[i - 1] - p, c[(i + 1) % len(c)] - p
+        p0, p1 = p + radius * u / np.linalg.norm(u), p + radius * v / np.linalg.norm(v)
+        t = np.linspace(0.0, 1.0, 8)[:, None]
+        arcs.append((1 - t) ** 2 * p0 + 2 * t * (1 - t) * p + t**2 * p1)
+    return _even(np.concatenate(arcs), n)
+
+
+def hausdorff(a, b, closed=True):
+    return max(distance_to_polyline(a, b, closed).max(), distance_to_polyline(b, a, closed).max())
+
+
+def test_an_outline_growing_bolder_in_place_slides_through_its_crossings():
+    # Stem 0.08 -> 0.30 (the Thin and Black of a glyph's L), drawn with other point counts.
+    morph = PairMorph(rounded_l(0.08, 400), rounded_l(0.30, 333), True)
+    assert "tangent-aligned" in morph.used and not any("split at" in n for n in morph.notes), morph.notes
+    for t in (0.25, 0.5, 0.75):
+        truth = rounded_l(0.08 + t * 0.22, 3000)
+        off = hausdorff(morph(t), truth)
+        assert off <= BOLDER_TOLERANCE, f"t={t}: {off:.4f} from the vertex-wise blend (at most {BOLDER_TOLERANCE})"
+
+
+def test_a_counter_shrinking_inside_its_thin_self_is_tangent_aligned():
+    # A glyph's counter as its strokes grow bolder: a similar loop nested, no motion.
+    thin = circle(0.5, 300) * (1.0, 1.3)
+    black = circle(0.3, 240) * (1.0, 1.4) + (0.02, 0.0)
+    morph = PairMorph(thin, black, True)
+    assert morph.used == "tangent-aligned", (morph.used, morph.notes)
+    mid = morph(0.5)
+    radii = np.abs(mid).max(axis=0)
+    assert np.allclose(radii, [0.40 + 0.01, 0.5 * (0.65 + 0.42)], atol=0.01), f"mid box half-sizes {radii}"
+
+
+def test_dissimilar_nested_loops_keep_the_ball_morph():
+    # A notched disk inside a pear (the paper's configuration 1): no similarity explains it.
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    notch = 1.0 - 0.6 * np.maximum(0, 1 - np.abs(np.angle(np.exp(1j * (t - 0.3)))) / 0.12)
+    r = 1.6 + 0.25 * np.cos(t - np.pi / 2) + 0.1 * np.cos(2 * t)
+    morph = PairMorph(
+        notch[:, None] * np.c_[np.cos(t), np.sin(t)], np.c_[0.9 * r * np.cos(t), 1.2 * r * np.sin(t)], True
+    )
+    assert "tangent-aligned" not in morph.used, (morph.used, morph.notes)
+
+
+@pytest.mark.parametrize("shift", [0.6, 1.5])
+def test_a_loop_moving_across_its_old_position_keeps_its_carrier(shift):
+    ring = circle(0.5, 200)
+    morph = PairMorph(ring, ring * (1.2, 0.9) + (shift, 0.0), True)
+    assert "tangent-aligned" not in morph.used and "carrier" in morph.used, (morph.used, morph.notes)
