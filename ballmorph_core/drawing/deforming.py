@@ -8,7 +8,11 @@ pins the crossing points, which a designer's in-between moves (by a median of 25
 Inter's outlines). These pairs take the tangent-aligned correspondence instead
 (:mod:`~ballmorph_core.morphs.tangent_aligned`): every part of P goes to the part of Q that runs
 the same way, straight, and material slides through the crossings. A pair that moved (its
-carrier explains it) keeps the ball road: its crossings come from the motion.
+carrier explains it) keeps the ball road: its crossings come from the motion. Open strokes
+whose registration explains as little take this road too, between their common parts (their
+ends settled as any open pair's, :mod:`.ends`): straight paths between matched points never
+leave the keys' convex hull (a C-shaped arc against an S ended to ended crossed itself in 4 of
+9 in-betweens, its common parts in none).
 
 Nested loops get no carrier (the ball-morph follows them as drawn, the paper's configuration 1).
 Those a similarity registration explains (a glyph's counter shrinking as its strokes grow
@@ -27,7 +31,7 @@ from .registration import fit_pairs, identity_residual
 __all__ = ["DEFORMING_NOTE", "deforms", "similar_in_place", "tangent_morphs"]
 
 #: What the report says of such a pair.
-DEFORMING_NOTE = f"the loops change shape where they lie: {METHOD} correspondence, straight paths"
+DEFORMING_NOTE = f"the curves change shape where they lie: {METHOD} correspondence, straight paths"
 
 
 def deforms(motions, shape_change):
@@ -38,8 +42,9 @@ def deforms(motions, shape_change):
     motions : Motions
         The pairs' carriers.
     shape_change : ndarray, shape (C,)
-        From :func:`~.carrier_choice.carrier_motions`: finite for overlapping loops whose
-        registration left more than ``SHAPE_CHANGE`` of their distance (NaN otherwise).
+        From :func:`~.carrier_choice.carrier_motions`: finite for overlapping loops and open
+        strokes whose registration left more than ``SHAPE_CHANGE`` of their distance (NaN
+        otherwise).
     """
     return np.isfinite(shape_change) & ~motions.moving
 

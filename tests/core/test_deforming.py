@@ -75,3 +75,65 @@ def test_a_loop_moving_across_its_old_position_keeps_its_carrier(shift):
     ring = circle(0.5, 200)
     morph = PairMorph(ring, ring * (1.2, 0.9) + (shift, 0.0), True)
     assert "tangent-aligned" not in morph.used and "carrier" in morph.used, (morph.used, morph.notes)
+
+
+#: Squash and stretch stay within this fraction of the in-between's size of an ellipse.
+ELLIPSE_TOLERANCE = 0.002
+
+#: Dissimilar open strokes' in-betweens leave the keys' box by less than this fraction of its diagonal.
+BOX_TOLERANCE = 0.02
+
+
+def ellipse_gap(points):
+    """Largest distance of ``points`` (K, 2) from their least-squares conic (first order:
+    ``|F| / |grad F|``), as a fraction of their extent."""
+    x, y = points[:, 0], points[:, 1]
+    design = np.c_[x * x, x * y, y * y, x, y, np.ones_like(x)]
+    a, b, c, d, e, _ = coef = np.linalg.svd(design)[2][-1]
+    value = design @ coef
+    gradient = np.hypot(2 * a * x + b * y + d, b * x + 2 * c * y + e)
+    return float(np.max(np.abs(value) / gradient) / np.ptp(points, axis=0).max())
+
+
+@pytest.mark.parametrize("move", [0.0, 1.5])
+def test_a_ball_stretching_into_a_smear_stays_an_ellipse(move):
+    ball = circle(0.25, 200)
+    smear = np.c_[3.0 * ball[:, 0], ball[:, 1]] + (move, 0.0)
+    morph = PairMorph(ball, smear, True)
+    for t in np.linspace(0.1, 0.9, 9):
+        gap = ellipse_gap(morph(t))
+        assert gap <= ELLIPSE_TOLERANCE, f"move {move}, t={t:.1f}: {gap:.4%} off an ellipse ({morph.used})"
+
+
+def _box_excess(frame, keys):
+    lo, hi = np.min([k.min(axis=0) for k in keys], axis=0), np.max([k.max(axis=0) for k in keys], axis=0)
+    out = np.maximum(lo - frame, 0.0) + np.maximum(frame - hi, 0.0)
+    return float(np.hypot(out[:, 0], out[:, 1]).max() / np.hypot(*(hi - lo)))
+
+
+_S = np.linspace(0.0, 1.0, 150)
+DISSIMILAR_STROKES = {
+    # A 'c' drawn round against an 's'-like swing; a straight hook against a looped one.
+    "c-against-s": (
+        np.c_[0.5 * np.cos(0.4 + 5.5 * _S), 0.5 * np.sin(0.4 + 5.5 * _S)],
+        np.c_[0.4 * np.sin(2 * np.pi * _S) * (1 - 0.3 * _S), 0.9 * (0.5 - _S)],
+    ),
+    "hook-against-loop": (
+        np.c_[0.1 * np.sin(3 * _S), 1 - _S],
+        np.c_[0.25 * np.sin(2 * np.pi * _S) + 0.05, 1 - _S - 0.2 * np.sin(np.pi * _S)],
+    ),
+}
+
+
+@pytest.mark.parametrize("name", sorted(DISSIMILAR_STROKES))
+def test_dissimilar_open_strokes_get_no_carrier_and_stay_clean(name):
+    from ballmorph_core.geometry.intersections import simple_curves
+
+    a, b = DISSIMILAR_STROKES[name]
+    morph = PairMorph(a, b, False)
+    assert "carrier" not in morph.used and "tangent-aligned" in morph.used, (morph.used, morph.notes)
+    frames = [morph(t) for t in np.linspace(0.1, 0.9, 9)]
+    worst = max(_box_excess(f, (a, b)) for f in frames)
+    assert worst < BOX_TOLERANCE, f"{name}: leaves the keys' box by {worst:.2%}"
+    simple = simple_curves(frames, np.zeros(len(frames), dtype=bool))
+    assert simple.all(), f"{name}: in-betweens {np.flatnonzero(~simple)} of 9 cross themselves"
