@@ -205,7 +205,10 @@ def note_shape_changes(notes, index, motion, shape_change):
     shape_change : ndarray, shape (C,)
         From :func:`carrier_motions`.
     """
-    for c in np.flatnonzero(np.isfinite(shape_change) & ~motion.moving):
+    for c in np.flatnonzero(~np.isnan(shape_change) & ~motion.moving):
+        if np.isinf(shape_change[c]):
+            notes[index[c]].append("no carrier: squashed in place it travels less than turned by its registration")
+            continue
         notes[index[c]].append(
             f"no carrier: its registration leaves {shape_change[c]:.0%} of the curves' distance"
             " (they change shape, they do not move)"

@@ -51,7 +51,7 @@ from ..geometry.polyline import (
 )
 from ..geometry.ragged import Ragged
 from .carrier_choice import carrier_motions, note_shape_changes
-from .deforming import DEFORMING_NOTE, deforms, similar_in_place, tangent_morphs
+from .deforming import DEFORMING_NOTE, SQUASHED, deforms, similar_in_place, squashes_in_place, tangent_morphs
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
@@ -401,6 +401,11 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
         the fraction of their distance the registration left; NaN for the other pairs.
     """
     motion, kept = carrier_motions(P, Q, carrier, scale, drawing)
+    # The motion of least travel: a loop squashed in place rather than turned (:mod:`.deforming`).
+    stretched, stretch, squashed = squashes_in_place(P, Q, motion, scale, drawing)
+    motion.put(stretched, stretch)
+    motion.put(squashed, Motions.identity(len(squashed), motion.kind))
+    kept[squashed] = SQUASHED
     for c, own in enumerate(given or []):
         if own is not None:
             motion.put(np.array([c]), own)

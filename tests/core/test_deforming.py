@@ -137,3 +137,59 @@ def test_dissimilar_open_strokes_get_no_carrier_and_stay_clean(name):
     assert worst < BOX_TOLERANCE, f"{name}: leaves the keys' box by {worst:.2%}"
     simple = simple_curves(frames, np.zeros(len(frames), dtype=bool))
     assert simple.all(), f"{name}: in-betweens {np.flatnonzero(~simple)} of 9 cross themselves"
+
+
+def rounded_rectangle(width, height, radius, per_corner, centre=(0.0, 0.0)):
+    """A rounded rectangle's outline, ``per_corner`` points on each corner's quarter circle."""
+    arcs = []
+    for sx, sy, start in ((1, 1, 0), (-1, 1, 90), (-1, -1, 180), (1, -1, 270)):
+        a = np.radians(np.linspace(start, start + 90, per_corner, endpoint=False))
+        corner = (sx * (width / 2 - radius), sy * (height / 2 - radius))
+        arcs.append(np.c_[corner[0] + radius * np.cos(a), corner[1] + radius * np.sin(a)])
+    return np.concatenate(arcs) + centre
+
+
+def principal_turn(points):
+    """Angle (degrees, 0..45) between the points' principal axis and the nearest canvas axis."""
+    z = points - points.mean(axis=0)
+    vector = np.linalg.eigh(z.T @ z)[1][:, 1]
+    angle = np.degrees(np.arctan2(vector[1], vector[0])) % 90.0
+    return min(angle, 90.0 - angle)
+
+
+#: The dot changing proportions stays axis-aligned within this (degrees) ...
+DOT_TURN = 1.0
+#: ... and within this fraction of its size of the proportional in-between.
+DOT_TOLERANCE = 0.01
+
+
+def test_a_dot_changing_proportions_squashes_in_place_instead_of_turning():
+    # The dot of an 'i' from a light weight (tall, narrow) to a heavy one (wide, flat): a turn
+    # by 90 degrees fits it, a squash in place travels less.
+    tall = rounded_rectangle(0.10, 0.30, 0.03, 20)
+    wide = rounded_rectangle(0.32, 0.11, 0.03, 27, centre=(0.01, 0.0))
+    morph = PairMorph(tall, wide, True)
+    assert "carrier" not in morph.used, (morph.used, morph.notes)
+    for t in (0.25, 0.5, 0.75):
+        frame = morph(t)
+        turn = principal_turn(frame)
+        truth = rounded_rectangle(0.10 + 0.22 * t, 0.30 - 0.19 * t, 0.03, 200, centre=(0.01 * t, 0.0))
+        off = hausdorff(frame, truth) / 0.32
+        assert turn < DOT_TURN and off < DOT_TOLERANCE, (
+            f"t={t}: turned {turn:.2f} deg, {off:.2%} off the proportional dot"
+        )
+
+
+def test_a_ball_landing_squashes_without_turning():
+    # A tall ellipse falling onto the floor and landing wide: a stretch without turn explains
+    # it exactly (the similarity turned it by 90 degrees: a diamond at the middle).
+    tall = np.c_[
+        0.18 * np.cos(np.linspace(0, 2 * np.pi, 120, endpoint=False)),
+        0.33 * np.sin(np.linspace(0, 2 * np.pi, 120, endpoint=False)),
+    ]
+    wide = np.c_[0.36 * tall[:, 0] / 0.18, 0.15 * tall[:, 1] / 0.33] + (0.0, -0.6)
+    morph = PairMorph(tall + (0.0, 0.3), wide, True)
+    for t in (0.25, 0.5, 0.75):
+        frame = morph(t)
+        turn, gap = principal_turn(frame), ellipse_gap(frame)
+        assert turn < DOT_TURN and gap <= ELLIPSE_TOLERANCE, f"t={t}: turned {turn:.2f} deg, {gap:.3%} off an ellipse"
