@@ -39,6 +39,10 @@ STRETCH = 0.5
 #: (5-8 % of its size off the proportional in-between; 0.3 % at 0.1).
 POSITION = 0.1
 
+#: Knots of :meth:`TangentWarp.through` closer than this fraction of the denser curve's mean
+#: spacing (along the warp) are merged.
+KNOT_GAP = 0.85
+
 #: Edges per curve of the coarse warps that choose a loop's start among all of them: the fine
 #: warps then try the starts within one coarse cell of the best.
 COARSE_SAMPLES = 32
@@ -76,17 +80,35 @@ class TangentWarp:
         -------
         u_p, u_q : ndarray, shape (L,)
             ``u_p`` non-decreasing in [0, 1], ``u_q`` fractions along Q from its first point;
-            the last knot is the warp's end (a loop's first again).
+            the last knot is the warp's end (a loop's first again). Knots closer along the
+            warp than ``KNOT_GAP`` of the denser curve's mean spacing are merged: the
+            in-between has about as many points as the denser key (matched vertices of
+            point-compatible keys coincide), at most ``1 / KNOT_GAP`` times as many.
         """
         tq = (np.asarray(vq, dtype=np.float64) - self.start) % 1.0
         # A warp may wait on one curve (a flat step): the walk along both orders every knot.
         walk = self.u_p + self.u_q
         at_p = np.interp(vp, self.u_p, walk)
         at_q = np.interp(tq, self.u_q, walk)
-        w = np.unique(np.r_[at_p, at_q, walk[-1]])
+        w = _thinned(np.unique(np.r_[at_p, at_q, walk[-1]]), walk[-1] / max(len(vp), len(vq), 1))
         u_p, t_q = np.interp(w, walk, self.u_p), np.interp(w, walk, self.u_q)
         # From Q's first point (an open stroke's start is 0: its end stays at 1).
         return u_p, (self.start + t_q) % 1.0 if self.start else t_q
+
+
+def _thinned(w, spacing):
+    """The knots ``w`` (sorted, shape (L,)) with any closer than ``KNOT_GAP * spacing`` to the
+    last kept one dropped; the first and last kept."""
+    keep = np.zeros(len(w), dtype=bool)
+    last = -np.inf
+    gap = KNOT_GAP * spacing
+    for i, x in enumerate(w):
+        if x - last >= gap:
+            keep[i], last = True, x
+    keep[-1] = True
+    if len(w) > 1 and keep[-2] and w[-1] - w[-2] < gap:
+        keep[-2] = False
+    return w[keep]
 
 
 def _edges(rg, k, closed):
