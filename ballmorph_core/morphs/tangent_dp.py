@@ -247,6 +247,23 @@ def _costs(full, shift):
     return cost_of
 
 
+def _rolled_costs(full, shift):
+    """:func:`_costs` for one start per pair (shape (B,)), without a gather per diagonal:
+    every table rolled to its start once, then anti-diagonal d of a (k, k) table is the
+    strided slice ``flat[d : d + (k - 1) k : k - 1]`` of its rows laid end to end (a view)."""
+    b_count, k = len(full), full.shape[1]
+    cols = (np.arange(k)[None, :] + shift[:, None]) % k
+    rolled = np.take_along_axis(full, np.broadcast_to(cols[:, None, :], full.shape), axis=2)
+    flat = np.concatenate([rolled.reshape(b_count, k * k), np.zeros((b_count, k))], axis=1)[:, None, :]
+    _, valid = _diagonal_cells(k)
+    off = np.where(valid, 0.0, np.inf)
+
+    def cost_of(d):
+        return flat[..., d : d + (k - 1) * k : k - 1] + off[d]
+
+    return cost_of
+
+
 def _best_starts(full, starts, stretch):
     """Of the candidate ``starts`` (B, S) on the loop pairs' tables ``full`` (B, k, k), each
     pair's least costly, shape (B,)."""
@@ -259,7 +276,7 @@ def _best_warps(rp, rq, k, starts, stretch, position, loop):
     b_count = len(starts)
     full = _tables(rp, rq, k, loop, position)
     best = _best_starts(full, starts, stretch) if starts.shape[1] > 1 else starts[:, 0]
-    totals, steps = _sweep(_costs(full, best[:, None]), (b_count, 1), k, stretch, record=True)
+    totals, steps = _sweep(_rolled_costs(full, best), (b_count, 1), k, stretch, record=True)
     out = []
     for b in range(b_count):
         i_path, j_path = _trace(steps[:, b, 0], k)
