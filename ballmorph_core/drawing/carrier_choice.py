@@ -22,7 +22,7 @@ follows two kinds of pairs as they are drawn, and they get none:
 import numpy as np
 
 from .. import tolerances as tol
-from ..geometry.intersections import batch_crossings
+from ..geometry.intersections import batch_crossings, simple_curves
 from ..geometry.projection import NearestEdges
 from ..geometry.ragged import Ragged
 from .registration import Motions, fit_pairs, identity_residual, motions
@@ -135,6 +135,13 @@ def shape_changes(P, Q, fits, ask):
     """
     kept = np.full(len(P), np.nan)
     rows = np.flatnonzero(ask)
+    # Open strokes asked only when neither crosses itself: such a pair keeps its carrier and
+    # the fallback that says so.
+    strokes = rows[~P.closed[rows]]
+    if len(strokes):
+        curves = [c for k in strokes for c in (P.curve(k), Q.curve(k))]
+        tangled = ~simple_curves(curves, np.zeros(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)
+        rows = np.setdiff1d(rows, strokes[tangled])
     # The cheap screen first: a fit that removes most of the samples' own distance explains
     # the change (the closest-point ratio is then below SHAPE_CHANGE too).
     if len(rows):

@@ -24,6 +24,7 @@ inside the Thin one left 10-16/1000 em against the designer's 2-3 (Dosis, League
 
 import numpy as np
 
+from ..geometry.intersections import simple_curves
 from ..morphs.tangent_aligned import METHOD, tangent_morphs
 from ..morphs.tangent_dp import tangent_warps
 from .carrier_choice import SCREEN
@@ -89,7 +90,7 @@ def squashes_in_place(P, Q, motions, scale, drawing=None):
 
     A tall dot that becomes a wide one fits a 90-degree turn; squashed in place each point
     travels less, and an animator squashes it. Asked of loops whose carrier turns by more than
-    ``LARGE_TURN``. The squash is a stretch without turn (:func:`~.registration.stretch_fits`)
+    ``LARGE_TURN``, neither crossing itself. The squash is a stretch without turn (:func:`~.registration.stretch_fits`)
     when that explains the pair (its residual under ``SCREEN`` of their distance: ellipses,
     exactly), else the tangent-aligned correspondence (a rounded rectangle's corners stay
     corners). Travels are RMS over P's vertices (and, for the correspondence, Q's and their
@@ -115,6 +116,10 @@ def squashes_in_place(P, Q, motions, scale, drawing=None):
     """
     rows = np.flatnonzero(P.closed & motions.moving & (np.abs(motions.theta) > LARGE_TURN))
     none = np.zeros(0, dtype=np.int64)
+    if len(rows):
+        # A loop crossing itself (a figure eight) keeps its carrier and the fallback that says so.
+        curves = [c for k in rows for c in (P.curve(k), Q.curve(k))]
+        rows = rows[simple_curves(curves, np.ones(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)]
     if not len(rows):
         return none, Motions.identity(0, motions.kind), none
     Pr, Qr = P.take(rows), Q.take(rows)

@@ -444,7 +444,10 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     deforming = deforms(motions, shape_change) & ~coincident & ~crossing_near
     events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near & ~deforming)
     roads = choose_roads(Rc, Qc, events, coincident, crossing_near | (near & (events.count > 0)), carrier, scale)
-    roads.kind[deforming | similar_in_place(P, Q, (roads.kind == "whole") & ~motions.moving & closed)] = "tangent"
+    # Nested loops as drawn with carrier 'none': the paper's ball-morph, asked for.
+    roads.kind[
+        deforming | similar_in_place(P, Q, (roads.kind == "whole") & ~motions.moving & closed & (carrier != "none"))
+    ] = "tangent"
     plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
     whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
     for c in np.flatnonzero(roads.kind == "linear"):
