@@ -1164,7 +1164,7 @@ def family_table(summaries):
         " | Hausdorff ‰ em (ours / peer / baseline / floor) | ours / floor | baseline / floor"
         " | Hausdorff ours / floor"
         " | glyphs ours beats baseline"
-        " | crossing (ours / baseline / floor) | not scored |",
+        " | crossing (ours / peer / baseline / floor) | not scored |",
         "|---|---:|---:|---|---|---:|---:|---:|---:|---|---:|",
     ]
     for s in summaries:
