@@ -113,6 +113,8 @@ def squashes_in_place(P, Q, motions, scale, drawing=None):
         Their carriers.
     squashed : ndarray of int
         Pairs left without a carrier (the tangent-aligned road).
+    warps : dict
+        Pair -> its TangentWarp (of the curves as drawn: the road's own, computed once).
     """
     rows = np.flatnonzero(P.closed & motions.moving & (np.abs(motions.theta) > LARGE_TURN))
     none = np.zeros(0, dtype=np.int64)
@@ -121,7 +123,7 @@ def squashes_in_place(P, Q, motions, scale, drawing=None):
         curves = [c for k in rows for c in (P.curve(k), Q.curve(k))]
         rows = rows[simple_curves(curves, np.ones(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)]
     if not len(rows):
-        return none, Motions.identity(0, motions.kind), none
+        return none, Motions.identity(0, motions.kind), none, {}
     Pr, Qr = P.take(rows), Q.take(rows)
     turned = _carried_travel(Pr, motions.A[rows], motions.b[rows])
     fits = stretch_fits(Pr, Qr)
@@ -129,15 +131,18 @@ def squashes_in_place(P, Q, motions, scale, drawing=None):
     by_stretch = explains & (_carried_travel(Pr, fits.A, fits.b) < turned)
     ask = np.flatnonzero(~explains)
     by_tangent = np.zeros(len(rows), dtype=bool)
+    warps = {}
     if len(ask):
-        by_tangent[ask] = _matched_travel(Pr.take(ask), Qr.take(ask)) < turned[ask]
+        travel, found = _matched_travel(Pr.take(ask), Qr.take(ask))
+        by_tangent[ask] = travel < turned[ask]
+        warps = {int(rows[k]): w for k, w in zip(ask, found) if by_tangent[k]}
     keep = np.flatnonzero(by_stretch)
     stretch = Motions.identity(0, motions.kind)
     if len(keep):
         sub = Fits(fits.A[keep], fits.b[keep], fits.residual[keep])
         moving = np.ones(len(keep), dtype=bool)
         stretch = registered_motions(Pr.take(keep), sub, motions.kind, scale[rows[keep]], moving, drawing)
-    return rows[keep], stretch, rows[by_tangent]
+    return rows[keep], stretch, rows[by_tangent], warps
 
 
 def _carried_travel(P, A, b):
@@ -147,7 +152,8 @@ def _carried_travel(P, A, b):
 
 
 def _matched_travel(P, Q):
-    """RMS travel of the tangent-aligned correspondence of loops P and Q, shape (C,)."""
+    """RMS travel of the tangent-aligned correspondence of loops P and Q, shape (C,), and their
+    warps (list of TangentWarp)."""
     warps = tangent_warps([P.curve(k) for k in range(len(P))], [Q.curve(k) for k in range(len(P))], P.closed)
     out = np.zeros(len(P))
     for k, warp in enumerate(warps):
@@ -157,4 +163,4 @@ def _matched_travel(P, Q):
         at = np.full(len(u_p), k, dtype=np.int64)
         p, q = P.point_at(at, u_p * P.length[k]), Q.point_at(at, u_q * Q.length[k])
         out[k] = np.sqrt(np.mean(np.sum(np.square(q - p), axis=1)))
-    return out
+    return out, warps

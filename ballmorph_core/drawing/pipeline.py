@@ -399,10 +399,12 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     shape_change : ndarray, shape (C,)
         Loops left without a carrier because they changed shape (:mod:`.carrier_choice`):
         the fraction of their distance the registration left; NaN for the other pairs.
+    warps : dict
+        Pair -> TangentWarp of the loops squashed in place (:mod:`.deforming`).
     """
     motion, kept = carrier_motions(P, Q, carrier, scale, drawing)
     # The motion of least travel: a loop squashed in place rather than turned (:mod:`.deforming`).
-    stretched, stretch, squashed = squashes_in_place(P, Q, motion, scale, drawing)
+    stretched, stretch, squashed, warps = squashes_in_place(P, Q, motion, scale, drawing)
     motion.put(stretched, stretch)
     motion.put(squashed, Motions.identity(len(squashed), motion.kind))
     kept[squashed] = SQUASHED
@@ -411,7 +413,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
             motion.put(np.array([c]), own)
     pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
-    return motion, R, identity_residual(R, Q), kept
+    return motion, R, identity_residual(R, Q), kept, warps
 
 
 def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
@@ -422,7 +424,7 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
-    motions, R, residual, shape_change = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    motions, R, residual, shape_change, warps = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
     note_shape_changes(plans.notes, index, motions, shape_change)
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
@@ -461,7 +463,7 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
         for c, note in zip(aligned, notes):
             plans.notes[index[c]].append(note)
         _add_pieces(plans, ends, index, aligned, morphs, closed[aligned], np.zeros(len(aligned)), whole_ranges[aligned])
-    _tangent_road(plans, ends, index, np.flatnonzero(roads.kind == "tangent"), Rc, Qc, closed, whole_ranges)
+    _tangent_road(plans, ends, index, np.flatnonzero(roads.kind == "tangent"), (Rc, Qc, closed, warps), whole_ranges)
     near = np.flatnonzero(roads.kind == "near")
     if len(near):
         morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])
@@ -480,12 +482,16 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     return motions
 
 
-def _tangent_road(plans, ends, index, rows, R, Q, closed, ranges):
+def _tangent_road(plans, ends, index, rows, curves, ranges):
     """The pairs ``rows`` that change shape where they lie: tangent-aligned, straight paths
-    (:mod:`.deforming`), warped together."""
+    (:mod:`.deforming`), warped together. ``curves``: the common parts R and Q (Ragged), the
+    loops' flags and the warps already made (pair -> TangentWarp: a squash's, see
+    :func:`register`)."""
+    R, Q, closed, known = curves
     if not len(rows):
         return
-    morphs = tangent_morphs([(R.curve(c), Q.curve(c), bool(closed[c])) for c in rows])
+    pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in rows]
+    morphs = tangent_morphs(pairs, [known.get(int(c)) for c in rows])
     for c in rows:
         plans.notes[index[c]].append(DEFORMING_NOTE)
     _add_pieces(plans, ends, index, rows, morphs, closed[rows], np.zeros(len(rows)), ranges[rows])

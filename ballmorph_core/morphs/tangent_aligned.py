@@ -38,7 +38,7 @@ def _morph(P, Q, closed, warp):
     return PathMorph(METHOD, closed, LinearPaths(p, q), u_p, u_q)
 
 
-def tangent_morphs(pairs):
+def tangent_morphs(pairs, warps=None):
     """The tangent-aligned interpolations of several curve pairs, warped together.
 
     Parameters
@@ -46,13 +46,19 @@ def tangent_morphs(pairs):
     pairs : list of (ndarray, ndarray, bool)
         Validated curves P (N, 2) and Q (M, 2) (Q running the way P does) and whether they
         are loops.
+    warps : list of TangentWarp or None, optional
+        Warps already made of some pairs' very curves (None: made here).
 
     Returns
     -------
     list of PathMorph
         Method :data:`METHOD`; their samples are the curves' own vertices and their matches.
     """
-    warps = tangent_warps([P for P, _, _ in pairs], [Q for _, Q, _ in pairs], [c for _, _, c in pairs])
+    warps = list(warps) if warps is not None else [None] * len(pairs)
+    missing = [g for g, w in enumerate(warps) if w is None]
+    made = tangent_warps([pairs[g][0] for g in missing], [pairs[g][1] for g in missing], [pairs[g][2] for g in missing])
+    for g, w in zip(missing, made):
+        warps[g] = w
     return [_morph(P, Q, closed, w) for (P, Q, closed), w in zip(pairs, warps)]
 
 
