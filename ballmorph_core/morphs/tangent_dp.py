@@ -24,10 +24,23 @@ import numpy as np
 
 from ..geometry.ragged import Ragged
 
-__all__ = ["TURNING_SAMPLES", "STRETCH", "POSITION", "COARSE_SAMPLES", "TangentWarp", "tangent_warps", "tangent_warp"]
+__all__ = [
+    "TURNING_SAMPLES",
+    "MIN_SAMPLES",
+    "STRETCH",
+    "POSITION",
+    "COARSE_SAMPLES",
+    "TangentWarp",
+    "tangent_warps",
+    "tangent_warp",
+]
 
-#: Edges per curve of the warp (its cost grows with their square).
-TURNING_SAMPLES = 128
+#: Edges per curve of the warp at most (its cost grows with their square); by default a pair
+#: takes as many as its denser curve has points, at least ``MIN_SAMPLES``. At 128 a glyph
+#: contour of 300 points was matched a cell of 1/128 of its outline off at corners: 12 glyphs
+#: of Inter / Dosis, median Hausdorff 17.91 / 3.15 at 128, 14.57 / 2.42 at 256 (1/1000 em).
+TURNING_SAMPLES = 256
+MIN_SAMPLES = 128
 
 #: Cost of a step along one curve only (the cell costs at most 2 + position terms): about a
 #: quarter-turn's mismatch, so a part may stretch along the other where that aligns directions.
@@ -167,7 +180,7 @@ def _cell_costs(tp, tq, mp, mq, size, position):
     return mismatch + position * gap / np.square(size)[:, None, None]
 
 
-def tangent_warps(ps, qs, closed, samples=TURNING_SAMPLES, stretch=STRETCH, position=POSITION):
+def tangent_warps(ps, qs, closed, samples=None, stretch=STRETCH, position=POSITION):
     """Tangent-aligned correspondences of a batch of curve pairs (see the module docstring).
 
     Parameters
@@ -177,8 +190,9 @@ def tangent_warps(ps, qs, closed, samples=TURNING_SAMPLES, stretch=STRETCH, posi
         way P does; at least two distinct points each.
     closed : array_like of bool, shape (B,)
         Loops (a start on Q is chosen) or open strokes (ends to ends).
-    samples : int
-        Edges per curve of the warp (at least 3).
+    samples : int, optional
+        Edges per curve of the warp (at least 3); default: each pair's own (the denser
+        curve's point count, within ``MIN_SAMPLES .. TURNING_SAMPLES``).
     stretch, position : float
         See :data:`STRETCH`, :data:`POSITION`.
 
@@ -187,17 +201,29 @@ def tangent_warps(ps, qs, closed, samples=TURNING_SAMPLES, stretch=STRETCH, posi
     list of TangentWarp
     """
     closed = np.asarray(closed, dtype=bool).reshape(-1)
-    k = max(int(samples), 3)
     out = [None] * len(ps)
     for loop in (False, True):
         rows = np.flatnonzero(closed == loop)
         if not len(rows):
             continue
-        rp = Ragged.from_list([np.asarray(ps[b], dtype=np.float64) for b in rows], [loop] * len(rows))
-        rq = Ragged.from_list([np.asarray(qs[b], dtype=np.float64) for b in rows], [loop] * len(rows))
-        for b, warp in zip(rows, _warps(rp, rq, loop, k, stretch, position)):
-            out[b] = warp
+        ks = np.array([_edge_count(len(ps[b]), len(qs[b]), samples) for b in rows])
+        for k in np.unique(ks):
+            group = rows[ks == k]
+            rp = Ragged.from_list([np.asarray(ps[b], dtype=np.float64) for b in group], [loop] * len(group))
+            rq = Ragged.from_list([np.asarray(qs[b], dtype=np.float64) for b in group], [loop] * len(group))
+            for b, warp in zip(group, _warps(rp, rq, loop, int(k), stretch, position)):
+                out[b] = warp
     return out
+
+
+def _edge_count(n, m, samples):
+    """Edges per curve of one pair's warp: ``samples`` if given, else the denser curve's point
+    count rounded up to a multiple of ``COARSE_SAMPLES``, within ``MIN_SAMPLES ..
+    TURNING_SAMPLES`` (a pair's own: the same alone as in any batch)."""
+    if samples is not None:
+        return max(int(samples), 3)
+    step = COARSE_SAMPLES
+    return int(np.clip(-(-max(n, m) // step) * step, MIN_SAMPLES, TURNING_SAMPLES))
 
 
 def tangent_warp(P, Q, closed, **options):
@@ -206,18 +232,33 @@ def tangent_warp(P, Q, closed, **options):
 
 
 def _warps(rp, rq, loop, k, stretch, position):
-    """The warps of pairs of one kind (all loops or all open strokes), list of TangentWarp."""
+    """The warps of pairs of one kind (all loops or all open strokes), list of TangentWarp.
+
+    A loop's start is chosen on tables of at most ``MIN_SAMPLES`` edges (the candidates cost a
+    warp each), its warp then made on ``k``: the finer table places corners, not the start.
+    """
     b_count = len(rp)
-    starts = np.zeros((b_count, 1), dtype=np.int64)
-    if loop and k > COARSE_SAMPLES:
-        every = np.tile(np.arange(COARSE_SAMPLES), (b_count, 1))
-        coarse = _best_starts(_tables(rp, rq, COARSE_SAMPLES, True, position), every, stretch)
-        ratio = k / COARSE_SAMPLES
-        reach = int(np.ceil(ratio))
-        starts = (np.rint(coarse * ratio).astype(np.int64)[:, None] + np.arange(-reach, reach + 1)) % k
-    elif loop:
-        starts = np.tile(np.arange(k), (b_count, 1))
+    if not loop:
+        return _best_warps(rp, rq, k, np.zeros((b_count, 1), dtype=np.int64), stretch, position, loop)
+    level = min(k, MIN_SAMPLES)
+    starts = _start_candidates(rp, rq, level, stretch, position)
+    if level < k:
+        best = _best_starts(_tables(rp, rq, level, True, position), starts, stretch)
+        starts = (np.rint(best * (k / level)).astype(np.int64) % k)[:, None]
     return _best_warps(rp, rq, k, starts, stretch, position, loop)
+
+
+def _start_candidates(rp, rq, k, stretch, position):
+    """The starts worth a warp on tables of ``k`` edges, shape (B, S): every one of a small
+    table, else those within a coarse cell of the best start on ``COARSE_SAMPLES`` edges."""
+    b_count = len(rp)
+    if k <= COARSE_SAMPLES:
+        return np.tile(np.arange(k), (b_count, 1))
+    every = np.tile(np.arange(COARSE_SAMPLES), (b_count, 1))
+    coarse = _best_starts(_tables(rp, rq, COARSE_SAMPLES, True, position), every, stretch)
+    ratio = k / COARSE_SAMPLES
+    reach = int(np.ceil(ratio))
+    return (np.rint(coarse * ratio).astype(np.int64)[:, None] + np.arange(-reach, reach + 1)) % k
 
 
 def _tables(rp, rq, k, loop, position):

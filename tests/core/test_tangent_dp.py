@@ -4,10 +4,11 @@ import numpy as np
 import pytest
 
 from ballmorph_core.morphs.tangent_aligned import tangent_morph
-from ballmorph_core.morphs.tangent_dp import TURNING_SAMPLES, tangent_warp, tangent_warps
+from ballmorph_core.morphs.tangent_dp import tangent_warp, tangent_warps
 
-#: One warp cell of the default table, as a fraction of a curve: the warp's resolution.
-CELL = 1.0 / TURNING_SAMPLES
+#: The warps of these tests run on 128 edges a curve: one cell, as a fraction of a curve.
+SAMPLES = 128
+CELL = 1.0 / SAMPLES
 
 
 def circle(n=200, phase=0.0, r=1.0, c=(0.0, 0.0)):
@@ -28,7 +29,7 @@ def cyclic_gap(a, b):
 
 def test_circle_against_itself_rotated_gives_the_rotation():
     for phase in (0.3, 1.9, 4.0):
-        warp = tangent_warp(circle(), circle(phase=phase), True)
+        warp = tangent_warp(circle(), circle(phase=phase), True, samples=SAMPLES)
         expected = (-phase / (2 * np.pi)) % 1.0
         gap = cyclic_gap(warp.start, expected)
         assert gap <= CELL, f"phase {phase}: start {warp.start:.4f}, expected {expected:.4f} ({gap / CELL:.2f} cells)"
@@ -41,7 +42,7 @@ def test_circle_against_itself_rotated_gives_the_rotation():
 def test_square_against_rectangle_maps_corners_to_corners():
     # Sides 1, 1 against 2, 0.5: the rectangle's corners are at fractions 0.4, 0.5, 0.9 of its
     # outline (from the same lower left corner), the square's at 0.25, 0.5, 0.75.
-    warp = tangent_warp(rectangle(1.0, 1.0), rectangle(2.0, 0.5), True)
+    warp = tangent_warp(rectangle(1.0, 1.0), rectangle(2.0, 0.5), True, samples=SAMPLES)
     assert cyclic_gap(warp.start, 0.0) <= CELL, f"start {warp.start:.4f}"
     for corner_p, corner_q in ((0.25, 0.4), (0.5, 0.5), (0.75, 0.9)):
         got = (warp.start + np.interp(corner_p, warp.u_p, warp.u_q)) % 1.0
