@@ -41,18 +41,22 @@ fuzz:
 	py=$$(tools/bootstrap.sh 5.0.1) && ulimit -v 8000000 && \
 	HYPOTHESIS_PROFILE=fuzz timeout 14400 $$py -m pytest -q -W error::RuntimeWarning --timeout=0 tests/fuzz --hypothesis-show-statistics
 
-# The real-data benchmark (issue 11): Inter's glyph outlines, Thin and Black masters as keys,
-# the font's own instances at weights 300-700 as ground truth; writes docs/realdata.md and
-# docs/realdata.png (about 2 minutes on two cores). It needs the Debian package
-# fonts-inter-variable, installed here when running as root with apt-get; otherwise the tool
-# stops and says how (INTER_FONT_DIR=... points it at the fonts elsewhere).
+# The real-data benchmark (issues 11, 38): glyph outlines of Inter (variable: Thin and Black
+# masters as keys, instances at weights 300-700 as ground truth) and of four families of static
+# instances of one design (Dosis, League Spartan, JetBrains Mono, Manrope: lightest and heaviest
+# as keys, the others as ground truth); writes docs/realdata.md and docs/realdata.png (a few
+# minutes on two cores). It needs the Debian packages below, installed here when running as root
+# with apt-get; otherwise the tool stops and says how (INTER_FONT_DIR=... points it at the
+# Inter fonts elsewhere).
 INTER_FONT_DIR ?= /usr/share/fonts/truetype/inter-vf
 INTER_FONTS = Inter-roman.var.ttf Inter-italic.var.ttf InterDisplay-roman.var.ttf
+REALDATA_PACKAGES = fonts-dosis fonts-league-spartan fonts-jetbrains-mono fonts-manrope
 realdata:
-	@for f in $(INTER_FONTS); do [ -f "$(INTER_FONT_DIR)/$$f" ] || missing=1; done; \
+	@for f in $(INTER_FONTS); do [ -f "$(INTER_FONT_DIR)/$$f" ] || missing="fonts-inter-variable"; done; \
+	for p in $(REALDATA_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ] && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-		echo "realdata: installing fonts-inter-variable (the Inter variable fonts)"; \
-		DEBIAN_FRONTEND=noninteractive apt-get install -y fonts-inter-variable || \
-		{ apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y fonts-inter-variable; }; \
+		echo "realdata: installing$$missing (the benchmark's fonts)"; \
+		DEBIAN_FRONTEND=noninteractive apt-get install -y $$missing || \
+		{ apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y $$missing; }; \
 	fi
 	INTER_FONT_DIR="$(INTER_FONT_DIR)" $$(tools/bootstrap.sh 5.0.1) tools/realdata.py --write docs/realdata.md

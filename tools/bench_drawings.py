@@ -1,15 +1,20 @@
 """The benchmark's drawings (tools/benchmark.py), in plain numpy: no bpy, so the core's tests and
 profiling scripts draw the same keys the benchmark times.
 
-Kinds: ``loops`` (star-shaped blobs), ``open`` (gentle arcs) and ``jagged`` (wavy strokes
-retraced with a tremor, whose lenses take the fallback step); see :func:`make_keys`.
+Kinds: ``loops`` (star-shaped blobs), ``open`` (gentle arcs), ``jagged`` (wavy strokes
+retraced with a tremor, whose lenses take the fallback step) and ``deforming`` (the loops'
+blobs changing shape where they lie: each of key B is key A's stretched 1.25x along one axis
+about its own centre, overlapping and crossing it); see :func:`make_keys`.
 """
 
 import math
 
 import numpy as np
 
-KINDS = ("loops", "open", "jagged")
+KINDS = ("loops", "open", "jagged", "deforming")
+
+#: The deforming drawing: each loop of key B is key A's stretched this much along one axis.
+STRETCH = 1.25
 
 
 def _normals(points, closed):
@@ -48,6 +53,8 @@ def make_keys(kind, n_strokes, n_points, seed=6):
     key_a, key_b = [], []
     if kind == "jagged":
         return _jagged_keys(rng, n_strokes, n_points, cols)
+    if kind == "deforming":
+        return _deforming_keys(n_strokes, n_points, seed)
     for i in range(n_strokes):
         centre = np.array([i % cols, -(i // cols)], dtype=float) + rng.uniform(-0.08, 0.08, 2)
         spin = rng.uniform(0, 2 * np.pi)
@@ -95,4 +102,19 @@ def _jagged_keys(rng, n_strokes, n_points, cols):
         line = np.c_[0.6 * s, 0.15 * np.sin(np.pi * s * rng.uniform(0.5, 2.0))] + corner
         key_a.append(line + rng.normal(0.0, 0.01, line.shape))
         key_b.append(line + [0.01, 0.005] + rng.normal(0.0, 0.01, line.shape))
+    return key_a, key_b
+
+
+def _deforming_keys(n_strokes, n_points, seed):
+    """Key A and key B of a deforming drawing (see :func:`make_keys`): key A is the loops
+    drawing's, each loop of key B key A's stretched ``STRETCH`` times along its own axis (the
+    loop's turn) about its centre, in place."""
+    key_a, _ = make_keys("loops", n_strokes, n_points, seed)
+    rng = np.random.default_rng([seed, KINDS.index("deforming"), n_strokes, n_points])
+    key_b = []
+    for a in key_a:
+        centre = a.mean(axis=0)
+        axis = _rotation(rng.uniform(0, np.pi))
+        stretch = axis @ np.diag([STRETCH, 1.0]) @ axis.T
+        key_b.append((a - centre) @ stretch.T + centre)
     return key_a, key_b

@@ -2,12 +2,15 @@
 
 Runs inside bpy (Blender as a Python module, headless)::
 
-    $(tools/bootstrap.sh 5.0.1) tools/benchmark.py [--quick] [--sizes 100x200x9,...] [--kinds loops,open,jagged]
+    $(tools/bootstrap.sh 5.0.1) tools/benchmark.py [--quick] [--sizes 100x200x9,...]
+                                                   [--kinds loops,open,jagged,deforming]
                                                    [--methods CIRCULAR_BALL,...] [--write docs/benchmark.md]
 
 For every drawing of the grid strokes {10, 100, 400} x points per stroke {50, 200, 500} x
 in-betweens {3, 9, 23}, once with loops and once with open strokes (and jagged redraws, strokes
-retraced with a tremor whose lenses take the fallback step, on a short grid of their own), it
+retraced with a tremor whose lenses take the fallback step, on a short grid of their own; and
+loops changing shape where they lie, each of key B key A's stretched 1.25x about its centre,
+at the goal sizes), it
 builds two identical Grease Pencil objects whose layer has key A on frame 1 and key B on frame
 in-betweens + 2 (key B is key A with every stroke moved, turned, scaled and smoothly deformed: a
 fixed-seed random wobble, so the strokes really morph), puts each in Edit Mode in the factory
@@ -72,6 +75,7 @@ KIND_TITLES = {
     "loops": "Loops (closed strokes)",
     "open": "Open strokes",
     "jagged": "Jagged redraws (open strokes retraced with a tremor: the fallback path)",
+    "deforming": "Loops changing shape where they lie (each of key B key A's stretched 1.25x about its centre)",
 }
 STROKES = (10, 100, 400)
 POINTS = (50, 200, 500)
@@ -82,6 +86,8 @@ QUICK_SIZES = ((10, 50, 3), (100, 200, 9))
 # lenses and many of them take the composite ball-morph or aligned interpolation (the fallback
 # step), so they get a short grid of their own.
 JAGGED_SIZES = ((10, 60, 9), (60, 60, 9), (200, 60, 9))
+# Loops changing shape where they lie (issue 38): the goal sizes only.
+DEFORMING_SIZES = ((100, 200, 9), (400, 500, 23))
 
 # The goals of issue 14 (issue 6 asked for 1.5 and 1.0: out of reach for numpy, see its note).
 GOAL_RATIOS = {(100, 200, 9): 8.0, (400, 500, 23): 5.0}  # cold run, ours (circular) / built-in, at most
@@ -204,7 +210,7 @@ def build_object(name, kind, key_a, key_b, last_frame):
     obj = bpy.data.objects.new(name, data)
     bpy.context.scene.collection.objects.link(obj)
     data.layers.new("Ink")
-    closed = kind == "loops"
+    closed = kind in ("loops", "deforming")
     for number, strokes in ((1, key_a), (last_frame, key_b)):
         n = [len(s) for s in strokes]
         # Pressure-like radius on open strokes (thin ends), constant on loops.
@@ -1059,6 +1065,8 @@ def _chosen_sizes(args, kind):
         sizes = args.sizes
     elif kind == "jagged":
         sizes = list(JAGGED_SIZES[:2] if args.quick else JAGGED_SIZES)
+    elif kind == "deforming":
+        sizes = list(DEFORMING_SIZES[:1] if args.quick else DEFORMING_SIZES)
     elif args.quick:
         sizes = list(QUICK_SIZES)
     else:

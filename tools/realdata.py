@@ -28,6 +28,7 @@ fontTools reads the fonts here, in the development environment only: the add-on 
 
 import argparse
 import datetime
+import glob
 import os
 import platform
 import re
@@ -55,6 +56,14 @@ FAMILIES = (
     ("Inter Italic", "Inter-italic.var.ttf"),
     ("Inter Display", "InterDisplay-roman.var.ttf"),
 )
+#: Families of static instances of one interpolable design (Debian packages): family, package,
+#: directory, files (every weight's instance; the lightest and heaviest are the keys).
+STATIC_FAMILIES = (
+    ("Dosis", "fonts-dosis", "/usr/share/fonts/opentype/dosis", "Dosis-*.otf"),
+    ("League Spartan", "fonts-league-spartan", "/usr/share/fonts/opentype/league-spartan", "LeagueSpartan-*.otf"),
+    ("JetBrains Mono", "fonts-jetbrains-mono", "/usr/share/fonts/truetype/jetbrains-mono", "JetBrainsMono-*[!c].ttf"),
+    ("Manrope", "fonts-manrope", "/usr/share/fonts/truetype/manrope", "Manrope-*.ttf"),
+)
 WEIGHTS = (300, 400, 500, 600, 700)
 GLYPHS = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789&@%ß$"
 QUICK_GLYPHS = "aegksABQR8&@"
@@ -67,8 +76,9 @@ SAMPLE_SPACING = 1.0  # thousandths of an em between the samples the distances a
 DUPLICATE = 1e-9  # thousandths of an em: a point this close to its predecessor everywhere is dropped
 BLOCK = 16  # segments per run of the distance search
 CHUNK = 2048  # points per block of the distance search
+GOAL_RATIO, GOAL_MARGIN = 1.1, 1.5  # issue 38: median Hausdorff <= max(1.1 x floor, floor + 1.5)
 DEFAULT_TIMEOUT = 120.0  # seconds for one glyph's bm.inbetween call
-ROADS = ("ours", "baseline", "floor")
+ROADS = ("ours", "peer", "baseline", "floor")
 
 
 class GlyphError(Exception):
@@ -217,6 +227,11 @@ class Font:
         Character code -> glyph name.
     glyph_sets : dict
         Weight -> fontTools glyph set at that weight (other axes at their defaults).
+    truth_weights : tuple of float
+        The weights between the keys whose instances are the truth.
+    static : bool
+        Static instances (one file per weight): their contours' order and start points are
+        matched between weights (:func:`align_outlines`).
     """
 
     family: str
@@ -226,11 +241,14 @@ class Font:
     black: float
     cmap: dict
     glyph_sets: dict
+    truth_weights: tuple = WEIGHTS
+    static: bool = False
 
 
 @cache
 def open_font(family, path):
-    """Open ``path`` once per process; its weight axis must cover :data:`WEIGHTS`.
+    """Open ``path`` once per process: a variable font whose weight axis covers :data:`WEIGHTS`,
+    or (a tuple of paths) the static instances of one design (:func:`open_static`).
 
     Returns
     -------
@@ -238,6 +256,8 @@ def open_font(family, path):
     """
     from fontTools.ttLib import TTFont
 
+    if not isinstance(path, str):
+        return open_static(family, path)
     tt = TTFont(path)
     axes = {a.axisTag: a for a in tt["fvar"].axes} if "fvar" in tt else {}
     if "wght" not in axes:
@@ -250,6 +270,98 @@ def open_font(family, path):
     return Font(
         family, path, 1000.0 / tt["head"].unitsPerEm, wght.minValue, wght.maxValue, tt.getBestCmap(), glyph_sets
     )
+
+
+def open_static(family, paths):
+    """The static instances ``paths`` of one design as a Font keyed by their OS/2 weight class:
+    the lightest and heaviest are the keys, the others the truth.
+
+    Returns
+    -------
+    Font
+    """
+    from fontTools.ttLib import TTFont
+
+    fonts = {}
+    for path in paths:
+        tt = TTFont(path)
+        fonts.setdefault(float(tt["OS/2"].usWeightClass), tt)
+    weights = sorted(fonts)
+    if len(weights) < 3:
+        raise SystemExit(f"realdata: {family}: fewer than three weights in {', '.join(paths)}")
+    first = fonts[weights[0]]
+    return Font(
+        family,
+        ", ".join(os.path.basename(p) for p in paths),
+        1000.0 / first["head"].unitsPerEm,
+        weights[0],
+        weights[-1],
+        first.getBestCmap(),
+        {w: tt.getGlyphSet() for w, tt in fonts.items()},
+        tuple(weights[1:-1]),
+        True,
+    )
+
+
+def _ends(segments):
+    """A contour's on-curve points (each segment's end), shape (len(segments), 2)."""
+    return np.array([np.asarray(seg, dtype=np.float64).reshape(-1, 2)[-1] for seg in segments])
+
+
+def rotated(contour, r):
+    """A closed contour ``(start, segments, closed)`` started at its segment ``r``'s start."""
+    start, segments, closed = contour
+    if not closed or r == 0:
+        return contour
+    return (np.asarray(segments[r - 1], dtype=np.float64).reshape(-1, 2)[-1], segments[r:] + segments[:r], closed)
+
+
+def _best_rotation(ref, cur):
+    """The rotation of contour ``cur`` whose segment kinds match ``ref``'s, on-curve points
+    closest (summed squared distance): ``(cost, r)``, cost inf when none matches."""
+    kinds_ref, kinds_cur = [len(s) for s in ref[1]], [len(s) for s in cur[1]]
+    if ref[2] != cur[2] or len(kinds_ref) != len(kinds_cur):
+        return np.inf, 0
+    a, b = _ends(ref[1]), _ends(cur[1])
+    best = (np.inf, 0)
+    for r in range(len(kinds_cur)) if cur[2] else (0,):
+        if kinds_cur[r:] + kinds_cur[:r] == kinds_ref:
+            # Segment r of cur becomes the first: its ends shift by r.
+            best = min(best, (float(np.sum(np.square(a - np.roll(b, -r, axis=0)))), r))
+    return best
+
+
+def align_outlines(outlines):
+    """Static instances' outlines with each contour matched to its lighter neighbour's: the
+    same contour order and start point (the closest cyclic rotation whose segment kinds agree).
+
+    Parameters
+    ----------
+    outlines : list of list of (start, segments, closed)
+        The glyph at every weight, lightest first (see :func:`read_outline`).
+
+    Returns
+    -------
+    list of list of (start, segments, closed)
+        The same contours, reordered and rotated; an instance whose contours cannot all be
+        matched is left as read (:func:`load_glyph` then reports the glyph).
+    """
+    out = [outlines[0]]
+    for cur in outlines[1:]:
+        ref = out[-1]
+        if len(cur) != len(ref):
+            out.append(cur)
+            continue
+        costs = np.array([[_best_rotation(a, b) for b in cur] for a in ref])  # (n, n, 2)
+        order, free = [None] * len(ref), set(range(len(cur)))
+        # Greedy by cost: the contours of a glyph lie apart, the closest match is the right one.
+        for flat in np.argsort(costs[..., 0], axis=None, kind="stable"):
+            i, j = divmod(int(flat), len(cur))
+            if order[i] is None and j in free and np.isfinite(costs[i, j, 0]):
+                order[i] = rotated(cur[j], int(costs[i, j, 1]))
+                free.discard(j)
+        out.append(order if all(o is not None for o in order) else cur)
+    return out
 
 
 def read_outline(font, glyph_name, weight):
@@ -330,10 +442,15 @@ def load_glyph(font, char):
     name = font.cmap.get(ord(char))
     if name is None:
         raise GlyphError(f"{char!r} is not in {os.path.basename(font.path)}")
-    weights = (font.thin, font.black, *WEIGHTS)
+    weights = (font.thin, font.black, *font.truth_weights)
     outlines = [read_outline(font, name, w) for w in weights]
     if not outlines[0]:
         raise GlyphError("no contours")
+    if font.static:
+        # Lightest to heaviest, each matched to its neighbour, then back in the order above.
+        by_weight = sorted(range(len(weights)), key=lambda k: weights[k])
+        aligned = align_outlines([outlines[k] for k in by_weight])
+        outlines = [aligned[by_weight.index(k)] for k in range(len(weights))]
     for w, outline in zip(weights, outlines):
         if structure(outline) != structure(outlines[0]):
             raise GlyphError(f"contours differ between weights {weights[0]:g} and {w:g}")
@@ -341,7 +458,7 @@ def load_glyph(font, char):
     drawings = [[flatten_contour(*c[:2], n, c[2]) for c, n in zip(outline, counts)] for outline in outlines]
     drawings = drop_shared_duplicates(drawings)
     closed = np.array([c for _, _, c in outlines[0]], dtype=bool)
-    return GlyphMasters(drawings[0], drawings[1], dict(zip(WEIGHTS, drawings[2:])), closed)
+    return GlyphMasters(drawings[0], drawings[1], dict(zip(font.truth_weights, drawings[2:])), closed)
 
 
 # --------------------------------------------------------------------------------------------
@@ -664,6 +781,42 @@ def baseline_inbetween(thin, black, closed, t):
     return out
 
 
+def peer_correspondence(thin, black, closed):
+    """The tangent-alignment peer's correspondence: contours paired by index, each pair's
+    tangent directions aligned along arc length by dynamic programming on the turning function,
+    the keys left in place, the best cyclic start (the core's
+    :func:`~ballmorph_core.morphs.tangent_dp.tangent_warps`).
+
+    Returns
+    -------
+    list of (ndarray (n, 2), ndarray (n, 2))
+        Per contour, matched points of the Thin and Black contours, on their own edges: every
+        point of each with its match on the other (the keys' corners stay corners).
+    """
+    from ballmorph_core.morphs.tangent_dp import tangent_warps
+
+    warps = tangent_warps(thin, black, closed)
+    out = []
+    for a, b, cyc, warp in zip(thin, black, closed, warps):
+        length_a, length_b = polyline_length(a, cyc), polyline_length(b, cyc)
+        u_p, u_q = warp.through(_fractions(a, cyc, length_a), _fractions(b, cyc, length_b))
+        if cyc:
+            u_p, u_q = u_p[:-1], u_q[:-1]  # the closing knot repeats the first
+        out.append((points_at_arclength(a, cyc, u_p * length_a), points_at_arclength(b, cyc, u_q * length_b)))
+    return out
+
+
+def _fractions(contour, closed, length):
+    """Arc-length fractions of a contour's points, shape (n,) (1 excluded for a closed one)."""
+    steps = np.linalg.norm(np.diff(contour, axis=0), axis=1)
+    return np.r_[0.0, np.cumsum(steps)][: len(contour)] / max(length, 1e-300)
+
+
+def peer_inbetween(matched, t):
+    """The peer's in-between at t: every matched pair of points blended straight."""
+    return [(1.0 - t) * a + t * b for a, b in matched]
+
+
 def frame_contours(frame):
     """A core StrokeSet's strokes as 2D contours (x and the canvas' z) and their cyclic flags."""
     pts = frame.positions[:, [0, 2]]
@@ -811,35 +964,42 @@ def score_glyph(task):
         out.error = f"{type(exc).__name__}: {exc}"
         return out
     out.points, out.contours = sum(len(c) for c in masters.thin), len(masters.thin)
-    fits = {w: fit_t(masters.thin, masters.black, masters.truths[w]) for w in WEIGHTS}
+    weights = list(masters.truths)
+    fits = {w: fit_t(masters.thin, masters.black, masters.truths[w]) for w in weights}
     out.seconds["read"] = time.perf_counter() - clock
     clock = time.perf_counter()
     try:
-        frames, result = ours_inbetween(masters, [fits[w][0] for w in WEIGHTS], options, timeout)
+        frames, result = ours_inbetween(masters, [fits[w][0] for w in weights], options, timeout)
     except Exception as exc:  # whatever the core raises (a bug included) is reported, the run goes on
         out.error = f"bm.inbetween raised {type(exc).__name__}: {exc}"
         return out
     out.seconds["ours"] = time.perf_counter() - clock
     out.pairs, out.messages = describe_pairs(result.pairs), [f"{m.level}: {m.text}" for m in result.messages]
     clock = time.perf_counter()
-    for w, frame in zip(WEIGHTS, frames):
-        out.weights.append(score_weight(masters, w, fits[w], frame, out.figure))
+    matched = peer_correspondence(masters.thin, masters.black, masters.closed)
+    out.seconds["peer"] = time.perf_counter() - clock
+    clock = time.perf_counter()
+    figure_weight = min(weights, key=lambda w: abs(w - FIGURE_WEIGHT))
+    for w, frame in zip(weights, frames):
+        out.weights.append(score_weight(masters, w, fits[w], frame, matched, out.figure, figure_weight))
     out.seconds["score"] = time.perf_counter() - clock
     return out
 
 
-def score_weight(masters, weight, fit, ours, figure):
-    """Score the three roads at one weight; keep the drawings for the figure at FIGURE_WEIGHT."""
+def score_weight(masters, weight, fit, ours, matched, figure, figure_weight=FIGURE_WEIGHT):
+    """Score the four roads at one weight; keep the drawings for the figure at ``figure_weight``
+    (``matched``: the peer's correspondence, :func:`peer_correspondence`)."""
     t, residual = fit
     truth, closed = masters.truths[weight], masters.closed
     drawings = {
         "ours": ours,
+        "peer": (peer_inbetween(matched, t), closed),
         "baseline": (baseline_inbetween(masters.thin, masters.black, closed, t), closed),
         "floor": (straight_blend(masters.thin, masters.black, t), closed),
     }
     truth_ref = Reference.of(truth, closed)
     scores = {road: score_road(*drawings[road], truth_ref) for road in ROADS}
-    if weight == FIGURE_WEIGHT:
+    if weight == figure_weight:
         figure.update(drawings, truth=(truth, closed), thin=(masters.thin, closed), black=(masters.black, closed))
     return WeightResult(weight, t, residual, crossing_counts(truth, closed), scores)
 
@@ -914,7 +1074,7 @@ class FamilySummary:
 def _ratios(medians):
     """Each of ours' and the baseline's medians divided by the floor's."""
     floor = medians["floor"]
-    return {road: (medians[road] / floor if floor > 0 else float("inf")) for road in ("ours", "baseline")}
+    return {road: (medians[road] / floor if floor > 0 else float("inf")) for road in ROADS[:-1]}
 
 
 def summarise(family, results):
@@ -943,8 +1103,13 @@ def summarise(family, results):
     )
 
 
+def hausdorff_goal(floor):
+    """Issue 38's bound on ours' median Hausdorff for a family whose floor's is ``floor``."""
+    return max(GOAL_RATIO * floor, floor + GOAL_MARGIN)
+
+
 def goals(summaries):
-    """The three goals of issue 11: list of (goal, measured, passed)."""
+    """The goals of issues 11 and 38: list of (goal, measured, passed)."""
     worst = max(s.ratio["ours"] for s in summaries)
     beaten = [s.family for s in summaries if s.median_mean["ours"] >= s.median_mean["baseline"]]
     crossing = sum(s.crossings["ours"] for s in summaries)
@@ -960,7 +1125,21 @@ def goals(summaries):
             not beaten,
         ),
         ("no in-between crossing where the truth does not", f"{crossing} in-betweens", crossing == 0),
-    ]
+    ] + [_hausdorff_goal(s) for s in summaries]
+
+
+def _hausdorff_goal(s):
+    """Issue 38's goal for one family: (goal, measured, passed)."""
+    h = s.median_hausdorff
+    bound = hausdorff_goal(h["floor"])
+    ok = h["ours"] <= bound and h["ours"] < h["baseline"] and h["ours"] <= h["peer"]
+    return (
+        f"{s.family}: median Hausdorff at most max({GOAL_RATIO:g}x floor, floor + {GOAL_MARGIN:g}),"
+        " below the baseline's, no worse than the peer's",
+        f"ours {_fmt(h['ours'])} (goal {_fmt(bound)}; peer {_fmt(h['peer'])}, baseline {_fmt(h['baseline'])},"
+        f" floor {_fmt(h['floor'])})",
+        ok,
+    )
 
 
 # --------------------------------------------------------------------------------------------
@@ -981,10 +1160,11 @@ def _road_cells(values):
 def family_table(summaries):
     """Markdown table: one row per family."""
     lines = [
-        "| family | glyphs | in-betweens | mean ‰ em (ours / baseline / floor)"
-        " | Hausdorff ‰ em (ours / baseline / floor) | ours / floor | baseline / floor | Hausdorff ours / floor"
+        "| family | glyphs | in-betweens | mean ‰ em (ours / peer / baseline / floor)"
+        " | Hausdorff ‰ em (ours / peer / baseline / floor) | ours / floor | baseline / floor"
+        " | Hausdorff ours / floor"
         " | glyphs ours beats baseline"
-        " | crossing (ours / baseline / floor) | not scored |",
+        " | crossing (ours / peer / baseline / floor) | not scored |",
         "|---|---:|---:|---|---|---:|---:|---:|---:|---|---:|",
     ]
     for s in summaries:
@@ -1001,7 +1181,8 @@ def worst_table(results, count=10):
     """Markdown table of the ``count`` glyphs with the largest mean distance for ours."""
     scored = sorted((r for r in results if not r.error), key=lambda r: -r.mean_of("ours"))[:count]
     lines = [
-        "| family | glyph | points | mean ‰ em (ours / baseline / floor) | Hausdorff ours ‰ em (max over weights)"
+        "| family | glyph | points | mean ‰ em (ours / peer / baseline / floor)"
+        " | Hausdorff ours ‰ em (max over weights)"
         " | crossing weights | stroke pairs: morph used |",
         "|---|---|---:|---|---:|---|---|",
     ]
@@ -1075,15 +1256,17 @@ def error_lines(results):
 
 
 def fit_lines(results):
-    """Markdown line: the fitted t per weight (median over glyphs) and the fit's residual."""
-    rows = [w for r in results for w in r.weights]
-    cells = []
-    for weight in WEIGHTS:
-        ws = [w for w in rows if w.weight == weight]
-        if ws:
+    """Markdown line: per family, the fitted t per weight (median over glyphs) and the fit's residual."""
+    parts = []
+    for family in dict.fromkeys(r.family for r in results):
+        rows = [w for r in results if r.family == family for w in r.weights]
+        cells = []
+        for weight in sorted({w.weight for w in rows}):
+            ws = [w for w in rows if w.weight == weight]
             t, residual = np.median([w.t for w in ws]), np.median([w.residual for w in ws])
-            cells.append(f"{weight}: t = {t:.3f} (residual {residual:.2f} ‰ em)")
-    return ["Fitted t, median over glyphs and families (and the median RMS point residual): " + "; ".join(cells) + "."]
+            cells.append(f"{weight:g}: t = {t:.3f} ({residual:.2f})")
+        parts.append(f"{family}: " + ", ".join(cells))
+    return ["Fitted t, median over glyphs (and the median RMS point residual, ‰ em): " + "; ".join(parts) + "."]
 
 
 METHOD_TEXT = f"""\
@@ -1100,10 +1283,18 @@ METHOD_TEXT = f"""\
   200 ‰ em) and the baseline's resampling cut them. A point repeating its predecessor at every
   location is dropped. Coordinates are in thousandths of an em (font
   units x 1000 / unitsPerEm).
-- **Keys and truth.** Keys: the two ends of the weight axis (Thin 100 and Black 900). Truth:
-  the instance at weight w in {", ".join(map(str, WEIGHTS))} (fontTools glyph set at that
-  location; no other axis in these fonts). The masters are Thin, Regular and Black, so the
-  designer's path bends at Regular: per glyph and weight, t is the least-squares fit of the
+- **Keys and truth.** Inter (variable): the two ends of the weight axis (Thin 100 and Black
+  900) are the keys; the truth is the instance at weight w in {", ".join(map(str, WEIGHTS))}
+  (fontTools glyph set at that location; no other axis in these fonts). The static families
+  ({", ".join(f for f, *_ in STATIC_FAMILIES)}; Debian packages
+  {", ".join(p for _, p, *_ in STATIC_FAMILIES)}) ship one file per weight of one interpolable
+  design: the lightest and heaviest (OS/2 weight class) are the keys, every other one a truth.
+  Their contours are matched to the next lighter instance's: contour order (the closest
+  contour whose segment kinds match) and start point (the closest cyclic rotation of its
+  on-curve points whose segment kinds match); a glyph whose instances still differ (TrueType
+  instances quadratic-converted each on its own) is listed as not scored. Inter's masters are
+  Thin, Regular and Black, so the designer's path bends at Regular: per glyph and weight, t is
+  the least-squares fit of the
   straight blend ``(1 - t) Thin + t Black`` to the instance, point by point (closed form of the
   1-D search, clipped to [0, 1]), and every road is evaluated at that t.
 - **Roads.** *ours*: ``bm.inbetween(thin, black, times=[the five t])`` (one call per glyph,
@@ -1111,7 +1302,10 @@ METHOD_TEXT = f"""\
   of both keys resampled evenly by arc length from its first point to the larger point count,
   blended linearly. (Blender's own Interpolate blends point by point when the counts agree:
   on these point-compatible keys that would be the floor, so the baseline stands for keys whose
-  points do not correspond, as hand-drawn ones.) *floor*: the designer's straight blend.
+  points do not correspond, as hand-drawn ones.) *peer*: contours paired by index, their
+  tangent directions aligned along arc length (dynamic programming on the turning function,
+  the keys left in place, the best cyclic start: the core's ``tangent_warps``), every point of
+  both keys with its match, straight paths. *floor*: the designer's straight blend.
 - **Distances.** Between drawings (the union of their contour polylines): samples every
   {SAMPLE_SPACING:g} ‰ em along each drawing, exact distances to the other's nearest segment
   (numpy; runs of {BLOCK} segments searched only where their bounding box can hold the nearest).
@@ -1121,7 +1315,9 @@ METHOD_TEXT = f"""\
   ours' mean distance, averaged over the five weights, is below the baseline's.
 - **Goals.** 1: in every family, ours' median mean distance at most 1.5 times the floor's.
   2: in every family, ours' median mean distance below the baseline's. 3: no in-between of
-  ours crossing where the truth does not (below).
+  ours crossing where the truth does not (below). Then per family (issue 38): ours' median
+  Hausdorff at most max({GOAL_RATIO:g} x floor, floor + {GOAL_MARGIN:g}), below the baseline's and
+  no worse than the peer's.
 - **Crossings.** Segments that cross properly (each one's ends strictly on both sides of the
   other; neighbours along a contour excluded; candidates from a sweep over x). An in-between
   counts as crossing when more of its contours cross themselves, or more pairs of its contours
@@ -1138,7 +1334,7 @@ def report(summaries, results, args, wall, load):
     options = ", ".join(f"{k}={v!r}" for k, v in core_options(args).items()) or "default options"
     glyphs = "".join(dict.fromkeys(r.char for r in results))
     lines = [
-        "# Real-data benchmark: Inter glyph outlines (issue 11)",
+        "# Real-data benchmark: glyph outlines of five designs (issues 11, 38)",
         "",
         f"`{command_line(args)}` on {date}, core at commit {git_commit()} (its last change);"
         f" `bm.inbetween` with {options}.",
@@ -1283,15 +1479,23 @@ def draw_figure(results, path):
 # --------------------------------------------------------------------------------------------
 
 
-def find_fonts(font_dir):
-    """The three families' font files in ``font_dir``, or stop saying how to install them.
+def find_fonts(font_dir, families=None):
+    """The families' font files: Inter's variable fonts in ``font_dir``, the static families'
+    instances where their Debian packages put them; or stop saying how to install them.
+
+    Parameters
+    ----------
+    font_dir : str
+    families : collection of str, optional
+        The families to run (default: every one).
 
     Returns
     -------
-    list of (str, str)
-        Family name and path.
+    list of (str, str or tuple of str)
+        Family name and path (a variable font) or paths (static instances, sorted).
     """
-    paths = [(family, os.path.join(font_dir, name)) for family, name in FAMILIES]
+    wanted = (lambda name: True) if families is None else (lambda name: name in families)
+    paths = [(family, os.path.join(font_dir, name)) for family, name in FAMILIES if wanted(family)]
     missing = [os.path.basename(p) for _, p in paths if not os.path.isfile(p)]
     if missing:
         raise SystemExit(
@@ -1301,7 +1505,30 @@ def find_fonts(font_dir):
             + ", ".join(name for _, name in FAMILIES)
             + " (https://github.com/rsms/inter, the variable fonts)."
         )
+    absent = []
+    for family, package, directory, pattern in STATIC_FAMILIES:
+        if not wanted(family):
+            continue
+        found = tuple(sorted(glob.glob(os.path.join(directory, pattern))))
+        if len(found) < 3:
+            absent.append(package)
+        paths.append((family, found))
+    if absent:
+        raise SystemExit(
+            f"realdata: static font families missing: install them with `sudo apt-get install {' '.join(absent)}`"
+            " (Debian, Ubuntu; `make realdata` does it when run as root), or leave them out with --families."
+        )
     return paths
+
+
+def family_list(text):
+    """An argparse type: comma-separated family names, each one this tool knows."""
+    known = [f for f, _ in FAMILIES] + [f for f, *_ in STATIC_FAMILIES]
+    names = [n.strip() for n in text.split(",") if n.strip()]
+    unknown = [n for n in names if n not in known]
+    if not names or unknown:
+        raise argparse.ArgumentTypeError(f"unknown families {unknown or text!r}; choose from {', '.join(known)}")
+    return tuple(names)
 
 
 def vocabulary(values, what):
@@ -1366,6 +1593,7 @@ def parse_args(argv):
     parser.add_argument(
         "--font-dir", default=FONT_DIR, help=f"directory of the Inter variable fonts (default {FONT_DIR})"
     )
+    parser.add_argument("--families", type=family_list, help="comma-separated families to run (default: every one)")
     parser.add_argument("--jobs", type=positive(int), default=os.cpu_count() or 1, help="processes (default: CPUs)")
     parser.add_argument(
         "--timeout", type=positive(float), default=DEFAULT_TIMEOUT, help="seconds per glyph for bm.inbetween"
@@ -1379,7 +1607,7 @@ def parse_args(argv):
 def main(argv=None):
     """Run the benchmark; print the report or write it (with its figure)."""
     args = parse_args(sys.argv[1:] if argv is None else argv)
-    fonts = find_fonts(args.font_dir)
+    fonts = find_fonts(args.font_dir, args.families)
     load, start = os.getloadavg()[0], time.perf_counter()
     results = run_benchmark(fonts, args.glyph_chars, core_options(args), args.jobs, args.timeout)
     wall = time.perf_counter() - start

@@ -263,3 +263,44 @@ def test_pair_reasons_in_brief():
         "split at 4 crossing/overlap pieces (crossing-loops)"
     )
     assert rd.format_pair((0, None, "disappear", "")) == "0->- disappear"
+
+
+def _contour(points, closed=True):
+    """A contour of line segments through ``points`` (the font's start point first)."""
+    pts = [np.asarray(p, dtype=np.float64) for p in points]
+    return (pts[0], [p[None] for p in pts[1:]] + ([pts[0][None]] if closed else []), closed)
+
+
+def test_static_instances_are_matched_to_their_neighbour():
+    # Two contours: the heavier instance lists them the other way round and starts its square
+    # two corners on; both are matched back (order, then the closest cyclic rotation).
+    square = [(0, 0), (10, 0), (10, 10), (0, 10)]
+    tri = [(20, 0), (30, 0), (25, 8)]
+    light = [_contour(square), _contour(tri)]
+    heavier_square = [(11, 11), (-1, 11), (-1, -1), (11, -1)]
+    heavy = [_contour([(19, -1), (31, -1), (25, 9)]), _contour(heavier_square)]
+    aligned = rd.align_outlines([light, heavy])
+    assert rd.structure(aligned[1]) == rd.structure(light)
+    starts = [tuple(c[0]) for c in aligned[1]]
+    assert starts == [(-1.0, -1.0), (19.0, -1.0)], f"starts {starts}"
+
+
+def test_static_instances_that_do_not_match_are_left_as_read():
+    light = [_contour([(0, 0), (10, 0), (10, 10), (0, 10)])]
+    other = [_contour([(0, 0), (10, 0), (5, 8)])]
+    assert rd.align_outlines([light, other])[1] is other
+
+
+def test_the_peer_follows_a_stem_grown_bolder_without_sliding_its_corners():
+    # A rectangle growing wider: the peer's matched points keep the corners (tangent-aligned).
+    thin = [np.array([[0, 0], [10, 0], [10, 100], [0, 100]], dtype=float)]
+    black = [np.array([[0, 0], [60, 0], [60, 100], [0, 100]], dtype=float)]
+    thin = [rd.flatten_contour(c[0], [p[None] for p in np.r_[c[1:], c[:1]]], [5] * 4) for c in thin]
+    black = [rd.flatten_contour(c[0], [p[None] for p in np.r_[c[1:], c[:1]]], [5] * 4) for c in black]
+    matched = rd.peer_correspondence(thin, black, np.array([True]))
+    mid = rd.peer_inbetween(matched, 0.5)[0]
+    truth = [rd.straight_blend(thin, black, 0.5)]
+    h, _ = rd.compare_drawings(rd.Reference.of(mid[None], [True]), rd.Reference.of(truth[0], [True]))
+    # Points 20 apart: knots of the two keys closer than 0.85 of that are merged (a corner may
+    # give way to its neighbour on the other key).
+    assert h < 3.0, f"peer's in-between of a widening stem is {h:.2f} from the straight blend"

@@ -12,14 +12,18 @@ follows two kinds of pairs as they are drawn, and they get none:
   changed its *shape* where it lies (a glyph's outline growing bolder, a blob bulging out on
   one side), and a carrier would only bend every point's path by a turn and a scale that
   belong to no motion of the drawing. Loops side by side keep their carrier however badly it
-  fits: the ball-morph cannot take one onto the other without it. Open strokes keep theirs
-  too: without one, strokes that do not share their endpoints cannot be ball-morphed at all.
+  fits: the ball-morph cannot take one onto the other without it.
+- open strokes whose registration explains as little (the same letter in two handwriting
+  styles): a carrier fitted to them turned by 53-68 degrees and scaled by 0.35-0.66, a motion
+  the pair does not share, and its in-betweens crossed themselves and left the keys' box by 13 %
+  (issue 38). Without one they take the tangent-aligned road (:mod:`.deforming`): straight
+  paths between matched points stay within the keys' convex hull.
 """
 
 import numpy as np
 
 from ... import tolerances as tol
-from ...geometry.intersections import batch_crossings
+from ...geometry.intersections import batch_crossings, simple_curves
 from ...geometry.projection import NearestEdges
 from ...geometry.ragged import Ragged
 from .registration import Motions, fit_pairs, identity_residual, motions
@@ -131,7 +135,14 @@ def shape_changes(P, Q, fits, ask):
         The fraction of the distance the registration leaves (NaN where not asked).
     """
     kept = np.full(len(P), np.nan)
-    rows = np.flatnonzero(ask & P.closed)
+    rows = np.flatnonzero(ask)
+    # Open strokes asked only when neither crosses itself: such a pair keeps its carrier and
+    # the fallback that says so.
+    strokes = rows[~P.closed[rows]]
+    if len(strokes):
+        curves = [c for k in strokes for c in (P.curve(k), Q.curve(k))]
+        tangled = ~simple_curves(curves, np.zeros(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)
+        rows = np.setdiff1d(rows, strokes[tangled])
     # The cheap screen first: a fit that removes most of the samples' own distance explains
     # the change (the closest-point ratio is then below SHAPE_CHANGE too).
     if len(rows):
@@ -144,10 +155,12 @@ def shape_changes(P, Q, fits, ask):
         after = closest_distance(Ragged(moved, Pr.offsets, Pr.closed), Qr)
         kept[rows] = np.divide(after, before, out=np.zeros(len(rows)), where=before > 0)
         rows = rows[kept[rows] > SHAPE_CHANGE]
-    # Loops side by side keep their carrier (the costliest test, for the few pairs left).
-    if len(rows):
-        Pr, Qr = P.take(rows), Q.take(rows)
-        rows = rows[np.maximum(inside_fraction(Pr, Qr), inside_fraction(Qr, Pr)) >= OVERLAPPING]
+    # Loops side by side keep their carrier (the costliest test, for the few loops left).
+    loops = rows[P.closed[rows]]
+    if len(loops):
+        Pr, Qr = P.take(loops), Q.take(loops)
+        apart = loops[np.maximum(inside_fraction(Pr, Qr), inside_fraction(Qr, Pr)) < OVERLAPPING]
+        rows = np.setdiff1d(rows, apart)
     changed = np.zeros(len(P), dtype=bool)
     changed[rows] = True
     return changed, kept
@@ -188,7 +201,7 @@ def carrier_motions(P, Q, carrier, scale, drawing=None):
 
 
 def note_shape_changes(notes, index, motion, shape_change):
-    """Say, in each such pair's notes, why a loop that changes shape got no carrier.
+    """Say, in each such pair's notes, why a pair that changes shape got no carrier.
 
     Parameters
     ----------
@@ -200,8 +213,11 @@ def note_shape_changes(notes, index, motion, shape_change):
     shape_change : ndarray, shape (C,)
         From :func:`carrier_motions`.
     """
-    for c in np.flatnonzero(np.isfinite(shape_change) & ~motion.moving):
+    for c in np.flatnonzero(~np.isnan(shape_change) & ~motion.moving):
+        if np.isinf(shape_change[c]):
+            notes[index[c]].append("no carrier: squashed in place it travels less than turned by its registration")
+            continue
         notes[index[c]].append(
-            f"no carrier: its registration leaves {shape_change[c]:.0%} of the loops' distance"
-            " (they change shape where they lie, they do not move)"
+            f"no carrier: its registration leaves {shape_change[c]:.0%} of the curves' distance"
+            " (they change shape, they do not move)"
         )

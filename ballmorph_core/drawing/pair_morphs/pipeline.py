@@ -15,7 +15,8 @@ Ball-morph methods::
    ``NEAR`` of each other that cross (the same stroke redrawn) are matched by arc length on the
    carrier; nested loops and
    strokes sharing their endpoints are ball-mapped whole; crossing pairs are cut into lenses;
-   pairs no ball-morph can follow take aligned interpolation when their curves lie over each
+   loops that change shape where they lie (:mod:`.deforming`) are tangent-aligned, their
+   crossings not sought; pairs no ball-morph can follow take aligned interpolation when their curves lie over each
    other (tangled crossings, a stroke crossing itself), else linear interpolation (loops side
    by side, strokes that do not share their endpoints without a carrier); the report says why.
 5. *cut chains* (:mod:`.crossings`): the lenses, overlaps and whole pairs the ball-maps run on.
@@ -50,6 +51,7 @@ from ..frames.layout import BallRows
 from .carrier_choice import carrier_motions, note_shape_changes
 from .crossings import cross, cut_chains, find_events
 from .curves import PairCurves, prepare_pairs
+from .deforming import DEFORMING_NOTE, SQUASHED, deforms, similar_in_place, squashes_in_place, tangent_morphs
 from .ends import overhang_morph, settle_ends
 from .fallbacks import (
     BALL_METHODS,
@@ -316,14 +318,21 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     shape_change : ndarray, shape (C,)
         Loops left without a carrier because they changed shape (:mod:`.carrier_choice`):
         the fraction of their distance the registration left; NaN for the other pairs.
+    warps : dict
+        Pair -> TangentWarp of the loops squashed in place (:mod:`.deforming`).
     """
     motion, kept = carrier_motions(P, Q, carrier, scale, drawing)
+    # The motion of least travel: a loop squashed in place rather than turned (:mod:`.deforming`).
+    stretched, stretch, squashed, warps = squashes_in_place(P, Q, motion, scale, drawing)
+    motion.put(stretched, stretch)
+    motion.put(squashed, Motions.identity(len(squashed), motion.kind))
+    kept[squashed] = SQUASHED
     for c, own in enumerate(given or []):
         if own is not None:
             motion.put(np.array([c]), own)
     pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
-    return motion, R, identity_residual(R, Q), kept
+    return motion, R, identity_residual(R, Q), kept, warps
 
 
 def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
@@ -334,7 +343,7 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
-    motions, R, residual, shape_change = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    motions, R, residual, shape_change, warps = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
     note_shape_changes(plans.notes, index, motions, shape_change)
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
@@ -352,8 +361,14 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     near = (residual <= NEAR * scale) & motions.moving & ~coincident
     # A near pair that crosses takes the near road whatever its events: they are not sought.
     crossing_near = cross(Rc, Qc, scale, near)
-    events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near)
+    # Loops that change shape where they lie slide through their crossings: not sought.
+    deforming = deforms(motions, shape_change) & ~coincident & ~crossing_near
+    events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near & ~deforming)
     roads = choose_roads(Rc, Qc, events, coincident, crossing_near | (near & (events.count > 0)), carrier, scale)
+    # Nested loops as drawn with carrier 'none': the paper's ball-morph, asked for.
+    roads.kind[
+        deforming | similar_in_place(P, Q, (roads.kind == "whole") & ~motions.moving & closed & (carrier != "none"))
+    ] = "tangent"
     plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
     whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
     for c in np.flatnonzero(roads.kind == "linear"):
@@ -367,6 +382,7 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
         for c, note in zip(aligned, notes):
             plans.notes[index[c]].append(note)
         _add_pieces(plans, ends, index, aligned, morphs, closed[aligned], np.zeros(len(aligned)), whole_ranges[aligned])
+    _tangent_road(plans, ends, index, np.flatnonzero(roads.kind == "tangent"), (Rc, Qc, closed, warps), whole_ranges)
     near = np.flatnonzero(roads.kind == "near")
     if len(near):
         morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])
@@ -383,6 +399,21 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     for c in np.flatnonzero(lensed & (pieces > 1)):
         plans.notes[index[c]].append(f"split at {pieces[c]} crossing/overlap pieces")
     return motions
+
+
+def _tangent_road(plans, ends, index, rows, curves, ranges):
+    """The pairs ``rows`` that change shape where they lie: tangent-aligned, straight paths
+    (:mod:`.deforming`), warped together. ``curves``: the common parts R and Q (Ragged), the
+    loops' flags and the warps already made (pair -> TangentWarp: a squash's, see
+    :func:`register`)."""
+    R, Q, closed, known = curves
+    if not len(rows):
+        return
+    pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in rows]
+    morphs = tangent_morphs(pairs, [known.get(int(c)) for c in rows])
+    for c in rows:
+        plans.notes[index[c]].append(DEFORMING_NOTE)
+    _add_pieces(plans, ends, index, rows, morphs, closed[rows], np.zeros(len(rows)), ranges[rows])
 
 
 def _add_overhangs(plans, index, R, Q, ends, spacing):

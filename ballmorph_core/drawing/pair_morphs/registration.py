@@ -42,6 +42,7 @@ __all__ = [
     "Fits",
     "similarity_matrices",
     "fit_pairs",
+    "stretch_fits",
     "identity_residual",
     "Motions",
     "motions",
@@ -257,6 +258,38 @@ def _affine_loops(P, Q, index, res_sim, xp, xq):
     sv = np.linalg.svd(A, compute_uv=False)
     moderate = (sv[:, 0] <= MAX_STRETCH * np.maximum(sv[:, 1], tol.TINY)) & (np.linalg.det(A) > 0)
     return ok & moderate & (residual < AFFINE_GAIN * res_sim), A, b, residual
+
+
+def stretch_fits(P, Q):
+    """The squash or stretch without turn that takes each loop P onto its Q (the issue-38
+    alternative to a large turn): ``A = C_Q^(1/2) C_P^(-1/2)`` from the loops' second moments
+    of area (exact between ellipses), about their area centroids.
+
+    Parameters
+    ----------
+    P, Q : Ragged
+        Loops, same number.
+
+    Returns
+    -------
+    Fits
+        Residual inf where a loop has no area to fit (a sliver).
+    """
+    index = np.arange(len(P))
+    cp, mp = _area_moments(P, index)
+    cq, mq = _area_moments(Q, index)
+    ok = np.all(np.isfinite(mp), axis=(1, 2)) & np.all(np.isfinite(mq), axis=(1, 2))
+    for m in (mp, mq):
+        m[~ok] = np.eye(2)
+        w = np.linalg.eigvalsh(m)
+        ok &= w[:, 0] > tol.ROUNDOFF * np.maximum(np.abs(w[:, 1]), tol.TINY)
+    root_q, _ = _sqrtm(np.where(ok[:, None, None], mq, np.eye(2)))
+    _, inv_p = _sqrtm(np.where(ok[:, None, None], mp, np.eye(2)))
+    A = root_q @ inv_p
+    b = cq - np.einsum("lij,lj->li", A, cp)
+    xp, xq = _samples(P, index, FIT_SAMPLES), _samples(Q, index, FIT_SAMPLES)
+    fitted = as_complex(np.einsum("lij,lkj->lki", A, from_complex(xp)) + b[:, None])
+    return Fits(A, b, np.where(ok, shifted_distance(fitted, xq), np.inf))
 
 
 def fit_pairs(P, Q, affine=True, turn=0.0, scale=1.0):
