@@ -11,8 +11,8 @@ import bpy
 import gp_data
 import numpy as np
 import pytest
-from tests.core.shapes import circle
-from tests.core.test_deforming import (
+from tests.fixtures.shapes import circle
+from tests.core.drawing.pair_morphs.test_deforming import (
     BOLDER_TOLERANCE,
     BOX_TOLERANCE,
     DISSIMILAR_STROKES,
