@@ -11,7 +11,8 @@ import bpy
 import gp_data
 import numpy as np
 import pytest
-from tests.fixtures.shapes import circle
+
+from ballmorph_core.geometry.intersections import simple_curves
 from tests.core.drawing.pair_morphs.test_deforming import (
     BOLDER_TOLERANCE,
     BOX_TOLERANCE,
@@ -25,8 +26,7 @@ from tests.core.drawing.pair_morphs.test_deforming import (
     rounded_l,
     rounded_rectangle,
 )
-
-from ballmorph_core.geometry.intersections import simple_curves
+from tests.fixtures.shapes import circle
 
 
 def _inbetweens(a, b, closed):
