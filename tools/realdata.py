@@ -6,7 +6,7 @@ Black masters (the ends of its weight axis); the ground truth is the font's own 
 weights 300 to 700. Three masters (Thin, Regular, Black) bend the designer's path at Regular,
 so for each glyph and weight the tool fits the time t at which the designer's straight blend
 ``(1 - t) * Thin + t * Black`` (point by point: masters are point-compatible) is closest to the
-instance, then scores three roads at that t against the instance:
+instance, then scores three routes at that t against the instance:
 
 - ours: ``bm.inbetween`` (default options unless ``--method`` / ``--carrier`` say otherwise);
 - baseline: Blender-like, every contour of both keys resampled by arc length from its first
@@ -714,7 +714,7 @@ def crossing_counts(contours, closed):
 
 
 # --------------------------------------------------------------------------------------------
-# The three roads
+# The three routes
 # --------------------------------------------------------------------------------------------
 
 
@@ -892,7 +892,7 @@ def ours_inbetween(masters, times, options, timeout):
 
 @dataclass
 class Score:
-    """One road's in-between against the truth: distances (thousandths of an em) and crossings."""
+    """One route's in-between against the truth: distances (thousandths of an em) and crossings."""
 
     mean: float
     hausdorff: float
@@ -907,7 +907,7 @@ class Score:
 
 @dataclass
 class WeightResult:
-    """One glyph at one weight: the fitted t, the truth's crossings and every road's score."""
+    """One glyph at one weight: the fitted t, the truth's crossings and every route's score."""
 
     weight: int
     t: float
@@ -931,19 +931,19 @@ class GlyphResult:
     seconds: dict = field(default_factory=dict)
     figure: dict = field(default_factory=dict)
 
-    def mean_of(self, road):
-        """Mean distance of a road averaged over the weights."""
-        return float(np.mean([w.scores[road].mean for w in self.weights]))
+    def mean_of(self, route):
+        """Mean distance of a route averaged over the weights."""
+        return float(np.mean([w.scores[route].mean for w in self.weights]))
 
 
-def score_road(contours, closed, truth_ref):
+def score_route(contours, closed, truth_ref):
     """Score one in-between (contours and cyclic flags) against the prepared truth."""
     h, m = compare_drawings(Reference.of(contours, closed), truth_ref)
     return Score(m, h, *crossing_counts(contours, closed))
 
 
 def score_glyph(task):
-    """Benchmark one glyph of one family: read, fit t, run the three roads, score them.
+    """Benchmark one glyph of one family: read, fit t, run the three routes, score them.
 
     Parameters
     ----------
@@ -987,7 +987,7 @@ def score_glyph(task):
 
 
 def score_weight(masters, weight, fit, ours, matched, figure, figure_weight=FIGURE_WEIGHT):
-    """Score the four roads at one weight; keep the drawings for the figure at ``figure_weight``
+    """Score the four routes at one weight; keep the drawings for the figure at ``figure_weight``
     (``matched``: the peer's correspondence, :func:`peer_correspondence`)."""
     t, residual = fit
     truth, closed = masters.truths[weight], masters.closed
@@ -998,7 +998,7 @@ def score_weight(masters, weight, fit, ours, matched, figure, figure_weight=FIGU
         "floor": (straight_blend(masters.thin, masters.black, t), closed),
     }
     truth_ref = Reference.of(truth, closed)
-    scores = {road: score_road(*drawings[road], truth_ref) for road in ROADS}
+    scores = {route: score_route(*drawings[route], truth_ref) for route in ROADS}
     if weight == figure_weight:
         figure.update(drawings, truth=(truth, closed), thin=(masters.thin, closed), black=(masters.black, closed))
     return WeightResult(weight, t, residual, crossing_counts(truth, closed), scores)
@@ -1074,7 +1074,7 @@ class FamilySummary:
 def _ratios(medians):
     """Each of ours' and the baseline's medians divided by the floor's."""
     floor = medians["floor"]
-    return {road: (medians[road] / floor if floor > 0 else float("inf")) for road in ROADS[:-1]}
+    return {route: (medians[route] / floor if floor > 0 else float("inf")) for route in ROADS[:-1]}
 
 
 def summarise(family, results):
@@ -1082,12 +1082,12 @@ def summarise(family, results):
     scored = [r for r in results if not r.error]
     rows = [w for r in scored for w in r.weights]
 
-    def median(road, attr):
-        return float(np.median([getattr(w.scores[road], attr) for w in rows])) if rows else float("nan")
+    def median(route, attr):
+        return float(np.median([getattr(w.scores[route], attr) for w in rows])) if rows else float("nan")
 
-    median_mean = {road: median(road, "mean") for road in ROADS}
-    median_hausdorff = {road: median(road, "hausdorff") for road in ROADS}
-    crossings = {road: sum(w.scores[road].crosses_beyond(w.truth_crossings) for w in rows) for road in ROADS}
+    median_mean = {route: median(route, "mean") for route in ROADS}
+    median_hausdorff = {route: median(route, "hausdorff") for route in ROADS}
+    crossings = {route: sum(w.scores[route].crosses_beyond(w.truth_crossings) for w in rows) for route in ROADS}
     wins = sum(r.mean_of("ours") < r.mean_of("baseline") for r in scored)
     return FamilySummary(
         family,
@@ -1153,8 +1153,8 @@ def _fmt(x):
 
 
 def _road_cells(values):
-    """'ours / baseline / floor' values of a road -> number dict."""
-    return " / ".join(_fmt(values[road]) for road in ROADS)
+    """'ours / baseline / floor' values of a route -> number dict."""
+    return " / ".join(_fmt(values[route]) for route in ROADS)
 
 
 def family_table(summaries):
@@ -1187,7 +1187,7 @@ def worst_table(results, count=10):
         "|---|---|---:|---|---:|---|---|",
     ]
     for r in scored:
-        means = {road: r.mean_of(road) for road in ROADS}
+        means = {route: r.mean_of(route) for route in ROADS}
         crossing = [str(w.weight) for w in r.weights if w.scores["ours"].crosses_beyond(w.truth_crossings)]
         hausdorff = max(w.scores["ours"].hausdorff for w in r.weights)
         lines.append(
@@ -1197,14 +1197,14 @@ def worst_table(results, count=10):
     return lines
 
 
-def crossing_lines(results, road="ours"):
-    """Markdown list: the glyphs (and weights) whose in-betweens by ``road`` cross where the truth does not."""
+def crossing_lines(results, route="ours"):
+    """Markdown list: the glyphs (and weights) whose in-betweens by ``route`` cross where the truth does not."""
     lines = []
     for r in results:
-        weights = [str(w.weight) for w in r.weights if w.scores[road].crosses_beyond(w.truth_crossings)]
+        weights = [str(w.weight) for w in r.weights if w.scores[route].crosses_beyond(w.truth_crossings)]
         if weights:
-            w = next(w for w in r.weights if w.scores[road].crosses_beyond(w.truth_crossings))
-            counts = f"{w.scores[road].self_crossing} self / {w.scores[road].pair_crossing} pairs"
+            w = next(w for w in r.weights if w.scores[route].crosses_beyond(w.truth_crossings))
+            counts = f"{w.scores[route].self_crossing} self / {w.scores[route].pair_crossing} pairs"
             truth = f"{w.truth_crossings[0]} / {w.truth_crossings[1]}"
             lines.append(f"- {r.family} `{r.char}` at {', '.join(weights)} (at {w.weight}: {counts}; truth {truth})")
     return lines or ["None."]
@@ -1296,7 +1296,7 @@ METHOD_TEXT = f"""\
   Thin, Regular and Black, so the designer's path bends at Regular: per glyph and weight, t is
   the least-squares fit of the
   straight blend ``(1 - t) Thin + t Black`` to the instance, point by point (closed form of the
-  1-D search, clipped to [0, 1]), and every road is evaluated at that t.
+  1-D search, clipped to [0, 1]), and every route is evaluated at that t.
 - **Roads.** *ours*: ``bm.inbetween(thin, black, times=[the five t])`` (one call per glyph,
   options as listed above). *baseline* (Blender-like): contours paired by index, each contour
   of both keys resampled evenly by arc length from its first point to the larger point count,
@@ -1461,7 +1461,7 @@ def draw_figure(results, path):
                 pts = np.vstack([c, c[:1]]) if cyc else c
                 ax.plot(pts[:, 0], pts[:, 1], **{**style, "label": style["label"] if k == 0 else None})
         w = next(w for w in r.weights if w.weight == FIGURE_WEIGHT)
-        means = ", ".join(f"{road} {w.scores[road].mean:.1f}" for road in ROADS)
+        means = ", ".join(f"{route} {w.scores[route].mean:.1f}" for route in ROADS)
         ax.set_title(
             f"{r.family} '{r.char}', weight {FIGURE_WEIGHT} (t = {w.t:.2f})\nmean distance ‰ em: {means}", fontsize=9
         )

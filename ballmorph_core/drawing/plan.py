@@ -24,7 +24,7 @@ from .pair_morphs.pipeline import PairCurves, plan_pairs
 from .pairing.matching import match_strokes, pair_direction
 from .pairing.redrawn import Joined, cut_frame, join_pieces, joined_stroke
 from .reports.pair_reports import pair_report, piece_report, unmatched_report
-from .strokes import InbetweenResult, Message, PairMorphs, StrokeSet
+from .strokes import InbetweenResult, Message, PairMorphs, Route, StrokeSet
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
 
@@ -493,7 +493,7 @@ def _finite(parts, strokes, times):
         if not np.all(np.isfinite(f)):
             morph = point_motion(a.xy, a.u, b.xy, b.u)
             f, ua, ub = morph.frames(times), morph.u_p, morph.u_q
-            closed[k], used[k] = False, PairMorphs((STRAIGHT_POINT_MOTION,))
+            closed[k], used[k] = False, PairMorphs((STRAIGHT_POINT_MOTION,), route=Route.POINT_MOTION)
             notes[k].append("the morph produced non-finite points")
         frames.append(f), u_a.append(ua), u_b.append(ub)
     offsets = np.concatenate([[0], np.cumsum([f.shape[1] for f in frames])])

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import InvalidCurveError
 
-__all__ = ["StrokeSet", "Message", "PairMorphs", "PairOutcome", "PairReport", "InbetweenResult"]
+__all__ = ["StrokeSet", "Message", "Route", "PairMorphs", "PairOutcome", "PairReport", "InbetweenResult"]
 
 
 @dataclass
@@ -200,6 +200,23 @@ class Message:
     text: str
 
 
+class Route(Enum):
+    """How the pipeline made a pair's in-betweens (:mod:`.pair_morphs.pipeline`)."""
+
+    OWN_POINTS = "own points"  # its points match one for one under a similarity
+    POLYLINE = "polyline"  # polylines with as many corners: corner to corner
+    DOT = "dot"  # fewer than two distinct points: point by point
+    CARRIER = "carrier"  # the registered curves coincide: the carrier alone
+    NEAR = "near"  # the same stroke redrawn: matched by arc length on the carrier
+    WHOLE = "whole"  # ball-mapped whole (shared ends, nested loops)
+    LENSES = "lenses"  # cut at its crossings into lenses, each ball-mapped
+    TANGENT = "tangent-aligned"  # changes shape where it lies: tangent-aligned, straight paths
+    ALIGNED = "aligned"  # curves lying over each other that cannot be cut into lenses
+    LINEAR = "linear"  # no ball-morph can follow: linear interpolation
+    COMPARISON = "comparison"  # one of the paper's comparison morphs, as asked
+    POINT_MOTION = "point motion"  # the morph was not finite somewhere: point by point
+
+
 @dataclass(frozen=True)
 class PairMorphs:
     """What made one pair's in-betweens: the morphs its chains used and the carrier moving them.
@@ -211,6 +228,8 @@ class PairMorphs:
         'polyline', 'straight point motion', ...).
     carrier : str
         The kind of the carrier moving the pair ('rigid', 'similarity', ...), '' for none.
+    route : Route or None
+        How the pipeline made the pair.
 
     Examples
     --------
@@ -220,6 +239,7 @@ class PairMorphs:
 
     morphs: tuple = ()
     carrier: str = ""
+    route: Route | None = None
 
     def __str__(self):
         text = "+".join(self.morphs)
@@ -230,7 +250,8 @@ class PairMorphs:
         """The morphs of several pieces of one pair (the pieces cut at its hints), one carrier."""
         parts = list(parts)
         morphs = sorted({m for part in parts for m in part.morphs})
-        return cls(tuple(morphs), next((p.carrier for p in parts if p.carrier), ""))
+        carrier = next((p.carrier for p in parts if p.carrier), "")
+        return cls(tuple(morphs), carrier, next((p.route for p in parts if p.route is not None), None))
 
 
 class PairOutcome(Enum):

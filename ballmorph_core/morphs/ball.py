@@ -98,7 +98,7 @@ def ball_morphs(pairs, kind, sampling="symmetric", check=True):
     list of BallMorph or BallMorphError
         Per pair, its morph or the error its own ``make_morph`` raises (bad curves, another
         configuration, not b-compatible). The batch's length tolerance is its smallest pair's
-        (as the pipeline's ball road), a coincidence threshold of 1e-9 of a pair's size.
+        (as the pipeline's ball route), a coincidence threshold of 1e-9 of a pair's size.
     """
     sampling = check_option("sampling", sampling, SAMPLINGS)
     out, valid, where = [None] * len(pairs), [], []

@@ -1,6 +1,6 @@
 """Tangent-aligned interpolation: straight paths between points the tangent warp matches.
 
-The road of loops that change shape where they lie (issue 38): the correspondence of
+The route of loops that change shape where they lie (issue 38): the correspondence of
 :mod:`.tangent_dp` (each part of P goes to the part of Q running the same way), then every point
 moves straight to its match. Material slides through the points where the two outlines cross
 (nothing is pinned there), as it does between a designer's weights.

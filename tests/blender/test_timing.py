@@ -165,7 +165,7 @@ def test_a_stroke_without_a_partner_gets_one_warning(addon, capfd):
     ("options", "bend", "why"),
     [
         ({"method": "LINEAR_INTERPOLATION"}, 0.0, "ink 29% shorter than the keys' blend of lengths"),
-        # Bent a little, the stroke is no polyline: without a carrier the ball road falls back.
+        # Bent a little, the stroke is no polyline: without a carrier the ball route falls back.
         (CIRCLES, 0.05, "made with linear-interpolation (a fallback); ink 29% shorter than the keys' blend of lengths"),
     ],
     ids=["too-short", "fallback"],

@@ -23,9 +23,10 @@ from hypothesis import event, given, note
 from hypothesis import strategies as st
 
 import ballmorph_core as bm
+from ballmorph_core import FALLBACK_METHOD, StrokeSet
 from ballmorph_core import tolerances as tol
 from ballmorph_core.ballmap.topology import CONFIGURATIONS
-from ballmorph_core.drawing.plan import CARRIERS, FALLBACK_METHOD, MATCHINGS, UNMATCHED, StrokeSet
+from ballmorph_core.options import CARRIERS, MATCHINGS, UNMATCHED
 
 #: Relative sizes: fewer distinct points than needed at this resolution is clearly malformed;
 #: at the core's own resolution (tolerances.COINCIDENT) clearly well formed. In between,

@@ -31,14 +31,14 @@ def test_frames_are_the_stored_ones(case):
                 np.testing.assert_array_equal(got, want, err_msg=f"{name} t={TIMES[k]} {field}")
 
 
-def test_the_golden_set_covers_every_road():
+def test_the_golden_set_covers_every_route():
     """The stored cases exercise what a refactor could break: fallbacks, composite, splits."""
     used = " ".join(" ".join(np.load(path(name))["pairs"]) for name, *_ in _CASES)
-    for road in (
+    for route in (
         "composite ball-morph used",
         "split at",
         "linear-interpolation used",
         "straight point motion",
         "appear",
     ):
-        assert road in used, road
+        assert route in used, route

@@ -329,12 +329,12 @@ def test_ball_mapping_in_batches_changes_nothing(monkeypatch):
         np.testing.assert_allclose(a.positions, b.positions, atol=1e-9)
 
 
-def test_a_bug_in_the_batched_road_stops_only_its_pair(monkeypatch):
-    """The ball road runs every pair at once; if it raises (a bug), the pairs are planned one by
+def test_a_bug_in_the_batched_route_stops_only_its_pair(monkeypatch):
+    """The ball route runs every pair at once; if it raises (a bug), the pairs are planned one by
     one, so only the failing pair falls back, and its report names the error."""
     pipeline = importlib.import_module("ballmorph_core.drawing.pair_morphs.pipeline")
     key_a, key_b = _drawing_4_and_5()
-    # The second key's loop squashed: not a similar copy, so it takes the ball road.
+    # The second key's loop squashed: not a similar copy, so it takes the ball route.
     loop = key_b.points(2)
     key_b.positions[loop, 0] = 3.2 + 1.3 * (key_b.positions[loop, 0] - 3.2)
     real = pipeline.find_events

@@ -165,7 +165,7 @@ def test_crossing_sweep_matches_brute_force():
         assert sorted(tuple(sorted(p)) for p in pairs.tolist()) == brute_crossings(contours, closed)
 
 
-# The roads --------------------------------------------------------------------------------
+# The routes --------------------------------------------------------------------------------
 
 
 def test_baseline_resamples_from_the_first_point_and_blends():

@@ -1,7 +1,7 @@
 """Where every pair's samples sit in a drawing's frames, and how they are evaluated.
 
 The pipeline hands over the samples of every *chain* (a lens, an overlap, a whole pair): those
-of the ball road as arrays of ball-map contacts ``(p, m, q)`` (:class:`BallRows`), evaluated
+of the ball route as arrays of ball-map contacts ``(p, m, q)`` (:class:`BallRows`), evaluated
 together as one :class:`~ballmorph_core.morphs.paths.BallPaths`, and the others as
 :class:`Segment`\\ s holding a :class:`~ballmorph_core.morphs.base.Morph` (a fallback, a
 comparison morph, straight point motion). Consecutive chains of a pair share an endpoint (a
@@ -23,7 +23,7 @@ __all__ = ["BallRows", "Segment", "PairFrames", "Layout"]
 
 @dataclass
 class BallRows:
-    """The ball road's chains as arrays, chain after chain.
+    """The ball route's chains as arrays, chain after chain.
 
     Attributes
     ----------
@@ -267,7 +267,7 @@ class _Joined:
 class Layout:
     """The samples of every pair, laid out pair after pair and chain after chain.
 
-    Each frame is evaluated road by road into work columns kept from frame to frame (every
+    Each frame is evaluated route by route into work columns kept from frame to frame (every
     full-size temporary is a fresh mapping, page-faulted anew, in a bpy process), gathered into
     frame order and carried by the pairs' carriers there.
 
@@ -311,11 +311,11 @@ class Layout:
         loop = self.closed[owner]
         self.u_a = _fractions(u_p, range_p, lengths[:, 0], c, owner, loop)
         self.u_b = _fractions(u_q, range_q, lengths[:, 1], c, owner, loop)
-        self._roads(ball, segments, keep, position, kind)
+        self._routes(ball, segments, keep, position, kind)
         self._work = self._carrier = None
 
-    def _roads(self, ball, segments, keep, position, kind):
-        """Each road's evaluation and its samples' place in the work columns: the ball rows
+    def _routes(self, ball, segments, keep, position, kind):
+        """Each route's evaluation and its samples' place in the work columns: the ball rows
         first, then each joined class, then the other morphs; gathered into frame order by
         ``_gather`` (None: they are in frame order already)."""
         n_ball = len(ball.u_p)
@@ -378,7 +378,7 @@ class Layout:
         registered pairs along."""
         frames = np.empty((len(times), len(self.u_a), 2)) if out is None else out
         work, carry = self._buffers(motions)
-        # stage: the roads' samples; columns: in frame order (the same when staged so);
+        # stage: the routes' samples; columns: in frame order (the same when staged so);
         # scratch: free while the carrier runs; term: the offsets' work column.
         stage, term = work[0:2], work[4]
         columns, scratch = (stage, work[2:4]) if self._gather is None else (work[2:4], stage)

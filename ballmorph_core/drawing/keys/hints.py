@@ -8,7 +8,7 @@ on exactly one point, that point's image.
 * A hint on two strokes makes them a pair, whatever the automatic matching says.
 * A hinted pair is registered by the similarity that best takes its first stroke onto the
   second with the hints corresponding (arc length mapped piecewise linearly between hints), and
-  cut at its hints into pieces; each piece goes down the ball road on that one carrier, its ends
+  cut at its hints into pieces; each piece goes down the ball route on that one carrier, its ends
   (the hinted points) moved straight to their partners, so the pieces stay joined and the
   hinted points travel exactly where the animator said.
 * Bad hints are reported with what to fix and ignored, never failing the run: a number on one

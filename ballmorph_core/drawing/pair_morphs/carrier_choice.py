@@ -16,7 +16,7 @@ follows two kinds of pairs as they are drawn, and they get none:
 - open strokes whose registration explains as little (the same letter in two handwriting
   styles): a carrier fitted to them turned by 53-68 degrees and scaled by 0.35-0.66, a motion
   the pair does not share, and its in-betweens crossed themselves and left the keys' box by 13 %
-  (issue 38). Without one they take the tangent-aligned road (:mod:`.deforming`): straight
+  (issue 38). Without one they take the tangent-aligned route (:mod:`.deforming`): straight
   paths between matched points stay within the keys' convex hull.
 """
 
@@ -136,13 +136,11 @@ def shape_changes(P, Q, fits, ask):
     """
     kept = np.full(len(P), np.nan)
     rows = np.flatnonzero(ask)
-    # Open strokes asked only when neither crosses itself: such a pair keeps its carrier and
-    # the fallback that says so.
-    strokes = rows[~P.closed[rows]]
-    if len(strokes):
-        curves = [c for k in strokes for c in (P.curve(k), Q.curve(k))]
-        tangled = ~simple_curves(curves, np.zeros(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)
-        rows = np.setdiff1d(rows, strokes[tangled])
+    # Pairs asked only when neither key crosses itself (a curl, a figure eight): such a pair
+    # keeps its carrier and the fallback that says so.
+    if len(rows):
+        curves = [c for k in rows for c in (P.curve(k), Q.curve(k))]
+        rows = rows[simple_curves(curves, np.repeat(P.closed[rows], 2)).reshape(-1, 2).all(axis=1)]
     # The cheap screen first: a fit that removes most of the samples' own distance explains
     # the change (the closest-point ratio is then below SHAPE_CHANGE too).
     if len(rows):

@@ -159,7 +159,7 @@ def _interior(R, pair, s_p, end_eps):
 
 def cross(R, Q, scale, wanted):
     """Wanted pairs whose curves cross or touch somewhere but at a stroke pair's shared ends
-    (or meet too often to count), shape (C,) of bool: all the near road asks of a pair, without
+    (or meet too often to count), shape (C,) of bool: all the near route asks of a pair, without
     the overlap analysis of :func:`find_events` (a pair that crosses has events there too).
     """
     end_eps = tol.SHARED_ENDPOINT * scale

@@ -1,4 +1,4 @@
-"""Pairs that change shape where they lie (issue 38): the road of the tangent-aligned morph.
+"""Pairs that change shape where they lie (issue 38): the route of the tangent-aligned morph.
 
 Loops that overlap and whose registration explains little of their difference
 (:mod:`.carrier_choice`: no carrier) changed their *shape* in place: a glyph's outline grown
@@ -8,8 +8,8 @@ pins the crossing points, which a designer's in-between moves (by a median of 25
 Inter's outlines). These pairs take the tangent-aligned correspondence instead
 (:mod:`~ballmorph_core.morphs.tangent_aligned`): every part of P goes to the part of Q that runs
 the same way, straight, and material slides through the crossings. A pair that moved (its
-carrier explains it) keeps the ball road: its crossings come from the motion. Open strokes
-whose registration explains as little take this road too, between their common parts (their
+carrier explains it) keeps the ball route: its crossings come from the motion. Open strokes
+whose registration explains as little take this route too, between their common parts (their
 ends settled as any open pair's, :mod:`.ends`): straight paths between matched points never
 leave the keys' convex hull (a C-shaped arc against an S ended to ended crossed itself in 4 of
 9 in-betweens, its common parts in none).
@@ -17,7 +17,7 @@ leave the keys' convex hull (a C-shaped arc against an S ended to ended crossed 
 Nested loops get no carrier (the ball-morph follows them as drawn, the paper's configuration 1).
 Those a similarity registration explains (a glyph's counter shrinking as its strokes grow
 bolder: the fit leaves under ``SCREEN`` of their distance, 0-19 % on the glyphs measured) are
-the same shape changing in place too, and take this road: the ball-morph of a counter shrinking
+the same shape changing in place too, and take this route: the ball-morph of a counter shrinking
 inside the Thin one left 10-16/1000 em against the designer's 2-3 (Dosis, League Spartan 'e',
 'B', 'R'). Dissimilar nested loops (a notched disk inside a pear: 49 %) keep the ball-morph.
 """
@@ -113,9 +113,9 @@ def squashes_in_place(P, Q, motions, scale, drawing=None):
     stretch : Motions
         Their carriers.
     squashed : ndarray of int
-        Pairs left without a carrier (the tangent-aligned road).
+        Pairs left without a carrier (the tangent-aligned route).
     warps : dict
-        Pair -> its TangentWarp (of the curves as drawn: the road's own, computed once).
+        Pair -> its TangentWarp (of the curves as drawn: the route's own, computed once).
     """
     rows = np.flatnonzero(P.closed & motions.moving & (np.abs(motions.theta) > LARGE_TURN))
     none = np.zeros(0, dtype=np.int64)

@@ -240,7 +240,7 @@ def settle_ends(R, Q, scale, opened, trim=None, pin=None):
     scale : ndarray, shape (C,)
         Size of each pair.
     opened : ndarray of bool, shape (C,)
-        The pairs to settle (open strokes on the ball road); the others stay whole.
+        The pairs to settle (open strokes on the ball route); the others stay whole.
     trim : ndarray of bool, shape (C,), optional
         The settled pairs whose overhangs may be trimmed (default: all); the others are only
         displaced (pieces cut at hints: their ends are the hinted points).

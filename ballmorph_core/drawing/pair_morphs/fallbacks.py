@@ -59,7 +59,7 @@ STRAY_REACH = 0.25
 #: The times a composite ball-morph's in-betweens are checked at.
 CHECK_TIMES = (0.125, 0.25, 0.5, 0.75, 0.875)
 
-#: Methods that need the paper's configurations and so take the ball road (carrier, splitting).
+#: Methods that need the paper's configurations and so take the ball route (carrier, splitting).
 BALL_METHODS = ("circular-ball", "linear-ball", "parabolic-ball", "hat-ball", "tangent-ball")
 
 

@@ -1,5 +1,5 @@
 """The plan of every stroke pair of a drawing: its morphs laid out, ball-mapped samples and
-carrier motions (:class:`PairPlans`), which the pipeline's roads fill and :meth:`PairPlans.frames`
+carrier motions (:class:`PairPlans`), which the pipeline's routes fill and :meth:`PairPlans.frames`
 evaluates at any times."""
 
 from dataclasses import fields
@@ -32,6 +32,7 @@ class PairPlans:
         self.closed, self.joined = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
         self.lengths = np.ones((n, 2))
         self.motions, self.layout = None, None
+        self.routes = [None] * n  # each pair's Route, set by the route that takes it
 
     def add_morph(self, c, morph, closed, lengths=(1.0, 1.0), order=0, ranges=None, offset=None):
         """A morph for (a chain of) pair ``c``; ``ranges`` are its pieces' arc lengths on the pair
@@ -41,12 +42,22 @@ class PairPlans:
             ranges = ((0.0, self.lengths[c, 0]), (0.0, self.lengths[c, 1]))
         self.segments.append(Segment(c, order, *ranges, morph=morph, offset=offset))
 
+    def set_route(self, pairs, route):
+        """``pairs`` (ints) took ``route`` (a Route)."""
+        self.set_routes(pairs, [route] * len(pairs))
+
+    def set_routes(self, pairs, routes):
+        """Each of ``pairs`` (ints) took its Route of ``routes``."""
+        for c, route in zip(pairs, routes):
+            self.routes[int(c)] = route
+
     def drop(self, pairs, notes_kept):
         """Forget what was planned for ``pairs`` (keeping their first ``notes_kept[c]`` notes)."""
         self.segments = [s for s in self.segments if s.pair not in pairs]
         self.ball = [rows.without(pairs) for rows in self.ball]
         for c in pairs:
             del self.notes[c][notes_kept[c] :]
+            self.routes[c] = None
 
     def finish(self, kind="circular"):
         """Name each pair's morphs and lay the segments out (step 8)."""
@@ -58,7 +69,7 @@ class PairPlans:
             methods[c].add("static" if static else f"{kind}-ball")
         for c, names in enumerate(methods):
             moving = self.motions is not None and self.motions.moving[c]
-            self.used[c] = PairMorphs(tuple(sorted(names)), self.motions.kind if moving else "")
+            self.used[c] = PairMorphs(tuple(sorted(names)), self.motions.kind if moving else "", self.routes[c])
         self.layout = Layout(ball, self.segments, self.closed, self.joined, self.lengths, kind)
         self.segments = self.ball = None
         return self
@@ -74,7 +85,7 @@ class PairPlans:
 
 
 def _joined(parts):
-    """One BallRows from several (the ball road's batches)."""
+    """One BallRows from several (the ball route's batches)."""
     if not parts:
         return BallRows.empty()
     return BallRows(*(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(BallRows)))

@@ -2,29 +2,39 @@
 
 Ball-morph methods::
 
-    prepare -> register -> find events -> choose roads -> cut chains -> map chains
-            -> fall back -> lay out
+    prepare -> own points -> polylines -> register -> settle ends -> find events
+            -> choose routes -> cut chains -> map chains -> fall back -> lay out
 
-1. *prepare* (:mod:`.curves`): validate each pair's curves; strokes with fewer than two distinct points move
-   straight, point by point; a loop paired with an open stroke is morphed as two open strokes.
-2. *register* (:mod:`.registration`, paper section 1.4): a similarity takes P onto Q; the
-   ball-morph runs between the registered P and Q and the carrier undoes the registration
-   progressively.
-3. *find events* (:mod:`.crossings`): where the registered curves cross or overlap.
-4. *choose roads*: registered curves that coincide are the carrier alone; curves within
-   ``NEAR`` of each other that cross (the same stroke redrawn) are matched by arc length on the
-   carrier; nested loops and
-   strokes sharing their endpoints are ball-mapped whole; crossing pairs are cut into lenses;
-   loops that change shape where they lie (:mod:`.deforming`) are tangent-aligned, their
-   crossings not sought; pairs no ball-morph can follow take aligned interpolation when their curves lie over each
-   other (tangled crossings, a stroke crossing itself), else linear interpolation (loops side
-   by side, strokes that do not share their endpoints without a carrier); the report says why.
-5. *cut chains* (:mod:`.crossings`): the lenses, overlaps and whole pairs the ball-maps run on.
-6. *map chains*: the ball-maps of every chain of every pair, in batches of about
+1. *prepare* (:mod:`.curves`): validate each pair's curves; strokes with fewer than two
+   distinct points move straight, point by point (riding the drawing's turn when it turns, the
+   DOT route); a loop paired with an open stroke is morphed as two open strokes.
+2. *own points* (:mod:`.point_routes`, :mod:`.exact_fit`): pairs whose points match one for
+   one under a similarity keep them (OWN_POINTS).
+3. *polylines* (:mod:`.point_routes`, :mod:`.polylines`): polylines with as many corners go
+   corner to corner (POLYLINE).
+4. *register* (:mod:`.registration`, :mod:`.carrier_choice`, paper section 1.4): a similarity
+   takes P onto Q; the ball-morph runs between the registered P and Q and the carrier undoes
+   the registration progressively; pairs that change shape where they lie get none, or squash
+   in place (:mod:`.deforming`).
+5. *settle ends* (:mod:`.ends`): open strokes whose registered ends do not meet: overhangs and
+   end gaps; ends meant to be shared meet halfway.
+6. *find events* (:mod:`.crossings`): where the registered curves cross or overlap.
+7. *choose routes* (a :class:`~..strokes.Route` per pair, in its report): registered curves
+   that coincide are the carrier alone (CARRIER); curves within ``NEAR`` of each other that
+   cross (the same stroke redrawn) are matched by arc length on the carrier (NEAR); nested
+   loops are ball-mapped whole (WHOLE); crossing pairs and strokes sharing their endpoints are
+   cut into lenses (LENSES); pairs that change shape where they lie are tangent-aligned, their
+   crossings not sought (TANGENT); pairs no ball-morph can follow take aligned interpolation
+   when their curves lie over each other (ALIGNED: tangled crossings, a stroke crossing
+   itself), else linear interpolation (LINEAR: loops side by side, strokes that do not share
+   their endpoints without a carrier); the report says why.
+8. *cut chains* (:mod:`.crossings`): the lenses, overlaps and whole pairs the ball-maps run on.
+9. *map chains*: the ball-maps of every chain of every pair, in batches of about
    ``BALLMAP_BATCH_POINTS`` input points.
-7. *fall back* (:mod:`.fallbacks`): a chain that is not b-compatible gets the composite
-   ball-morph, then aligned interpolation.
-8. *lay out* (:mod:`.layout`): every chain's samples in order, evaluated at any times.
+10. *fall back* (:mod:`.fallbacks`): a chain that is not b-compatible gets the composite
+    ball-morph, then aligned interpolation.
+11. *lay out* (:mod:`..frames.layout`, :class:`.pair_plans.PairPlans`): every chain's samples
+    in order, evaluated at any times; each pair's PairMorphs (morphs, carrier, route).
 
 The paper's comparison morphs take *prepare*, then their own morph with its fallback. Every
 step works on all pairs at once (a single pair is a batch of one), and nothing here depends on
@@ -48,6 +58,7 @@ from ...geometry.polyline import (
 )
 from ...geometry.ragged import Ragged
 from ..frames.layout import BallRows
+from ..strokes import Route
 from .carrier_choice import carrier_motions, note_shape_changes
 from .crossings import cross, cut_chains, find_events
 from .curves import PairCurves, prepare_pairs
@@ -65,7 +76,7 @@ from .fallbacks import (
     unsplittable,
 )
 from .pair_plans import PairPlans
-from .point_routes import dot_road, guarded, own_points_road, polyline_road
+from .point_routes import dot_route, guarded, own_points_route, polyline_route
 from .registration import Motions, identity_residual, orientation_free
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
@@ -82,48 +93,48 @@ NEAR = 0.01
 
 
 @dataclass
-class _Roads:
-    """What happens to each pair of a ball-road batch (``'carrier'``, ``'near'``, ``'whole'``,
-    ``'lenses'``, ``'aligned'`` for curves lying over each other that cannot be cut into
-    lenses, ``'linear'``) and, for the last two, why."""
+class _Routes:
+    """What happens to each pair of a ball-route batch (a Route each: CARRIER, NEAR, WHOLE,
+    LENSES, TANGENT, ALIGNED for curves lying over each other that cannot be cut into lenses,
+    LINEAR) and, for the last two, why."""
 
-    kind: np.ndarray
+    route: np.ndarray
     reason: list
 
 
-def choose_roads(R, Q, events, coincident, near, carrier, scale):
-    """Step 4: the road of every pair (see the module docstring); ``near`` marks the pairs
-    within ``NEAR`` of each other that cross or overlap (the near road)."""
+def choose_routes(R, Q, events, coincident, near, carrier, scale):
+    """Step 4: the route of every pair (see the module docstring); ``near`` marks the pairs
+    within ``NEAR`` of each other that cross or overlap (the near route)."""
     n, closed = len(R), R.closed
-    kind = np.where(closed & (events.count == 0), "whole", "lenses").astype(object)
-    kind[near & ~coincident] = "near"
+    kind = np.where(closed & (events.count == 0), Route.WHOLE, Route.LENSES).astype(object)
+    kind[near & ~coincident] = Route.NEAR
     reason = [""] * n
     end_eps = tol.SHARED_ENDPOINT * scale
     first = np.linalg.norm(R.pts[R.offsets[:-1]] - Q.pts[Q.offsets[:-1]], axis=1) <= end_eps
     last = np.linalg.norm(R.pts[R.offsets[1:] - 1] - Q.pts[Q.offsets[1:] - 1], axis=1) <= end_eps
     # Whether loops lie one inside the other: asked of the whole pairs only.
     nested = np.zeros(n, dtype=bool)
-    ask = np.flatnonzero((kind == "whole") & ~coincident)
+    ask = np.flatnonzero((kind == Route.WHOLE) & ~coincident)
     inside_q = Q.contains(np.take(R.pts, R.offsets[ask], axis=0), ask)
     nested[ask] = inside_q | R.contains(np.take(Q.pts, Q.offsets[ask], axis=0), ask)
     told = {}  # pairs that cannot be cut into lenses: why, said once their strokes are checked
     for c in range(n):
         if coincident[c]:
-            kind[c] = "carrier"
-        elif kind[c] == "near":
+            kind[c] = Route.CARRIER
+        elif kind[c] == Route.NEAR:
             continue
         elif carrier == "none" and not closed[c] and not (first[c] and last[c]):
-            kind[c], reason[c] = "linear", "the strokes do not share endpoints and no carrier is used"
+            kind[c], reason[c] = Route.LINEAR, "the strokes do not share endpoints and no carrier is used"
         elif not events.agree[c]:
-            kind[c], told[c] = "aligned", events.why_tangled(c)
-        elif kind[c] == "whole" and not nested[c]:
-            kind[c], told[c] = "linear", "the loops neither cross nor lie one inside the other"
+            kind[c], told[c] = Route.ALIGNED, events.why_tangled(c)
+        elif kind[c] == Route.WHOLE and not nested[c]:
+            kind[c], told[c] = Route.LINEAR, "the loops neither cross nor lie one inside the other"
     # Whether a key's stroke crosses itself, asked of all of them at once.
     asked = list(told)
     simple = simple_curves([c for k in asked for c in (R.curve(k), Q.curve(k))], np.repeat(closed[asked], 2))
     for c, both in zip(asked, simple.reshape(-1, 2)):
         reason[c] = unsplittable(R.curve(c), Q.curve(c), bool(closed[c]), told[c], both)
-    return _Roads(kind, reason)
+    return _Routes(kind, reason)
 
 
 @dataclass
@@ -174,7 +185,7 @@ def _mapped_batch(chains, members, spacing, eps):
 
 
 def _ball_rows(chains, maps, index, good, ends):
-    """The ball road's samples (BallRows): the chains whose ball-maps hold, and the overlaps
+    """The ball route's samples (BallRows): the chains whose ball-maps hold, and the overlaps
     (ranges on the pairs' whole curves, offsets undoing the end gaps' displacement)."""
     rows = maps.samples.take(good[maps.samples.chain])
     statics = np.flatnonzero(chains.static)
@@ -335,7 +346,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     return motion, R, identity_residual(R, Q), kept, warps
 
 
-def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
+def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
     """Steps 2-7 for the pairs ``index`` of ``pairs`` (validated); returns their Motions."""
     closed = np.array([pairs[c].closed for c in index], dtype=bool)
     # Curves drawn far more densely than they will be sampled are resampled first, each at its
@@ -359,36 +370,30 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
         residual[settled] = identity_residual(Rc.take(settled), Qc.take(settled))
     coincident |= residual <= tol.OVERLAP * scale
     near = (residual <= NEAR * scale) & motions.moving & ~coincident
-    # A near pair that crosses takes the near road whatever its events: they are not sought.
+    # A near pair that crosses takes the near route whatever its events: they are not sought.
     crossing_near = cross(Rc, Qc, scale, near)
     # Loops that change shape where they lie slide through their crossings: not sought.
     deforming = deforms(motions, shape_change) & ~coincident & ~crossing_near
     events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near & ~deforming)
-    roads = choose_roads(Rc, Qc, events, coincident, crossing_near | (near & (events.count > 0)), carrier, scale)
+    routes = choose_routes(Rc, Qc, events, coincident, crossing_near | (near & (events.count > 0)), carrier, scale)
     # Nested loops as drawn with carrier 'none': the paper's ball-morph, asked for.
-    roads.kind[
-        deforming | similar_in_place(P, Q, (roads.kind == "whole") & ~motions.moving & closed & (carrier != "none"))
-    ] = "tangent"
+    routes.route[
+        deforming
+        | similar_in_place(P, Q, (routes.route == Route.WHOLE) & ~motions.moving & closed & (carrier != "none"))
+    ] = Route.TANGENT
+    plans.set_routes(index, routes.route)
     plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
     whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
-    for c in np.flatnonzero(roads.kind == "linear"):
-        morph, note = linear_fallback(Rc.curve(c), Qc.curve(c), bool(closed[c]), h[c], roads.reason[c])
-        plans.notes[index[c]].append(note)
-        _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, whole_ranges[c])
-    aligned = np.flatnonzero(roads.kind == "aligned")
-    if len(aligned):
-        curves = [(Rc.curve(c), Qc.curve(c), bool(closed[c])) for c in aligned]
-        morphs, notes = aligned_fallbacks(curves, h[aligned], [roads.reason[c] for c in aligned])
-        for c, note in zip(aligned, notes):
-            plans.notes[index[c]].append(note)
-        _add_pieces(plans, ends, index, aligned, morphs, closed[aligned], np.zeros(len(aligned)), whole_ranges[aligned])
-    _tangent_road(plans, ends, index, np.flatnonzero(roads.kind == "tangent"), (Rc, Qc, closed, warps), whole_ranges)
-    near = np.flatnonzero(roads.kind == "near")
+    _no_ball_routes(plans, ends, index, routes, (Rc, Qc, closed), h, whole_ranges)
+    _tangent_route(
+        plans, ends, index, np.flatnonzero(routes.route == Route.TANGENT), (Rc, Qc, closed, warps), whole_ranges
+    )
+    near = np.flatnonzero(routes.route == Route.NEAR)
     if len(near):
         morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])
         _add_pieces(plans, ends, index, near, morphs, closed[near], np.zeros(len(near)), whole_ranges[near])
-    lensed = roads.kind == "lenses"
-    whole = np.flatnonzero((roads.kind == "whole") | (roads.kind == "carrier"))
+    lensed = routes.route == Route.LENSES
+    whole = np.flatnonzero((routes.route == Route.WHOLE) | (routes.route == Route.CARRIER))
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
     plans.joined[index] = closed & lensed
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
@@ -401,7 +406,24 @@ def _ball_road(plans, pairs, index, kind, carrier, spacing, drawing=None):
     return motions
 
 
-def _tangent_road(plans, ends, index, rows, curves, ranges):
+def _no_ball_routes(plans, ends, index, routes, curves, h, ranges):
+    """The pairs of ``routes`` (_Routes) no ball-morph can follow: LINEAR, ALIGNED, each with
+    the note that says why; ``curves`` are the batch's ``(R, Q, closed)``."""
+    R, Q, closed = curves
+    for c in np.flatnonzero(routes.route == Route.LINEAR):
+        morph, note = linear_fallback(R.curve(c), Q.curve(c), bool(closed[c]), h[c], routes.reason[c])
+        plans.notes[index[c]].append(note)
+        _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, ranges[c])
+    aligned = np.flatnonzero(routes.route == Route.ALIGNED)
+    if len(aligned):
+        pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in aligned]
+        morphs, notes = aligned_fallbacks(pairs, h[aligned], [routes.reason[c] for c in aligned])
+        for c, note in zip(aligned, notes):
+            plans.notes[index[c]].append(note)
+        _add_pieces(plans, ends, index, aligned, morphs, closed[aligned], np.zeros(len(aligned)), ranges[aligned])
+
+
+def _tangent_route(plans, ends, index, rows, curves, ranges):
     """The pairs ``rows`` that change shape where they lie: tangent-aligned, straight paths
     (:mod:`.deforming`), warped together. ``curves``: the common parts R and Q (Ragged), the
     loops' flags and the warps already made (pair -> TangentWarp: a squash's, see
@@ -453,20 +475,20 @@ def _piece(curves, c, s0, s1):
     return curves.curve(c)[first : last + 1].copy(), float(s[first])
 
 
-def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing=None):
-    """The ball road for every ready pair at once; should it fail (a bug), pair by pair, so one
+def _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing=None):
+    """The ball route for every ready pair at once; should it fail (a bug), pair by pair, so one
     pair never stops the others: a failing pair takes linear interpolation and says why."""
     index = np.asarray(ready)
     kept = {c: len(plans.notes[c]) for c in ready}
     try:
-        return _ball_road(plans, pairs, index, kind, carrier, spacing, drawing)
+        return _ball_route(plans, pairs, index, kind, carrier, spacing, drawing)
     except Exception as exc:  # reported below, pair by pair
         batch_error = f"{type(exc).__name__}: {exc}"
     plans.drop(set(ready), kept)
     parts = []
     for c in ready:
         try:
-            parts.append(_ball_road(plans, pairs, np.array([c]), kind, carrier, spacing, drawing))
+            parts.append(_ball_route(plans, pairs, np.array([c]), kind, carrier, spacing, drawing))
         except Exception as exc:
             plans.drop({c}, kept)
             pair = pairs[c]
@@ -476,12 +498,13 @@ def _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing=Non
             )
             plans.notes[c].append(note)
             plans.add_morph(c, morph, pair.closed, pair.lengths)
+            plans.set_route([c], Route.LINEAR)
             parts.append(Motions.identity(1))
     names = [f.name for f in fields(Motions) if f.name != "kind"]
     return Motions(*(np.concatenate([getattr(m, name) for m in parts]) for name in names), parts[-1].kind)
 
 
-def _comparison_road(plans, pairs, ready, method, spacing):
+def _comparison_route(plans, pairs, ready, method, spacing):
     """The paper's comparison morphs, pair by pair, each with its fallback."""
     if not ready:
         return
@@ -493,6 +516,7 @@ def _comparison_road(plans, pairs, ready, method, spacing):
         morph, notes = comparison_morph(P, Q, loop, method, resolve_spacing(P, Q, loop, spacing))
         plans.notes[c] += notes
         plans.add_morph(c, morph, loop, (Ps.length[k], Qs.length[k]))
+    plans.set_route(ready, Route.COMPARISON)
 
 
 def _witnessed(drawing, pairs, ready):
@@ -533,20 +557,21 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     if method not in BALL_METHODS:
         for c in dots:
             plans.add_morph(c, point_motion(pairs[c].xy_a, pairs[c].u_a, pairs[c].xy_b, pairs[c].u_b), False)
-        _comparison_road(plans, pairs, ready, method, spacing)
+        plans.set_route(dots, Route.DOT)
+        _comparison_route(plans, pairs, ready, method, spacing)
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
     drawing = _witnessed(drawing, pairs, ready)
-    dot_road(plans, pairs, dots, carrier, drawing)
-    # Pieces of hinted pairs share their pair's carrier: only the ball road takes them.
+    dot_route(plans, pairs, dots, carrier, drawing)
+    # Pieces of hinted pairs share their pair's carrier: only the ball route takes them.
     pieces = [c for c in ready if pairs[c].motion is not None]
     ready = [c for c in ready if pairs[c].motion is None]
-    for road in (own_points_road, polyline_road):
-        ready = guarded(road, plans, pairs, ready, carrier, drawing)
+    for route in (own_points_route, polyline_route):
+        ready = guarded(route, plans, pairs, ready, carrier, drawing)
     ready = sorted(ready + pieces)
     if ready:
-        motions = _isolated_ball_road(plans, pairs, ready, kind, carrier, spacing, drawing)
+        motions = _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing)
         plans.motions.put(np.asarray(ready), motions)
     return plans.finish(kind)
 

@@ -1,4 +1,4 @@
-"""The roads that keep the keys' own points (before the ball road): pairs whose points match one
+"""The routes that keep the keys' own points (before the ball route): pairs whose points match one
 for one under a similarity (:mod:`.exact_fit`) and polylines with as many corners
 (:mod:`.polylines`), each on its carrier, each guarded so that a failure sends its pairs on; and
 dots, moved straight or riding on the drawing's turn."""
@@ -11,29 +11,30 @@ from ...geometry.ragged import Ragged
 from ...geometry.similarity import from_complex
 from ...morphs.base import PathMorph
 from ...morphs.paths import LinearPaths
+from ..strokes import Route
 from .carrier_choice import carrier_motions, note_shape_changes
 from .exact_fit import exact_fit, may_be_exact
 from .fallbacks import point_motion
 from .polylines import corners_of, polyline_morph
 from .registration import Fits, motions, riding_fits, similarity_matrices
 
-__all__ = ["guarded", "dot_road", "own_points_road", "polyline_road"]
+__all__ = ["guarded", "dot_route", "own_points_route", "polyline_route"]
 
 
-def guarded(road, plans, pairs, ready, carrier, drawing):
-    """A road for the pairs it takes; should it fail (a bug), it takes none of them and every
-    ready pair goes on to the ball road, which has its own pair-by-pair isolation."""
+def guarded(route, plans, pairs, ready, carrier, drawing):
+    """A route for the pairs it takes; should it fail (a bug), it takes none of them and every
+    ready pair goes on to the ball route, which has its own pair-by-pair isolation."""
     kept = {c: len(plans.notes[c]) for c in ready}
     motions_before = plans.motions.take(np.arange(len(pairs)))
     try:
-        return road(plans, pairs, ready, carrier, drawing)
-    except Exception:  # the ball road plans them instead, and reports anything it cannot do
+        return route(plans, pairs, ready, carrier, drawing)
+    except Exception:  # the ball route plans them instead, and reports anything it cannot do
         plans.drop(set(ready), kept)
         plans.motions = motions_before
         return ready
 
 
-def polyline_road(plans, pairs, ready, carrier, drawing):
+def polyline_route(plans, pairs, ready, carrier, drawing):
     """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
     straight, on the carrier. Returns the other ready pairs."""
     found, rest = [], []
@@ -60,10 +61,11 @@ def polyline_road(plans, pairs, ready, carrier, drawing):
             return pts @ motion.A[k].T + motion.b[k] if motion.moving[k] else pts
 
         plans.add_morph(c, polyline_morph(pair.P, ca, pair.Q, cb, pair.closed, register_a), pair.closed, pair.lengths)
+    plans.set_route([c for c, _, _ in found], Route.POLYLINE)
     return rest
 
 
-def own_points_road(plans, pairs, ready, carrier, drawing):
+def own_points_route(plans, pairs, ready, carrier, drawing):
     """Pairs whose points match one for one under a similarity (see :mod:`.exact_fit`): the key's
     own points, moved by the carrier. Returns the other ready pairs."""
     rest, found = [], []
@@ -97,10 +99,11 @@ def own_points_road(plans, pairs, ready, carrier, drawing):
         order = (np.arange(len(pair.xy_b)) + fit.shift) % len(pair.xy_b)
         morph = PathMorph("own points", pair.closed, LinearPaths(moved, pair.xy_b[order]), pair.u_a, pair.u_b[order])
         plans.add_morph(c, morph, pair.closed, pair.lengths)
+    plans.set_route([c for c, _ in found], Route.OWN_POINTS)
     return rest
 
 
-def dot_road(plans, pairs, dots, carrier, drawing):
+def dot_route(plans, pairs, dots, carrier, drawing):
     """Pairs with no shape to fit (strokes of fewer than two distinct points: dots): straight
     point motion, on the drawing's turn when it turns (see :func:`.registration.riding_fits`;
     pivoting where the drawing does, a dot on a turning wheel rides its arc)."""
@@ -122,3 +125,4 @@ def dot_road(plans, pairs, dots, carrier, drawing):
         pair = pairs[c]
         start = pair.xy_a @ motion.A[k].T + motion.b[k] if moving[k] else pair.xy_a
         plans.add_morph(c, point_motion(start, pair.u_a, pair.xy_b, pair.u_b), False)
+    plans.set_route(dots, Route.DOT)

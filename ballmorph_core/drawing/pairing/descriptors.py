@@ -105,10 +105,10 @@ class KeyDescriptors:
         given = strokes if isinstance(strokes, Ragged) else None
         flat = (given.pts, given.n, given.offsets) if given is not None else _flattened(strokes)
         if flat is None:
-            return False  # the per-stroke road names the malformed stroke
+            return False  # the per-stroke route names the malformed stroke
         pts, sizes, offsets = flat
         if not np.all(np.isfinite(pts)):
-            return False  # the per-stroke road names the bad stroke
+            return False  # the per-stroke route names the bad stroke
         self.valid = sizes > 0
         if not self.valid.any():
             self.diagonal = 0.0

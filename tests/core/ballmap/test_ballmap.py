@@ -660,7 +660,7 @@ def test_pruned_search_finds_what_the_whole_window_finds(seed):
 
 @pytest.mark.parametrize("seed", range(4))
 def test_contacts_and_refinements_of_strokes_are_those_of_a_batch_with_a_loop(seed):
-    # Open strokes alone take the road without laps; with a loop in the batch (after them:
+    # Open strokes alone take the route without laps; with a loop in the batch (after them:
     # the strokes' arrays are the same) the contacts and refinements of the strokes' samples
     # are bit for bit the same.
     from ballmorph_core.ballmap import lacing

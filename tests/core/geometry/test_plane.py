@@ -69,7 +69,7 @@ def test_lifting_sums_origin_u_v_and_normal_terms_in_that_order():
 
 
 def _svd_plane(points, monkeypatch, **options):
-    """fit_plane by its SVD road alone."""
+    """fit_plane by its SVD route alone."""
     with monkeypatch.context() as m:
         m.setattr(plane, "_on_axis_plane", lambda pts, origin: None)
         return fit_plane(points, **options)
@@ -111,4 +111,4 @@ def test_the_farthest_point_is_the_projections_farthest_bit_for_bit(tilt):
     pts[7, 1] = -0.0
     p = fit_plane(pts)
     assert p.farthest(pts) == float(np.abs(p.to_2d(pts)[1]).max())
-    assert (np.flatnonzero(p.normal).size == 1) == (tilt < 1e-3)  # both roads taken
+    assert (np.flatnonzero(p.normal).size == 1) == (tilt < 1e-3)  # both routes taken

@@ -1,4 +1,4 @@
-"""The layout's evaluation (``drawing/layout.py``): every road evaluated into work columns kept
+"""The layout's evaluation (``drawing/layout.py``): every route evaluated into work columns kept
 from frame to frame, gathered into frame order and carried. Whatever was evaluated before, and
 however the times are chunked, each frame is the same, and no frame returned shares memory
 with the buffers the next evaluation overwrites."""
@@ -16,7 +16,7 @@ _CASES = {name: (a, b, options) for name, a, b, options in cases()}
 @pytest.mark.parametrize(
     "name",
     [
-        "head-turn",  # ball rows with end gaps, joined roads, gathered, on carriers
+        "head-turn",  # ball rows with end gaps, joined routes, gathered, on carriers
         "mixed-index-hold",  # joined straight paths with end gaps
         "mixed-curvature-interpolation",  # morphs that are not joined
         "squash-fall",  # frame order as evaluated: nothing gathered
@@ -45,7 +45,7 @@ def _fresh(key_a, key_b, options, t):
 
 
 def test_the_cases_above_take_every_branch():
-    """The roads the test above relies on are there (a change of the pipeline could drop one)."""
+    """The routes the test above relies on are there (a change of the pipeline could drop one)."""
     layouts = {
         name: bm.plan_inbetween(*_CASES[name][:2], **_CASES[name][2]).pairs.layout
         for name in ("head-turn", "mixed-index-hold", "mixed-curvature-interpolation", "squash-fall")

@@ -1,4 +1,4 @@
-"""Crossing pairs (drawing/splitting.py): the near road's one question."""
+"""Crossing pairs (drawing/splitting.py): the near route's one question."""
 
 import numpy as np
 from shapes import circle

@@ -1,4 +1,4 @@
-"""Pairs that change shape where they lie (issue 38): the tangent-aligned road, chosen per pair."""
+"""Pairs that change shape where they lie (issue 38): the tangent-aligned route, chosen per pair."""
 
 import numpy as np
 import pytest

@@ -70,16 +70,16 @@ def test_a_copy_far_from_the_origin_is_exact_to_float32_rounding():
     assert exact_fit(far, rounded, True) is not None
 
 
-def test_a_bug_in_the_own_points_road_sends_its_pairs_down_the_ball_road(monkeypatch):
-    roads = importlib.import_module("ballmorph_core.drawing.pair_morphs.point_routes")
+def test_a_bug_in_the_own_points_route_sends_its_pairs_down_the_ball_route(monkeypatch):
+    routes = importlib.import_module("ballmorph_core.drawing.pair_morphs.point_routes")
 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("simulated core bug")
 
-    monkeypatch.setattr(roads, "exact_fit", broken)
+    monkeypatch.setattr(routes, "exact_fit", broken)
     key = bm.StrokeSet.from_strokes([HOUSE], cyclic=[True])
     result = bm.inbetween(key, key, [0.5])
-    assert result.pairs[0].method == "polyline"  # the next road took it
+    assert result.pairs[0].method == "polyline"  # the next route took it
     np.testing.assert_allclose(result.frames[0].positions, key.positions, atol=1e-12)
 
 

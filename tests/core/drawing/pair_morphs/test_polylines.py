@@ -76,7 +76,7 @@ def test_polyline_loops_pair_corners_whatever_corner_they_start_at():
     np.testing.assert_allclose(np.sort(end, axis=0), np.sort(HOUSE_B, axis=0), atol=1e-12)
 
 
-def test_polylines_with_other_corner_counts_take_the_ball_road():
+def test_polylines_with_other_corner_counts_take_the_ball_route():
     square = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)])
     result = bm.inbetween(
         bm.StrokeSet.from_strokes([HOUSE], [True]), bm.StrokeSet.from_strokes([square], [True]), [0.5]
