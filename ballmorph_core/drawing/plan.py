@@ -24,7 +24,7 @@ from .pair_morphs.pipeline import PairCurves, plan_pairs
 from .pairing.matching import match_strokes, pair_direction
 from .pairing.redrawn import Joined, cut_frame, join_pieces, joined_stroke
 from .reports.pair_reports import pair_report, piece_report, unmatched_report
-from .strokes import InbetweenResult, Message, PairMorphs, Route, StrokeSet
+from .strokes import InbetweenResult, Message, PairMorphs, Route, StrokeSet, as_written
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
 
@@ -181,7 +181,7 @@ class InbetweenPlan:
             xy, u, order, flips, spans = joined_stroke(key, first, pieces)
             out[k] = Joined(k, side[local], order, spans, flips), (xy, u)
             self.held = [h for h in self.held if not (h.from_a == from_a and h.index in pieces)]
-            names = ", ".join(str(o) for o in order)
+            names = ", ".join(str(as_written(o)) for o in order)
             self.messages.append(
                 Message(
                     "INFO",
@@ -239,7 +239,9 @@ class InbetweenPlan:
         live_a, live_b = np.flatnonzero(key_a.sizes > 0), np.flatnonzero(key_b.sizes > 0)
         for name, key in (("first", key_a), ("second", key_b)):
             for i in np.flatnonzero(key.sizes == 0):
-                self.messages.append(Message("INFO", f"stroke {i} of the {name} key has no points: left out"))
+                self.messages.append(
+                    Message("INFO", f"stroke {as_written(i)} of the {name} key has no points: left out")
+                )
         forced = sorted({(h.stroke_a, h.stroke_b) for h in hints})
         live_a = np.array([i for i in live_a if i not in {a for a, _ in forced}], dtype=np.int64)
         live_b = np.array([j for j in live_b if j not in {b for _, b in forced}], dtype=np.int64)
@@ -260,7 +262,11 @@ class InbetweenPlan:
         self.travelled = {(int(live_a[i]), int(live_b[j])) for i, j in pairing.travelled}
         for i, j in sorted(self.travelled):
             self.messages.append(
-                Message("INFO", f"stroke {i} -> {j}: paired by the drawing's motion (the shapes agree, far apart)")
+                Message(
+                    "INFO",
+                    f"stroke {as_written(i)} -> {as_written(j)}: paired by the drawing's motion "
+                    "(the shapes agree, far apart)",
+                )
             )
         for i, j in forced:
             flip = pair_direction(ka.rg.curve(i), kb.rg.curve(j), ka.rg.closed[i], kb.rg.closed[j], drawing.turn)
@@ -541,15 +547,15 @@ def _check_key(name, key):
     ):
         if values.size and not np.all(np.isfinite(values)):
             points = np.flatnonzero(~np.all(np.isfinite(values.reshape(len(values), -1)), axis=1))
-            bad = np.unique(np.searchsorted(key.offsets, points, "right") - 1).tolist()
+            bad = [as_written(k) for k in np.unique(np.searchsorted(key.offsets, points, "right") - 1)[:10]]
             what = "coordinates" if attr == "positions" else attr
-            raise InvalidCurveError(f"{name}: stroke(s) {bad[:10]} have NaN or infinite {what}: redraw or delete them")
+            raise InvalidCurveError(f"{name}: stroke(s) {bad} have NaN or infinite {what}: redraw or delete them")
     huge = np.flatnonzero(np.abs(key.positions).max(axis=1, initial=0.0) > MAX_COORDINATE)
     if len(huge):
-        bad = np.unique(np.searchsorted(key.offsets, huge, "right") - 1).tolist()
+        bad = [as_written(k) for k in np.unique(np.searchsorted(key.offsets, huge, "right") - 1)[:10]]
         largest = float(np.abs(key.positions).max())
         raise InvalidCurveError(
-            f"{name}: stroke(s) {bad[:10]} have coordinates up to {largest:.3g}, beyond the {MAX_COORDINATE:g} "
+            f"{name}: stroke(s) {bad} have coordinates up to {largest:.3g}, beyond the {MAX_COORDINATE:g} "
             "the geometry can square and multiply: scale the drawing down"
         )
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import InvalidCurveError
 
-__all__ = ["StrokeSet", "Message", "Route", "PairMorphs", "PairOutcome", "PairReport", "InbetweenResult"]
+__all__ = ["StrokeSet", "Message", "as_written", "Route", "PairMorphs", "PairOutcome", "PairReport", "InbetweenResult"]
 
 
 @dataclass
@@ -198,6 +198,16 @@ class Message:
 
     level: str
     text: str
+
+
+def as_written(index):
+    """A stroke's number in the messages: as an animator counts the strokes of a key, from 1
+    (the stroke at index 0 is stroke 1). Indices in the data (PairReport, Matching) stay 0-based.
+
+    >>> as_written(0)
+    1
+    """
+    return int(index) + 1
 
 
 class Route(Enum):

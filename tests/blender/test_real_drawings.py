@@ -93,7 +93,7 @@ def test_real_drawing_in_betweens_are_simple_and_reported(face, capfd, method):
     text = "".join(capfd.readouterr())
 
     assert "Warning: Ink 1\u21929: " in text
-    assert "stroke 4 of the second key has no partner: appears at the middle" in text
+    assert "stroke 5 of the second key has no partner: appears at the middle" in text
     for stroke in (HEAD, BROW):
         assert f"stroke {stroke} -> {stroke}: the second key's stroke runs the other way: flipped" in text
     assert "7 in-between(s) on frame(s) 2\u20138" in text

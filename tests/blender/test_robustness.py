@@ -143,7 +143,7 @@ def test_dots_and_zero_length_strokes_move_point_by_point(addon, capfd):
     result, said = run(capfd, matching="INDEX")
     assert result == {"FINISHED"}
     warnings = " ".join(text for level, text in said if level == "Warning")
-    assert "stroke 0 -> 0: too few distinct points" in warnings and "stroke 1 -> 1: too few distinct points" in warnings
+    assert "stroke 1 -> 1: too few distinct points" in warnings and "stroke 2 -> 2: too few distinct points" in warnings
     unchanged_frames(before, gp_data.snapshot(obj))
     middle = gp_data.read_strokes(gp_data.frame_at(layer, 3).drawing)
     np.testing.assert_allclose(middle.positions[middle.points(0)][:, [0, 2]], [[0.5, 0.0]], atol=1e-6)

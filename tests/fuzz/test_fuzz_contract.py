@@ -230,7 +230,9 @@ def _check_inbetween(keys, options, times, seed):
         if fell_back and method != FALLBACK_METHOD:
             assert p.reason, f"fallback without a reason: {p}"
             # (a lens falling back inside an otherwise morphed pair is an INFO message.)
-            assert any(f"stroke {p.stroke_a} -> {p.stroke_b}" in m.text for m in result.messages), "not reported"
+            assert any(f"stroke {p.stroke_a + 1} -> {p.stroke_b + 1}" in m.text for m in result.messages), (
+                "not reported"
+            )
 
 
 @fuzz_settings
@@ -243,6 +245,6 @@ def test_inbetween_rejects_nonfinite_positions_naming_the_stroke(keys, seed, bad
         return
     point = int(rng.integers(0, len(target.positions)))
     target.positions[point, int(rng.integers(0, 3))] = bad
-    stroke = int(np.searchsorted(target.offsets, point, side="right") - 1)
+    stroke = int(np.searchsorted(target.offsets, point, side="right"))  # as the animator counts, from 1
     with pytest.raises(bm.InvalidCurveError, match=rf"^{name}: stroke\(s\) \[{stroke}\] have NaN or infinite"):
         bm.inbetween(key_a, key_b, [0.0, 0.5, 1.0])

@@ -88,7 +88,8 @@ def all_finite(result):
 
 
 def warnings_about(result, stroke_a, stroke_b):
-    return [m for m in result.messages if m.level == "WARNING" and f"stroke {stroke_a} -> {stroke_b}" in m.text]
+    # Messages number strokes as the animator counts them, from 1.
+    return [m for m in result.messages if m.level == "WARNING" and f"stroke {stroke_a + 1} -> {stroke_b + 1}" in m.text]
 
 
 def _ball_map(P, Q, closed):
@@ -694,8 +695,8 @@ def test_strokes_crossing_too_often_fall_back_saying_so():
 def test_non_finite_positions_are_rejected_naming_key_and_stroke(value):
     good = key(arc(0.3), arc(0.5) + [0, 1])
     pos = good.positions.copy()
-    pos[70, 2] = value  # stroke 1
-    with pytest.raises(bm.InvalidCurveError, match=r"^key_b: stroke\(s\) \[1\] have NaN or infinite"):
+    pos[70, 2] = value  # the second stroke: stroke 2 as the animator counts
+    with pytest.raises(bm.InvalidCurveError, match=r"^key_b: stroke\(s\) \[2\] have NaN or infinite"):
         inbetween(key(arc(0.35), arc(0.55) + [0, 1]), replace(good, positions=pos), TIMES)
 
 
@@ -751,7 +752,7 @@ def test_empty_keys_give_empty_or_appearing_frames():
     result = inbetween(StrokeSet.empty(), key(arc(0.3)), TIMES)
     assert [len(f) for f in result.frames] == [0, 0, 1, 1, 1]
     assert [p.method for p in result.pairs] == ["appear"]
-    assert any(m.level == "WARNING" and "stroke 0 of the second key has no partner" in m.text for m in result.messages)
+    assert any(m.level == "WARNING" and "stroke 1 of the second key has no partner" in m.text for m in result.messages)
     np.testing.assert_array_equal(result.frames[-1].positions, key(arc(0.3)).positions)
 
 
@@ -759,7 +760,7 @@ def test_stroke_with_no_points_is_dropped_and_reported():
     result = inbetween(key(np.zeros((0, 2)), arc(0.3)), key(arc(0.35)), TIMES)
     for frame in result.frames:
         assert np.all(frame.sizes > 0)
-    assert any("stroke 0" in m.text and "no point" in m.text for m in result.messages)
+    assert any("stroke 1 " in m.text and "no point" in m.text for m in result.messages)
 
 
 @pytest.mark.parametrize(
@@ -786,7 +787,7 @@ def test_cyclic_stroke_with_two_points_moves_straight_with_a_warning():
     assert all_finite(result)
     assert result.pairs[0].method == "straight point motion"
     assert [m.text for m in result.messages] == [
-        "stroke 0 -> 0: too few distinct points (P: a loop needs at least 3 distinct points, got 2)"
+        "stroke 1 -> 1: too few distinct points (P: a loop needs at least 3 distinct points, got 2)"
     ]
     for t, frame in zip(TIMES, result.frames):
         np.testing.assert_allclose(xz(frame.positions)[:, 1], 0.1 * t, atol=1e-12)

@@ -228,7 +228,7 @@ def test_pipeline_on_mismatched_drawing_reports_and_keeps_strokes_simple():
     times = np.linspace(0, 1, 7)[1:-1]
     result = bm.inbetween(key_a, key_b, times)
     texts = " ".join(m.text for m in result.messages)
-    assert "stroke 4 of the second key has no partner" in texts
+    assert "stroke 5 of the second key has no partner" in texts
     assert "flipped" in texts
     for k, frame in enumerate(result.frames):
         assert len(frame) == (4 if times[k] < 0.5 else 5)

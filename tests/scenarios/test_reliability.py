@@ -137,7 +137,7 @@ def test_coordinates_beyond_what_the_geometry_can_multiply_are_refused_naming_th
     huge = bm.StrokeSet.from_strokes([np.c_[x, x * x], np.c_[x, 1 - x] * 1e140])
     keys = (huge, sane) if where == "key_a" else (sane, huge)
     before = huge.positions.copy()
-    with pytest.raises(bm.InvalidCurveError, match=rf"^{where}: stroke\(s\) \[1\] have coordinates up to 1e\+140"):
+    with pytest.raises(bm.InvalidCurveError, match=rf"^{where}: stroke\(s\) \[2\] have coordinates up to 1e\+140"):
         bm.inbetween(*keys, [0.0, 0.5, 1.0])
     assert np.array_equal(huge.positions, before), "the refused key was modified"
     assert MAX_COORDINATE < 1e140

@@ -27,7 +27,7 @@ from ...geometry.ragged import Ragged
 from ...geometry.similarity import as_complex, from_complex
 from ..frames.layout import PairFrames
 from ..pair_morphs.registration import FIT_SAMPLES, Fits, Motions, motions, similarity_matrices
-from ..strokes import Message, PairMorphs
+from ..strokes import Message, PairMorphs, as_written
 
 __all__ = [
     "HINT",
@@ -117,8 +117,8 @@ def common_hints(ha, hb, messages):
                     messages.append(
                         Message(
                             "WARNING",
-                            f"hint {h.number} pairs stroke {h.stroke_a} with stroke {h.stroke_b}, but other hints "
-                            "pair them otherwise: move it (ignored)",
+                            f"hint {h.number} pairs stroke {as_written(h.stroke_a)} with stroke "
+                            f"{as_written(h.stroke_b)}, but other hints pair them otherwise: move it (ignored)",
                         )
                     )
         hints = sorted(keep, key=lambda h: h.number)
@@ -188,7 +188,11 @@ def pair_hints(hints, pairs, ka, kb, messages):
         keep = _longest_increasing(u_b.tolist())
         for i in sorted(set(range(len(numbers))) - set(keep)):
             messages.append(
-                Message("WARNING", f"hint {numbers[i]} is out of order along strokes {sa} -> {sb}: move it (ignored)")
+                Message(
+                    "WARNING",
+                    f"hint {numbers[i]} is out of order along strokes {as_written(sa)} -> {as_written(sb)}: "
+                    "move it (ignored)",
+                )
             )
         out[k] = PairHints(u_a[keep], u_b[keep], numbers[keep])
     return out

@@ -63,6 +63,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...options import MATCHINGS, check_option
+from ..strokes import as_written
 from .certified import padded_total
 from .costs import CostTable
 from .descriptors import MATCH_SAMPLES, KeyDescriptors
@@ -238,7 +239,8 @@ def _order_or_assignment(key_a, key_b, table, total, rows, cols, motion):
     index_total = padded_total(index_costs, n_a, n_b)
     if index_costs[worst] >= MATCH_INDEX_MAX_COST:
         reason = (
-            f"drawing order does not fit: stroke {worst} -> {worst} costs {index_costs[worst]:.3g} "
+            f"drawing order does not fit: stroke {as_written(worst)} -> {as_written(worst)} "
+            f"costs {index_costs[worst]:.3g} "
             f"(limit {MATCH_INDEX_MAX_COST:g}): optimal assignment"
         )
     elif index_total > MATCH_INDEX_FACTOR * total + MATCH_ROUNDOFF * n_a:

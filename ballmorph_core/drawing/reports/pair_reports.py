@@ -2,7 +2,7 @@
 :class:`~..strokes.PairReport` (its fields: what made it) and the messages for the animator."""
 
 from ..pair_morphs.fallbacks import ALIGNED_METHOD, FALLBACK_METHOD, STRAIGHT_POINT_MOTION
-from ..strokes import Message, PairOutcome, PairReport
+from ..strokes import Message, PairOutcome, PairReport, as_written
 
 __all__ = ["pair_report", "unmatched_report", "piece_report"]
 
@@ -41,7 +41,10 @@ def pair_report(a, b, flipped, used, notes, travelled=False):
     first = used.morphs[0] if used.morphs else ""
     fell_back = first in (FALLBACK_METHOD, ALIGNED_METHOD) or first == STRAIGHT_POINT_MOTION
     messages = [
-        Message("WARNING" if fell_back and note is notes[-1] else "INFO", f"stroke {a.index} -> {b.index}: {note}")
+        Message(
+            "WARNING" if fell_back and note is notes[-1] else "INFO",
+            f"stroke {as_written(a.index)} -> {as_written(b.index)}: {note}",
+        )
         for note in notes
     ]
     return report, messages
@@ -51,7 +54,7 @@ def piece_report(piece, side, whole):
     """The report of stroke ``piece`` of key ``side`` ('a' or 'b'), a piece of the line of
     stroke ``whole`` of the other key (morphed with it)."""
     stroke_a, stroke_b = (piece, None) if side == "a" else (None, piece)
-    return PairReport(stroke_a, stroke_b, f"piece of the line of stroke {whole}", outcome=PairOutcome.PIECE)
+    return PairReport(stroke_a, stroke_b, f"piece of the line of stroke {as_written(whole)}", outcome=PairOutcome.PIECE)
 
 
 def unmatched_report(index, from_a, unmatched):
@@ -61,4 +64,4 @@ def unmatched_report(index, from_a, unmatched):
     what = UNMATCHED_WORDS[unmatched][0 if from_a else 1]
     outcome = PairOutcome.HOLD if unmatched == "hold" else (PairOutcome.DISAPPEAR if from_a else PairOutcome.APPEAR)
     report = PairReport(index if from_a else None, None if from_a else index, outcome.value, outcome=outcome)
-    return report, Message("WARNING", f"stroke {index} of the {key} key has no partner: {what}")
+    return report, Message("WARNING", f"stroke {as_written(index)} of the {key} key has no partner: {what}")

@@ -18,7 +18,7 @@ def test_a_pair_that_fell_back_warns_once_on_its_last_note():
     assert (report.stroke_a, report.stroke_b, report.used, report.outcome) == (2, 5, used, PairOutcome.MORPHED)
     assert report.method == "linear-interpolation on a similarity carrier"
     assert [m.level for m in messages] == ["INFO", "INFO", "WARNING"]
-    assert messages[0].text == "stroke 2 -> 5: the second key's stroke runs the other way: flipped"
+    assert messages[0].text == "stroke 3 -> 6: the second key's stroke runs the other way: flipped"
 
 
 def test_a_ball_morphed_pair_only_informs():
@@ -29,9 +29,9 @@ def test_a_ball_morphed_pair_only_informs():
 @pytest.mark.parametrize(
     ("from_a", "unmatched", "outcome", "words"),
     [
-        (True, "middle", PairOutcome.DISAPPEAR, "stroke 3 of the first key has no partner: disappears at the middle"),
-        (False, "fade", PairOutcome.APPEAR, "stroke 3 of the second key has no partner: fades in"),
-        (True, "hold", PairOutcome.HOLD, "stroke 3 of the first key has no partner: held"),
+        (True, "middle", PairOutcome.DISAPPEAR, "stroke 4 of the first key has no partner: disappears at the middle"),
+        (False, "fade", PairOutcome.APPEAR, "stroke 4 of the second key has no partner: fades in"),
+        (True, "hold", PairOutcome.HOLD, "stroke 4 of the first key has no partner: held"),
     ],
 )
 def test_a_stroke_without_a_partner_says_what_it_does(from_a, unmatched, outcome, words):
@@ -43,4 +43,4 @@ def test_a_stroke_without_a_partner_says_what_it_does(from_a, unmatched, outcome
 def test_a_piece_of_a_line_names_its_line():
     report = piece_report(4, "b", 1)
     assert (report.stroke_a, report.stroke_b, report.outcome) == (None, 4, PairOutcome.PIECE)
-    assert report.method == "piece of the line of stroke 1"
+    assert report.method == "piece of the line of stroke 2"
