@@ -95,7 +95,7 @@ def test_real_drawing_in_betweens_are_simple_and_reported(face, capfd, method):
     assert "Warning: Ink 1\u21929: " in text
     assert "stroke 5 of the second key has no partner: appears at the middle" in text
     for stroke in (HEAD, BROW):
-        assert f"stroke {stroke} -> {stroke}: the second key's stroke runs the other way: flipped" in text
+        assert f"stroke {stroke + 1} -> {stroke + 1}: the second key's stroke runs the other way: flipped" in text
     assert "7 in-between(s) on frame(s) 2\u20138" in text
     assert {n: gp_data.read_raw(gp_data.frame_at(layer, n).drawing) for n in (1, 9)} == keys
 

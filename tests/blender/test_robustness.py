@@ -107,7 +107,7 @@ def test_one_empty_key_makes_the_strokes_disappear_halfway(addon, capfd):
     warnings = " ".join(text for level, text in said if level == "Warning")
     assert warnings.startswith("Ink 1\u21925: ")
     for stroke in (0, 1):
-        assert f"stroke {stroke} of the first key has no partner: disappears at the middle" in warnings
+        assert f"stroke {stroke + 1} of the first key has no partner: disappears at the middle" in warnings
     unchanged_frames(before, gp_data.snapshot(obj))
     key = gp_data.read_strokes(gp_data.frame_at(layer, 1).drawing)
     held = gp_data.read_strokes(gp_data.frame_at(layer, 2).drawing)  # t = 0.25: still shown
