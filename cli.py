@@ -275,6 +275,7 @@ def _seal_stdout():
 class _StderrProgress(service.Progress):
     def __init__(self, object_name):
         self.object_name, self.total = object_name, 0
+        self.tenth = -1  # the last tenth of a long write said
 
     def begin(self, total):
         self.total = total
@@ -284,8 +285,8 @@ class _StderrProgress(service.Progress):
 
     def writing(self, done, total):
         # About ten lines over a long write (the writer calls about a hundred times).
-        if total >= 1000 and (done == total or done * 10 // total != getattr(self, "_tenth", -1)):
-            self._tenth = done * 10 // total
+        if total >= 1000 and (done == total or done * 10 // total != self.tenth):
+            self.tenth = done * 10 // total
             _say(f"{self.object_name}: writing frames {done}/{total}")
 
 

@@ -26,6 +26,7 @@ class _WindowProgress(service.Progress):
 
     def __init__(self, window_manager):
         self.window_manager = window_manager
+        self.writing_shown = False  # the indicator shows the frames' writing
 
     def begin(self, total):
         self.window_manager.progress_begin(0, max(total, 1))
@@ -38,13 +39,13 @@ class _WindowProgress(service.Progress):
 
     def writing(self, done, total):
         # The frames' writing on the same indicator, from 0 again: a long interval moves it too.
-        if done == 0 or not getattr(self, "_writing", False):
+        if done == 0 or not self.writing_shown:
             self.window_manager.progress_begin(0, max(total, 1))
-            self._writing = True
+            self.writing_shown = True
         self.window_manager.progress_update(done)
         if done >= total:
             self.window_manager.progress_end()
-            self._writing = False
+            self.writing_shown = False
 
 
 class BALLMORPH_OT_inbetween(bpy.types.Operator):
