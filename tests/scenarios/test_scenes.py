@@ -1,4 +1,4 @@
-"""Issues 11 and 12: the scenes of tools/scenes.py through the core, every figure asserted.
+"""Issues 11 and 12: the scenes of tests/fixtures/scenes.py through the core, every figure asserted.
 
 A scene today's core misses is ``xfail(strict=True)`` with the figures it misses today
 (``scenes.XFAIL_TODAY``): main stays green, and the marker must go once the core meets them.
