@@ -75,7 +75,7 @@ from .fallbacks import (
     point_motion,
     unsplittable,
 )
-from .pair_plans import PairPlans
+from .pair_plans import PairNote, PairPlans, Planned, whole_segment
 from .point_routes import dot_route, guarded, own_points_route, polyline_route
 from .registration import Motions, identity_residual, orientation_free
 
@@ -355,7 +355,8 @@ def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
     motions, R, residual, shape_change, warps = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
-    note_shape_changes(plans.notes, index, motions, shape_change)
+    for note in note_shape_changes(index, motions, shape_change):
+        plans.notes[note.pair].append(note.text)
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
     h = default_spacings(R, Q) if spacing is None else np.full(len(index), float(spacing))
@@ -504,19 +505,21 @@ def _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing=No
     return Motions(*(np.concatenate([getattr(m, name) for m in parts]) for name in names), parts[-1].kind)
 
 
-def _comparison_route(plans, pairs, ready, method, spacing):
-    """The paper's comparison morphs, pair by pair, each with its fallback."""
+def _comparison_route(pairs, ready, method, spacing):
+    """The paper's comparison morphs, pair by pair, each with its fallback (a Planned)."""
     if not ready:
-        return
+        return Planned.nothing()
     closed = np.array([pairs[c].closed for c in ready], dtype=bool)
     Ps = coarsen(Ragged.from_list([pairs[c].P for c in ready], closed), spacing)
     Qs = coarsen(Ragged.from_list([pairs[c].Q for c in ready], closed), spacing)
+    segments, notes = [], []
     for k, c in enumerate(ready):
         P, Q, loop = Ps.curve(k), Qs.curve(k), bool(closed[k])
-        morph, notes = comparison_morph(P, Q, loop, method, resolve_spacing(P, Q, loop, spacing))
-        plans.notes[c] += notes
-        plans.add_morph(c, morph, loop, (Ps.length[k], Qs.length[k]))
-    plans.set_route(ready, Route.COMPARISON)
+        morph, said = comparison_morph(P, Q, loop, method, resolve_spacing(P, Q, loop, spacing))
+        notes += [PairNote(c, text) for text in said]
+        segments.append(whole_segment(c, morph, (Ps.length[k], Qs.length[k])))
+    lengths = np.c_[Ps.length, Qs.length]
+    return Planned(np.asarray(ready), (Route.COMPARISON,) * len(ready), closed, lengths, tuple(segments), tuple(notes))
 
 
 def _witnessed(drawing, pairs, ready):
@@ -558,7 +561,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         for c in dots:
             plans.add_morph(c, point_motion(pairs[c].xy_a, pairs[c].u_a, pairs[c].xy_b, pairs[c].u_b), False)
         plans.set_route(dots, Route.DOT)
-        _comparison_route(plans, pairs, ready, method, spacing)
+        plans.gather(_comparison_route(pairs, ready, method, spacing))
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
@@ -568,7 +571,8 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     pieces = [c for c in ready if pairs[c].motion is not None]
     ready = [c for c in ready if pairs[c].motion is None]
     for route in (own_points_route, polyline_route):
-        ready = guarded(route, plans, pairs, ready, carrier, drawing)
+        planned, ready = guarded(route, pairs, ready, carrier, drawing)
+        plans.gather(planned)
     ready = sorted(ready + pieces)
     if ready:
         motions = _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing)
