@@ -56,14 +56,6 @@ class BallRows:
     q: np.ndarray
     offset: np.ndarray
 
-    def without(self, pairs):
-        """The chains of the other pairs (BallRows)."""
-        keep = ~np.isin(self.pair, list(pairs))
-        rows = np.repeat(keep, self.sizes)
-        chains = (self.pair, self.order, self.sizes, self.range_p, self.range_q, self.static)
-        per_sample = (self.u_p, self.u_q, self.p, self.m, self.q, self.offset)
-        return BallRows(*(a[keep] for a in chains), *(a[rows] for a in per_sample))
-
     @classmethod
     def empty(cls):
         """No chain at all."""

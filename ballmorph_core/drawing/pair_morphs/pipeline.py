@@ -41,7 +41,7 @@ step works on all pairs at once (a single pair is a batch of one), and nothing h
 the in-between times: :class:`PairPlans` is the plan, :meth:`PairPlans.frames` its evaluation.
 """
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -57,7 +57,7 @@ from ...geometry.polyline import (
     resolve_spacing,
 )
 from ...geometry.ragged import Ragged
-from ..frames.layout import BallRows
+from ..frames.layout import BallRows, Segment
 from ..strokes import Route
 from .carrier_choice import carrier_motions, note_shape_changes
 from .crossings import cross, cut_chains, find_events
@@ -246,18 +246,13 @@ def _on_whole(ends, pair, range_p, u_p, chain):
     return u, offset, ranges
 
 
-def _add_piece(plans, ends, index, c, morph, closed, order, ranges):
-    """A morph of chain ``order`` of (local) pair ``c`` whose pieces lie at ``ranges`` along
-    the common parts: placed on the whole curves, its samples' displacement undone."""
-    _add_pieces(plans, ends, index, [c], [morph], [closed], [order], np.asarray(ranges, dtype=np.float64)[None])
-
-
-def _add_pieces(plans, ends, index, pairs, morphs, closed, orders, ranges):
-    """:func:`_add_piece` of several morphs at once (their samples placed together).
+def _placed(ends, index, pairs, morphs, orders, ranges):
+    """The Segments of morphs of chains whose pieces lie at ``ranges`` along the common parts:
+    placed on the whole curves, their samples' displacement undone (their samples placed
+    together).
 
     Parameters
     ----------
-    plans : PairPlans
     ends : Ends
     index : ndarray of int, shape (C,)
         The batch's pairs in the drawing.
@@ -265,36 +260,48 @@ def _add_pieces(plans, ends, index, pairs, morphs, closed, orders, ranges):
         The (local) pair of each morph.
     morphs : list of Morph
         G morphs; their ``u_p`` are replaced by fractions on the whole curves.
-    closed : array_like of bool, shape (G,)
     orders : array_like of int, shape (G,)
         Each morph's chain order within its pair.
-    ranges : ndarray, shape (G, 2, 2)
+    ranges : array_like, shape (G, 2, 2)
         Each morph's arc-length ranges on the common parts of P and of Q.
+
+    Returns
+    -------
+    list of Segment
     """
     pairs = np.asarray(pairs, dtype=np.int64)
+    ranges = np.asarray(ranges, dtype=np.float64).reshape(-1, 2, 2)
     counts = np.array([len(m.u_p) for m in morphs], dtype=np.int64)
     u_p = np.concatenate([m.u_p for m in morphs]) if morphs else np.zeros(0)
     u_p, offset, range_p = _on_whole(ends, pairs, ranges[:, 0], u_p, np.repeat(np.arange(len(pairs)), counts))
     range_q = ends.on_q(pairs[:, None], ranges[:, 1])
     stops = np.cumsum(counts)
+    segments = []
     for g, morph in enumerate(morphs):
         lo, hi = stops[g] - counts[g], stops[g]
         morph.u_p = u_p[lo:hi]
         piece = (tuple(range_p[g]) if hi > lo else tuple(ranges[g, 0]), tuple(range_q[g]))
-        c = int(index[pairs[g]])
-        plans.add_morph(c, morph, bool(closed[g]), order=int(orders[g]), ranges=piece, offset=offset[lo:hi])
+        segments.append(Segment(int(index[pairs[g]]), int(orders[g]), *piece, morph=morph, offset=offset[lo:hi]))
+    return segments
 
 
-def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
-    """Step 7 for chains that are not b-compatible: composite, then aligned interpolation (the notes say which).
+def _fall_back(chains, maps, events, index, kind, spacing, ends):
+    """Step 10 for chains that are not b-compatible: composite, then aligned interpolation (the
+    notes say which).
 
-    Returns the chains whose ball-maps hold, shape (H,) of bool.
+    Returns
+    -------
+    good : ndarray of bool, shape (H,)
+        The chains whose ball-maps hold.
+    segments : list of Segment
+        The fallbacks of the others.
+    notes : list of PairNote
     """
     counts = np.bincount(chains.pair, minlength=len(index))
     good = np.array([r is not None and not r.violations for r in maps.reports], dtype=bool)
     failing = np.flatnonzero(~good & ~chains.static)
     if not len(failing):
-        return good
+        return good, [], []
     orders = failing - np.searchsorted(chains.pair, chains.pair[failing])
     wanted = []
     for k, order in zip(failing, orders):
@@ -303,12 +310,12 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
         wanted.append(FailingChain(setup.P, setup.Q, setup.closed, spacing[c], where, maps.reports[k].describe()))
     # Every failing chain's composite ball-morph at once: one at a time, each paid a dozen
     # small ball-maps' fixed costs.
+    segments, notes = [], []
     for k, order, (morph, note) in zip(failing, orders, chain_fallbacks(wanted, kind)):
         c = chains.pair[k]
-        plans.notes[index[c]].append(note)
-        closed = chains.setups[k].closed
-        _add_piece(plans, ends, index, c, morph, closed, order, (chains.range_p[k], chains.range_q[k]))
-    return good
+        notes.append(PairNote(int(index[c]), note))
+        segments += _placed(ends, index, [c], [morph], [order], [(chains.range_p[k], chains.range_q[k])])
+    return good, segments, notes
 
 
 def register(P, Q, carrier, scale, drawing=None, given=None):
@@ -346,8 +353,8 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     return motion, R, identity_residual(R, Q), kept, warps
 
 
-def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
-    """Steps 2-7 for the pairs ``index`` of ``pairs`` (validated); returns their Motions."""
+def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
+    """Steps 4-10 for the pairs ``index`` of ``pairs`` (validated): what they planned (Planned)."""
     closed = np.array([pairs[c].closed for c in index], dtype=bool)
     # Curves drawn far more densely than they will be sampled are resampled first, each at its
     # own default spacing (the keys may differ in size a lot).
@@ -355,8 +362,7 @@ def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
     motions, R, residual, shape_change, warps = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
-    for note in note_shape_changes(index, motions, shape_change):
-        plans.notes[note.pair].append(note.text)
+    notes = list(note_shape_changes(index, motions, shape_change))
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
     h = default_spacings(R, Q) if spacing is None else np.full(len(index), float(spacing))
@@ -382,66 +388,70 @@ def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
         deforming
         | similar_in_place(P, Q, (routes.route == Route.WHOLE) & ~motions.moving & closed & (carrier != "none"))
     ] = Route.TANGENT
-    plans.set_routes(index, routes.route)
-    plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
-    whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
-    _no_ball_routes(plans, ends, index, routes, (Rc, Qc, closed), h, whole_ranges)
-    _tangent_route(
-        plans, ends, index, np.flatnonzero(routes.route == Route.TANGENT), (Rc, Qc, closed, warps), whole_ranges
-    )
-    near = np.flatnonzero(routes.route == Route.NEAR)
-    if len(near):
-        morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])
-        _add_pieces(plans, ends, index, near, morphs, closed[near], np.zeros(len(near)), whole_ranges[near])
+    segments, direct_notes = _direct_routes(ends, index, routes, (Rc, Qc, closed, warps), h)
     lensed = routes.route == Route.LENSES
     whole = np.flatnonzero((routes.route == Route.WHOLE) | (routes.route == Route.CARRIER))
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
-    plans.joined[index] = closed & lensed
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
-    good = _fall_back(plans, chains, maps, events, index, kind, h, ends)
-    plans.ball.append(_ball_rows(chains, maps, index, good, ends))
-    _add_overhangs(plans, index, R, Q, ends, h)
-    pieces = np.bincount(chains.pair, minlength=len(index))
-    for c in np.flatnonzero(lensed & (pieces > 1)):
-        plans.notes[index[c]].append(f"split at {pieces[c]} crossing/overlap pieces")
-    return motions
+    good, fallen, fallback_notes = _fall_back(chains, maps, events, index, kind, h, ends)
+    ball = _ball_rows(chains, maps, index, good, ends)
+    segments += fallen + _overhangs(index, R, Q, ends, h)
+    cut = np.bincount(chains.pair, minlength=len(index))
+    notes += direct_notes + fallback_notes
+    notes += [
+        PairNote(int(index[c]), f"split at {cut[c]} crossing/overlap pieces")
+        for c in np.flatnonzero(lensed & (cut > 1))
+    ]
+    lengths = np.c_[R.length, Q.length]
+    return Planned(
+        index, tuple(routes.route), closed, lengths, tuple(segments), tuple(notes), motions, closed & lensed, ball
+    )
 
 
-def _no_ball_routes(plans, ends, index, routes, curves, h, ranges):
-    """The pairs of ``routes`` (_Routes) no ball-morph can follow: LINEAR, ALIGNED, each with
-    the note that says why; ``curves`` are the batch's ``(R, Q, closed)``."""
-    R, Q, closed = curves
+def _direct_routes(ends, index, routes, curves, h):
+    """The segments and notes of the pairs of ``routes`` (_Routes) whose morphs take the whole
+    common parts directly, no ball-map of theirs asked: LINEAR and ALIGNED (each with the note
+    that says why), TANGENT and NEAR. ``curves`` are the batch's common parts R and Q (Ragged),
+    its loops' flags and the warps already made (pair -> TangentWarp).
+
+    Returns
+    -------
+    segments : list of Segment
+    notes : list of PairNote
+    """
+    R, Q, closed, warps = curves
+    ranges = np.stack([np.c_[np.zeros(len(index)), R.length], np.c_[np.zeros(len(index)), Q.length]], 1)
+    segments, notes = [], []
     for c in np.flatnonzero(routes.route == Route.LINEAR):
         morph, note = linear_fallback(R.curve(c), Q.curve(c), bool(closed[c]), h[c], routes.reason[c])
-        plans.notes[index[c]].append(note)
-        _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, ranges[c])
+        notes.append(PairNote(int(index[c]), note))
+        segments += _placed(ends, index, [c], [morph], [0], ranges[c])
     aligned = np.flatnonzero(routes.route == Route.ALIGNED)
     if len(aligned):
         pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in aligned]
-        morphs, notes = aligned_fallbacks(pairs, h[aligned], [routes.reason[c] for c in aligned])
-        for c, note in zip(aligned, notes):
-            plans.notes[index[c]].append(note)
-        _add_pieces(plans, ends, index, aligned, morphs, closed[aligned], np.zeros(len(aligned)), ranges[aligned])
+        morphs, said = aligned_fallbacks(pairs, h[aligned], [routes.reason[c] for c in aligned])
+        notes += [PairNote(int(index[c]), note) for c, note in zip(aligned, said)]
+        segments += _placed(ends, index, aligned, morphs, np.zeros(len(aligned)), ranges[aligned])
+    tangent = np.flatnonzero(routes.route == Route.TANGENT)
+    if len(tangent):
+        # Changing shape where they lie: tangent-aligned, straight paths (:mod:`.deforming`),
+        # warped together (a squash's warps made by :func:`register`).
+        pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in tangent]
+        morphs = tangent_morphs(pairs, [warps.get(int(c)) for c in tangent])
+        notes += [PairNote(int(index[c]), DEFORMING_NOTE) for c in tangent]
+        segments += _placed(ends, index, tangent, morphs, np.zeros(len(tangent)), ranges[tangent])
+    near = np.flatnonzero(routes.route == Route.NEAR)
+    if len(near):
+        morphs = arc_length_morphs(R.take(near), Q.take(near), h[near])
+        segments += _placed(ends, index, near, morphs, np.zeros(len(near)), ranges[near])
+    return segments, notes
 
 
-def _tangent_route(plans, ends, index, rows, curves, ranges):
-    """The pairs ``rows`` that change shape where they lie: tangent-aligned, straight paths
-    (:mod:`.deforming`), warped together. ``curves``: the common parts R and Q (Ragged), the
-    loops' flags and the warps already made (pair -> TangentWarp: a squash's, see
-    :func:`register`)."""
-    R, Q, closed, known = curves
-    if not len(rows):
-        return
-    pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in rows]
-    morphs = tangent_morphs(pairs, [known.get(int(c)) for c in rows])
-    for c in rows:
-        plans.notes[index[c]].append(DEFORMING_NOTE)
-    _add_pieces(plans, ends, index, rows, morphs, closed[rows], np.zeros(len(rows)), ranges[rows])
-
-
-def _add_overhangs(plans, index, R, Q, ends, spacing):
+def _overhangs(index, R, Q, ends, spacing):
     """The parts of open strokes beyond their common part (see :mod:`.ends`): first and last
-    chains of their pairs, sliding into the common part's ends or growing out of them."""
+    chains of their pairs, sliding into the common part's ends or growing out of them; their
+    Segments (list)."""
+    segments = []
     for c in range(len(index)):
         for which, order in ((0, -1), (1, np.iinfo(np.int32).max)):
             start_or_end = (0.0, R.length[c]), (0.0, Q.length[c])
@@ -456,7 +466,8 @@ def _add_overhangs(plans, index, R, Q, ends, spacing):
                 morph = overhang_morph(piece, s0 - at, s1 - at, attach - at, gap, grow, spacing[c])
                 other = ends.keep_q[c, which] if not grow else ends.keep_p[c, which]
                 ranges = ((s0, s1), (other, other)) if not grow else ((other, other), (s0, s1))
-                plans.add_morph(int(index[c]), morph, False, order=int(order), ranges=ranges)
+                segments.append(Segment(int(index[c]), int(order), *ranges, morph=morph))
+    return segments
 
 
 def _piece(curves, c, s0, s1):
@@ -476,33 +487,34 @@ def _piece(curves, c, s0, s1):
     return curves.curve(c)[first : last + 1].copy(), float(s[first])
 
 
-def _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing=None):
+def _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing=None):
     """The ball route for every ready pair at once; should it fail (a bug), pair by pair, so one
-    pair never stops the others: a failing pair takes linear interpolation and says why."""
-    index = np.asarray(ready)
-    kept = {c: len(plans.notes[c]) for c in ready}
+    pair never stops the others: a failing pair takes linear interpolation and says why.
+
+    Returns
+    -------
+    list of Planned
+        What the route planned: one for the batch, or one per pair.
+    """
     try:
-        return _ball_route(plans, pairs, index, kind, carrier, spacing, drawing)
+        return [_ball_route(pairs, np.asarray(ready), kind, carrier, spacing, drawing)]
     except Exception as exc:  # reported below, pair by pair
         batch_error = f"{type(exc).__name__}: {exc}"
-    plans.drop(set(ready), kept)
     parts = []
     for c in ready:
         try:
-            parts.append(_ball_route(plans, pairs, np.array([c]), kind, carrier, spacing, drawing))
+            parts.append(_ball_route(pairs, np.array([c]), kind, carrier, spacing, drawing))
         except Exception as exc:
-            plans.drop({c}, kept)
             pair = pairs[c]
             reason = f"the {kind}-ball morph failed ({type(exc).__name__}: {exc}; with the others: {batch_error})"
             morph, note = linear_fallback(
                 pair.P, pair.Q, pair.closed, resolve_spacing(pair.P, pair.Q, pair.closed, None), reason
             )
-            plans.notes[c].append(note)
-            plans.add_morph(c, morph, pair.closed, pair.lengths)
-            plans.set_route([c], Route.LINEAR)
-            parts.append(Motions.identity(1))
-    names = [f.name for f in fields(Motions) if f.name != "kind"]
-    return Motions(*(np.concatenate([getattr(m, name) for m in parts]) for name in names), parts[-1].kind)
+            segments, lengths = (whole_segment(c, morph, pair.lengths),), np.array([pair.lengths], dtype=np.float64)
+            closed = np.array([pair.closed])
+            notes = (PairNote(c, note),)
+            parts.append(Planned(np.array([c]), (Route.LINEAR,), closed, lengths, segments, notes, Motions.identity(1)))
+    return parts
 
 
 def _comparison_route(pairs, ready, method, spacing):
@@ -574,9 +586,8 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         planned, ready = guarded(route, pairs, ready, carrier, drawing)
         plans.gather(planned)
     ready = sorted(ready + pieces)
-    if ready:
-        motions = _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing)
-        plans.motions.put(np.asarray(ready), motions)
+    for planned in _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing) if ready else ():
+        plans.gather(planned)
     return plans.finish(kind)
 
 
