@@ -314,14 +314,14 @@ def test_a_pair_alone_is_morphed_as_in_its_drawing(method, carrier):
 
 
 def test_ball_mapping_in_batches_changes_nothing(monkeypatch):
-    """A huge drawing's lenses are ball-mapped in batches (pipeline.BALLMAP_BATCH_POINTS):
+    """A huge drawing's lenses are ball-mapped in batches (chain_maps.BALLMAP_BATCH_POINTS):
     cutting the same drawing into one batch per pair gives the same in-betweens."""
-    pipeline = importlib.import_module("ballmorph_core.drawing.pair_morphs.pipeline")
+    chain_maps = importlib.import_module("ballmorph_core.drawing.pair_morphs.chain_maps")
 
     key_a, key_b = _drawing_4_and_5()
     times = np.linspace(0, 1, 5)
     one = bm.inbetween(key_a, key_b, times)
-    monkeypatch.setattr(pipeline, "BALLMAP_BATCH_POINTS", 10)  # every pair a batch of its own
+    monkeypatch.setattr(chain_maps, "BALLMAP_BATCH_POINTS", 10)  # every pair a batch of its own
     many = bm.inbetween(key_a, key_b, times)
     assert [p.method for p in many.pairs] == [p.method for p in one.pairs]
     for a, b in zip(one.frames, many.frames):

@@ -143,7 +143,7 @@ class PairPlans:
         self.set_routes(pairs, planned.routes)
 
     def finish(self, kind="circular"):
-        """Name each pair's morphs and lay the segments out (step 8)."""
+        """Name each pair's morphs and lay the segments out (step 11)."""
         ball = _joined(self.ball)
         methods = [set() for _ in self.used]
         for seg in self.segments:

@@ -29,16 +29,19 @@ Ball-morph methods::
    itself), else linear interpolation (LINEAR: loops side by side, strokes that do not share
    their endpoints without a carrier); the report says why.
 8. *cut chains* (:mod:`.crossings`): the lenses, overlaps and whole pairs the ball-maps run on.
-9. *map chains*: the ball-maps of every chain of every pair, in batches of about
-   ``BALLMAP_BATCH_POINTS`` input points.
+9. *map chains* (:mod:`.chain_maps`): the ball-maps of every chain of every pair, in batches
+   of about ``BALLMAP_BATCH_POINTS`` input points.
 10. *fall back* (:mod:`.fallbacks`): a chain that is not b-compatible gets the composite
     ball-morph, then aligned interpolation.
 11. *lay out* (:mod:`..frames.layout`, :class:`.pair_plans.PairPlans`): every chain's samples
     in order, evaluated at any times; each pair's PairMorphs (morphs, carrier, route).
 
-The paper's comparison morphs take *prepare*, then their own morph with its fallback. Every
-step works on all pairs at once (a single pair is a batch of one), and nothing here depends on
-the in-between times: :class:`PairPlans` is the plan, :meth:`PairPlans.frames` its evaluation.
+Each step returns what it planned for the pairs it took (:class:`.pair_plans.Planned`: their
+routes, segments, notes, carriers) and :func:`plan_pairs` gathers it into the plans; no step
+writes into another's results. The paper's comparison morphs take *prepare*, then their own
+morph with its fallback. Every step works on all pairs at once (a single pair is a batch of
+one), and nothing here depends on the in-between times: :class:`PairPlans` is the plan,
+:meth:`PairPlans.frames` its evaluation.
 """
 
 from dataclasses import dataclass
@@ -46,8 +49,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ... import tolerances as tol
-from ...ballmap.correspondence import map_batch
-from ...ballmap.onemap import OneWayMap
 from ...geometry.intersections import simple_curves
 from ...geometry.polyline import (
     coarsen,
@@ -57,9 +58,10 @@ from ...geometry.polyline import (
     resolve_spacing,
 )
 from ...geometry.ragged import Ragged
-from ..frames.layout import BallRows, Segment
+from ..frames.layout import Segment
 from ..strokes import Route
 from .carrier_choice import carrier_motions, note_shape_changes
+from .chain_maps import ball_rows, map_chains, placed
 from .crossings import cross, cut_chains, find_events
 from .curves import PairCurves, prepare_pairs
 from .deforming import DEFORMING_NOTE, SQUASHED, deforms, similar_in_place, squashes_in_place, tangent_morphs
@@ -81,11 +83,6 @@ from .registration import Motions, identity_residual, orientation_free
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 
-#: The ball-maps of a drawing run in batches of about this many input points (whole pairs: each
-#: pair's chains share one tolerance): one batch for a typical drawing, several for a huge one,
-#: which bounds the ball-map's temporaries.
-BALLMAP_BATCH_POINTS = 60_000
-
 #: Registered curves within this fraction of their size of each other (RMS) are the same stroke
 #: redrawn: their points are matched by arc length and the carrier does the motion. A ball-map
 #: of two curves this close would only follow the redrawing's jitter, cut at its many crossings.
@@ -103,7 +100,7 @@ class _Routes:
 
 
 def choose_routes(R, Q, events, coincident, near, carrier, scale):
-    """Step 4: the route of every pair (see the module docstring); ``near`` marks the pairs
+    """Step 7: the route of every pair (see the module docstring); ``near`` marks the pairs
     within ``NEAR`` of each other that cross or overlap (the near route)."""
     n, closed = len(R), R.closed
     kind = np.where(closed & (events.count == 0), Route.WHOLE, Route.LENSES).astype(object)
@@ -137,154 +134,6 @@ def choose_routes(R, Q, events, coincident, near, carrier, scale):
     return _Routes(kind, reason)
 
 
-@dataclass
-class _ChainMaps:
-    """The ball-maps of every chain that was mapped (step 6), as arrays.
-
-    Attributes
-    ----------
-    samples : OneWayMap
-        Their samples, ``chain`` the chain's index in the Chains.
-    lengths : ndarray, shape (H, 2)
-        Length of each chain's dense P and Q (0 where not mapped).
-    reports : list of CompatibilityReport or None
-    """
-
-    samples: OneWayMap
-    lengths: np.ndarray
-    reports: list
-
-
-def map_chains(chains, spacing, eps):
-    """Step 6: the ball-maps of every chain but the static overlaps, in batches of whole pairs."""
-    mapped = np.flatnonzero(~chains.static)
-    sizes = [len(chains.setups[k].P) + len(chains.setups[k].Q) for k in mapped]
-    starts = np.cumsum([0] + sizes)[:-1] // BALLMAP_BATCH_POINTS
-    pair = chains.pair[mapped]
-    first_of_pair = np.r_[True, pair[1:] != pair[:-1]]
-    batch_of = np.maximum.accumulate(np.where(first_of_pair, starts, 0)) if len(mapped) else starts
-    parts, lengths, reports = [], np.zeros((len(chains), 2)), [None] * len(chains)
-    for number in np.unique(batch_of):
-        members = mapped[batch_of == number]
-        samples, lengths[members], batch_reports = _mapped_batch(chains, members, spacing, eps)
-        samples.chain = members[samples.chain]
-        parts.append(samples)
-        for i, report in zip(members, batch_reports):
-            reports[i] = report
-    return _ChainMaps(OneWayMap.concatenate(parts) if parts else OneWayMap.empty(), lengths, reports)
-
-
-def _mapped_batch(chains, members, spacing, eps):
-    """What :func:`map_chains` keeps of the ball-maps of chains ``members``: their samples
-    (OneWayMap), the lengths of their dense curves (shape (K, 2)) and their reports. The rest of
-    the batch (its dense curves and their tables, tens of MiB for a big drawing) goes before the
-    next batch is made."""
-    owners = chains.pair[members]
-    batch = map_batch([chains.setups[i] for i in members], spacing[owners], "symmetric", eps[owners])
-    return batch.samples, np.c_[batch.sides_p.rg.length, batch.sides_q.rg.length], batch.reports
-
-
-def _ball_rows(chains, maps, index, good, ends):
-    """The ball route's samples (BallRows): the chains whose ball-maps hold, and the overlaps
-    (ranges on the pairs' whole curves, offsets undoing the end gaps' displacement)."""
-    rows = maps.samples.take(good[maps.samples.chain])
-    statics = np.flatnonzero(chains.static)
-    overlap = Ragged.from_list([chains.setups[k].P for k in statics], False)
-    chain = np.r_[rows.chain, statics[overlap.owner]].astype(np.int64)
-    order = np.argsort(chain, kind="stable")
-    # An overlap stays where it is: its fractions along the piece are its own.
-    along = overlap.s / np.maximum(overlap.length, tol.TINY)[overlap.owner]
-    lengths = np.maximum(maps.lengths[rows.chain], tol.TINY)
-    u_p, u_q = np.r_[rows.s_src / lengths[:, 0], along], np.r_[rows.s_dst / lengths[:, 1], along]
-    p, m, q = (np.concatenate([getattr(rows, f), overlap.pts]) for f in ("src", "m", "dst"))
-    chain, kept = chain[order], np.flatnonzero(good | chains.static)
-    first = np.searchsorted(chains.pair, chains.pair[kept])
-    u_p, offset, on_whole = _on_whole(ends, chains.pair, chains.range_p, u_p[order], chain)
-    owner = chains.pair[kept]
-    return BallRows(
-        pair=index[owner],
-        order=kept - first,
-        sizes=np.bincount(chain, minlength=len(chains))[kept],
-        range_p=on_whole[kept],
-        range_q=ends.on_q(owner[:, None], chains.range_q[kept]),
-        static=chains.static[kept],
-        u_p=u_p,
-        u_q=u_q[order],
-        p=np.take(p, order, axis=0),
-        m=np.take(m, order, axis=0),
-        q=np.take(q, order, axis=0),
-        offset=offset,
-    )
-
-
-def _on_whole(ends, pair, range_p, u_p, chain):
-    """Samples at fractions ``u_p`` of chains at ``range_p`` on the common parts, placed on the
-    whole registered curves: their fractions of the chains' ranges there, the offsets undoing
-    the displacement, and those ranges.
-
-    Parameters
-    ----------
-    ends : Ends
-    pair : ndarray of int, shape (G,)
-        Each chain's pair.
-    range_p : ndarray, shape (G, 2)
-        Each chain's range on its pair's common part.
-    u_p : ndarray, shape (K,)
-    chain : ndarray of int, shape (K,)
-        Each sample's chain.
-
-    Returns
-    -------
-    u_p, offset, range_p : ndarrays, shapes (K,), (K, 2), (G, 2)
-    """
-    s = range_p[chain, 0] + u_p * (range_p[chain, 1] - range_p[chain, 0])
-    ranges = ends.on_p(pair[:, None], range_p)
-    at, offset = ends.place(pair[chain], s)
-    start = ranges[chain, 0]
-    span = ranges[chain, 1] - start
-    u = np.divide(at - start, span, out=u_p.astype(np.float64), where=np.abs(span) > 0)
-    return u, offset, ranges
-
-
-def _placed(ends, index, pairs, morphs, orders, ranges):
-    """The Segments of morphs of chains whose pieces lie at ``ranges`` along the common parts:
-    placed on the whole curves, their samples' displacement undone (their samples placed
-    together).
-
-    Parameters
-    ----------
-    ends : Ends
-    index : ndarray of int, shape (C,)
-        The batch's pairs in the drawing.
-    pairs : array_like of int, shape (G,)
-        The (local) pair of each morph.
-    morphs : list of Morph
-        G morphs; their ``u_p`` are replaced by fractions on the whole curves.
-    orders : array_like of int, shape (G,)
-        Each morph's chain order within its pair.
-    ranges : array_like, shape (G, 2, 2)
-        Each morph's arc-length ranges on the common parts of P and of Q.
-
-    Returns
-    -------
-    list of Segment
-    """
-    pairs = np.asarray(pairs, dtype=np.int64)
-    ranges = np.asarray(ranges, dtype=np.float64).reshape(-1, 2, 2)
-    counts = np.array([len(m.u_p) for m in morphs], dtype=np.int64)
-    u_p = np.concatenate([m.u_p for m in morphs]) if morphs else np.zeros(0)
-    u_p, offset, range_p = _on_whole(ends, pairs, ranges[:, 0], u_p, np.repeat(np.arange(len(pairs)), counts))
-    range_q = ends.on_q(pairs[:, None], ranges[:, 1])
-    stops = np.cumsum(counts)
-    segments = []
-    for g, morph in enumerate(morphs):
-        lo, hi = stops[g] - counts[g], stops[g]
-        morph.u_p = u_p[lo:hi]
-        piece = (tuple(range_p[g]) if hi > lo else tuple(ranges[g, 0]), tuple(range_q[g]))
-        segments.append(Segment(int(index[pairs[g]]), int(orders[g]), *piece, morph=morph, offset=offset[lo:hi]))
-    return segments
-
-
 def _fall_back(chains, maps, events, index, kind, spacing, ends):
     """Step 10 for chains that are not b-compatible: composite, then aligned interpolation (the
     notes say which).
@@ -314,12 +163,12 @@ def _fall_back(chains, maps, events, index, kind, spacing, ends):
     for k, order, (morph, note) in zip(failing, orders, chain_fallbacks(wanted, kind)):
         c = chains.pair[k]
         notes.append(PairNote(int(index[c]), note))
-        segments += _placed(ends, index, [c], [morph], [order], [(chains.range_p[k], chains.range_q[k])])
+        segments += placed(ends, index, [c], [morph], [order], [(chains.range_p[k], chains.range_q[k])])
     return good, segments, notes
 
 
 def register(P, Q, carrier, scale, drawing=None, given=None):
-    """Step 2: each pair's registration and carrier (see :mod:`.registration`).
+    """Step 4: each pair's registration and carrier (see :mod:`.registration`).
 
     Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
     :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
@@ -394,7 +243,7 @@ def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
     good, fallen, fallback_notes = _fall_back(chains, maps, events, index, kind, h, ends)
-    ball = _ball_rows(chains, maps, index, good, ends)
+    ball = ball_rows(chains, maps, index, good, ends)
     segments += fallen + _overhangs(index, R, Q, ends, h)
     cut = np.bincount(chains.pair, minlength=len(index))
     notes += direct_notes + fallback_notes
@@ -425,13 +274,13 @@ def _direct_routes(ends, index, routes, curves, h):
     for c in np.flatnonzero(routes.route == Route.LINEAR):
         morph, note = linear_fallback(R.curve(c), Q.curve(c), bool(closed[c]), h[c], routes.reason[c])
         notes.append(PairNote(int(index[c]), note))
-        segments += _placed(ends, index, [c], [morph], [0], ranges[c])
+        segments += placed(ends, index, [c], [morph], [0], ranges[c])
     aligned = np.flatnonzero(routes.route == Route.ALIGNED)
     if len(aligned):
         pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in aligned]
         morphs, said = aligned_fallbacks(pairs, h[aligned], [routes.reason[c] for c in aligned])
         notes += [PairNote(int(index[c]), note) for c, note in zip(aligned, said)]
-        segments += _placed(ends, index, aligned, morphs, np.zeros(len(aligned)), ranges[aligned])
+        segments += placed(ends, index, aligned, morphs, np.zeros(len(aligned)), ranges[aligned])
     tangent = np.flatnonzero(routes.route == Route.TANGENT)
     if len(tangent):
         # Changing shape where they lie: tangent-aligned, straight paths (:mod:`.deforming`),
@@ -439,11 +288,11 @@ def _direct_routes(ends, index, routes, curves, h):
         pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in tangent]
         morphs = tangent_morphs(pairs, [warps.get(int(c)) for c in tangent])
         notes += [PairNote(int(index[c]), DEFORMING_NOTE) for c in tangent]
-        segments += _placed(ends, index, tangent, morphs, np.zeros(len(tangent)), ranges[tangent])
+        segments += placed(ends, index, tangent, morphs, np.zeros(len(tangent)), ranges[tangent])
     near = np.flatnonzero(routes.route == Route.NEAR)
     if len(near):
         morphs = arc_length_morphs(R.take(near), Q.take(near), h[near])
-        segments += _placed(ends, index, near, morphs, np.zeros(len(near)), ranges[near])
+        segments += placed(ends, index, near, morphs, np.zeros(len(near)), ranges[near])
     return segments, notes
 
 
