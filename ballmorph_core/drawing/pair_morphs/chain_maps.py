@@ -143,7 +143,8 @@ def placed(ends, index, pairs, morphs, orders, ranges):
     pairs : array_like of int, shape (G,)
         The (local) pair of each morph.
     morphs : list of Morph
-        G morphs; their ``u_p`` are replaced by fractions on the whole curves.
+        G morphs of the common parts (left as they are: each Segment holds its samples'
+        fractions on the whole curve of P).
     orders : array_like of int, shape (G,)
         Each morph's chain order within its pair.
     ranges : array_like, shape (G, 2, 2)
@@ -163,7 +164,7 @@ def placed(ends, index, pairs, morphs, orders, ranges):
     segments = []
     for g, morph in enumerate(morphs):
         lo, hi = stops[g] - counts[g], stops[g]
-        morph.u_p = u_p[lo:hi]
         piece = (tuple(range_p[g]) if hi > lo else tuple(ranges[g, 0]), tuple(range_q[g]))
-        segments.append(Segment(int(index[pairs[g]]), int(orders[g]), *piece, morph=morph, offset=offset[lo:hi]))
+        c = int(index[pairs[g]])
+        segments.append(Segment(c, int(orders[g]), *piece, morph=morph, offset=offset[lo:hi], u_p=u_p[lo:hi]))
     return segments

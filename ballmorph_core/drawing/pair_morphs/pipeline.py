@@ -383,6 +383,18 @@ def _comparison_route(pairs, ready, method, spacing):
     return Planned(np.asarray(ready), (Route.COMPARISON,) * len(ready), closed, lengths, tuple(segments), tuple(notes))
 
 
+def _point_motions(pairs, dots):
+    """The dots of a comparison morph: straight point motion, no carrier (a Planned)."""
+    segments = [
+        whole_segment(c, point_motion(pairs[c].xy_a, pairs[c].u_a, pairs[c].xy_b, pairs[c].u_b), (1.0, 1.0))
+        for c in dots
+    ]
+    n = len(dots)
+    return Planned(
+        np.asarray(dots, dtype=np.int64), (Route.DOT,) * n, np.zeros(n, bool), np.ones((n, 2)), tuple(segments)
+    )
+
+
 def _witnessed(drawing, pairs, ready):
     """The drawing's motion, or None when no stroke of it has an orientation of its own (dots,
     circles): their centroids alone fit any turn (two dots fit a similarity exactly), so nothing
@@ -419,9 +431,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     plans = PairPlans(pairs)
     dots = [c for c, pair in enumerate(pairs) if pair.P is None]
     if method not in BALL_METHODS:
-        for c in dots:
-            plans.add_morph(c, point_motion(pairs[c].xy_a, pairs[c].u_a, pairs[c].xy_b, pairs[c].u_b), False)
-        plans.set_route(dots, Route.DOT)
+        plans.gather(_point_motions(pairs, dots))
         plans.gather(_comparison_route(pairs, ready, method, spacing))
         return plans.finish()
     kind = method[: -len("-ball")]
