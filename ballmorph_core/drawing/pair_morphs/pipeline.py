@@ -427,7 +427,8 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     -------
     PairPlans
     """
-    ready = prepare_pairs(pairs, method, spacing)
+    prepared = prepare_pairs(pairs, method, spacing)
+    pairs, ready = prepared.pairs, prepared.ready
     plans = PairPlans(pairs)
     dots = [c for c, pair in enumerate(pairs) if pair.P is None]
     if method not in BALL_METHODS:
