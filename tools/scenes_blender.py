@@ -1,4 +1,4 @@
-"""The scenes of tests/fixtures/scenes.py through Blender's own Interpolate, next to the core and the baseline.
+"""The scenes of tests/fixtures/scenes/ through Blender's own Interpolate, next to the core and the baseline.
 
     $(tools/bootstrap.sh 5.0.1) tools/scenes_blender.py [NAME_PART ...]
 

@@ -1,4 +1,4 @@
-"""Every scene of tests/fixtures/scenes.py through the core and the Blender-like baseline: one table.
+"""Every scene of tests/fixtures/scenes/ through the core and the Blender-like baseline: one table.
 
     python tools/scenes_report.py [NAME_PART ...] [--messages]
     python tools/scenes_report.py --xfail-table
@@ -42,7 +42,7 @@ def print_table(lines):
 
 
 def xfail_table():
-    """Print ``XFAIL_TODAY`` as it should read for today's core (to paste into tests/fixtures/scenes.py)."""
+    """Print ``XFAIL_TODAY`` as it should read for today's core (to paste into tests/fixtures/scenes/registry.py)."""
     print("XFAIL_TODAY = {")
     for name, scene in scenes.SCENES.items():
         frames, _ = scene.run_core()

@@ -1,4 +1,4 @@
-"""Issues 11 and 12 in Blender: the scenes of tests/fixtures/scenes.py as real Grease Pencil keys.
+"""Issues 11 and 12 in Blender: the scenes of tests/fixtures/scenes/ as real Grease Pencil keys.
 
 Each scene's keys are written on frames 1 and 9 with plain ``foreach_set`` (gp_data), the real
 operator fills frames 2..8 (7 in-betweens, linear timing, the scene's options), the frames are
