@@ -506,13 +506,14 @@ def test_nearest_edges_pick_the_least_candidate_stepping_or_sorting(seed, short_
         pts[rng.integers(n)] = pts[0]
         curves.append(pts)
     batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
-    owner = rng.integers(0, len(curves), 80)
-    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 3, 80) % batch.n[owner]]
-    points = np.where(rng.random((80, 1)) < 0.4, on_vertex, rng.uniform(-0.5, 1.5, (80, 2)))
-    reach = rng.choice([0.01, 0.2, np.inf], 80)
+    # Three queries on every curve at least: more than every edge twice, so the tree searches.
+    owner = np.r_[rng.integers(0, len(curves), 80), np.repeat(np.arange(len(curves)), 3)]
+    k = len(owner)
+    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 3, k) % batch.n[owner]]
+    points = np.where(rng.random((k, 1)) < 0.4, on_vertex, rng.uniform(-0.5, 1.5, (k, 2)))
+    reach = rng.choice([0.01, 0.2, np.inf], k)
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(projection, "_SHORT_RUNS", short_runs)
-        patch.setattr(projection, "_DIRECT_PAIRS_PER_EDGE", 0)
         got = NearestEdges(batch).within(points, owner, reach)
     for g, w in zip(got, _nearest_edges_brute(points, owner, batch, reach)):
         np.testing.assert_array_equal(g, w)
