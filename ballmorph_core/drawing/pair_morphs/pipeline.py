@@ -167,17 +167,14 @@ def _fall_back(chains, maps, events, index, kind, spacing, ends):
     return good, segments, notes
 
 
-def register(P, Q, carrier, scale, drawing=None, given=None):
-    """Step 4: each pair's registration and carrier (see :mod:`.registration`).
+@dataclass(frozen=True)
+class Registered:
+    """What step 4, *register*, made of a batch of pairs.
 
-    Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
-    :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
-    ``drawing`` (a Similarity) is the keys' overall motion, the prior of symmetric shapes;
-    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
-
-    Returns
-    -------
+    Attributes
+    ----------
     motions : Motions
+        Each pair's carrier.
     R : Ragged
         The registered P.
     residual : ndarray, shape (C,)
@@ -187,6 +184,22 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
         the fraction of their distance the registration left; NaN for the other pairs.
     warps : dict
         Pair -> TangentWarp of the loops squashed in place (:mod:`.deforming`).
+    """
+
+    motions: Motions
+    R: Ragged
+    residual: np.ndarray
+    shape_change: np.ndarray
+    warps: dict
+
+
+def register(P, Q, carrier, scale, drawing=None, given=None):
+    """Step 4: each pair's registration and carrier (see :mod:`.registration`), a Registered.
+
+    Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
+    :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
+    ``drawing`` (a Similarity) is the keys' overall motion, the prior of symmetric shapes;
+    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
     """
     motion, kept = carrier_motions(P, Q, carrier, scale, drawing)
     # The motion of least travel: a loop squashed in place rather than turned (:mod:`.deforming`).
@@ -199,7 +212,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
             motion.put(np.array([c]), own)
     pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
-    return motion, R, identity_residual(R, Q), kept, warps
+    return Registered(motion, R, identity_residual(R, Q), kept, warps)
 
 
 def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
@@ -210,7 +223,9 @@ def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
-    motions, R, residual, shape_change, warps = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    registered = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    motions, R, shape_change, warps = registered.motions, registered.R, registered.shape_change, registered.warps
+    residual = registered.residual.copy()  # measured again below on the common parts
     notes = list(note_shape_changes(index, motions, shape_change))
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
