@@ -30,7 +30,8 @@ class PairNote:
 @dataclass(frozen=True)
 class Planned:
     """What one step of the pipeline planned for the pairs it took; :meth:`PairPlans.gather`
-    writes it into the plans (steps never write into the plans themselves).
+    writes it into the plans (the steps do not write into the plans themselves, but for
+    :func:`.point_routes.dot_route`, which still calls :meth:`PairPlans.add_morph`).
 
     Attributes
     ----------
@@ -110,7 +111,8 @@ class PairPlans:
 
     def add_morph(self, c, morph, closed, lengths=(1.0, 1.0), order=0, ranges=None, offset=None):
         """A morph for (a chain of) pair ``c``; ``ranges`` are its pieces' arc lengths on the pair
-        (default: the whole pair, of ``lengths``); ``offset`` see :class:`~.layout.Segment`."""
+        (default: the whole pair, of ``lengths``); ``offset`` see :class:`~.layout.Segment`.
+        Left for :func:`.point_routes.dot_route`; the other steps return a :class:`Planned`."""
         if ranges is None:
             self.closed[c], self.lengths[c] = closed, lengths
             ranges = ((0.0, self.lengths[c, 0]), (0.0, self.lengths[c, 1]))
