@@ -89,7 +89,7 @@ __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 NEAR = 0.01
 
 
-@dataclass
+@dataclass(frozen=True)
 class _Routes:
     """What happens to each pair of a ball-route batch (a Route each: CARRIER, NEAR, WHOLE,
     LENSES, TANGENT, ALIGNED for curves lying over each other that cannot be cut into lenses,
@@ -248,10 +248,8 @@ def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
     events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near & ~deforming)
     routes = choose_routes(Rc, Qc, events, coincident, crossing_near | (near & (events.count > 0)), carrier, scale)
     # Nested loops as drawn with carrier 'none': the paper's ball-morph, asked for.
-    routes.route[
-        deforming
-        | similar_in_place(P, Q, (routes.route == Route.WHOLE) & ~motions.moving & closed & (carrier != "none"))
-    ] = Route.TANGENT
+    in_place = similar_in_place(P, Q, (routes.route == Route.WHOLE) & ~motions.moving & closed & (carrier != "none"))
+    routes = _Routes(np.where(deforming | in_place, Route.TANGENT, routes.route), routes.reason)
     segments, direct_notes = _direct_routes(ends, index, routes, (Rc, Qc, closed, warps), h)
     lensed = routes.route == Route.LENSES
     whole = np.flatnonzero((routes.route == Route.WHOLE) | (routes.route == Route.CARRIER))
