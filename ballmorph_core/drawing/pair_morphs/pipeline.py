@@ -134,23 +134,33 @@ def choose_routes(R, Q, events, coincident, near, carrier, scale):
     return _Routes(kind, reason)
 
 
-def _fall_back(chains, maps, events, index, kind, spacing, ends):
-    """Step 10 for chains that are not b-compatible: composite, then aligned interpolation (the
-    notes say which).
+@dataclass(frozen=True)
+class _FellBack:
+    """What step 10, *fall back*, did with a batch's chains.
 
-    Returns
-    -------
+    Attributes
+    ----------
     good : ndarray of bool, shape (H,)
         The chains whose ball-maps hold.
     segments : list of Segment
-        The fallbacks of the others.
+        The fallbacks of the others (composite, else aligned interpolation).
     notes : list of PairNote
+        Which fallback each took, and why.
     """
+
+    good: np.ndarray
+    segments: list
+    notes: list
+
+
+def _fall_back(chains, maps, events, index, kind, spacing, ends):
+    """Step 10 for chains that are not b-compatible: composite, then aligned interpolation (the
+    notes say which); a _FellBack."""
     counts = np.bincount(chains.pair, minlength=len(index))
     good = np.array([r is not None and not r.violations for r in maps.reports], dtype=bool)
     failing = np.flatnonzero(~good & ~chains.static)
     if not len(failing):
-        return good, [], []
+        return _FellBack(good, [], [])
     orders = failing - np.searchsorted(chains.pair, chains.pair[failing])
     wanted = []
     for k, order in zip(failing, orders):
@@ -164,7 +174,7 @@ def _fall_back(chains, maps, events, index, kind, spacing, ends):
         c = chains.pair[k]
         notes.append(PairNote(int(index[c]), note))
         segments += placed(ends, index, [c], [morph], [order], [(chains.range_p[k], chains.range_q[k])])
-    return good, segments, notes
+    return _FellBack(good, segments, notes)
 
 
 @dataclass(frozen=True)
@@ -255,11 +265,11 @@ def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
     whole = np.flatnonzero((routes.route == Route.WHOLE) | (routes.route == Route.CARRIER))
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
-    good, fallen, fallback_notes = _fall_back(chains, maps, events, index, kind, h, ends)
-    ball = ball_rows(chains, maps, index, good, ends)
-    segments += fallen + _overhangs(index, R, Q, ends, h)
+    fell_back = _fall_back(chains, maps, events, index, kind, h, ends)
+    ball = ball_rows(chains, maps, index, fell_back.good, ends)
+    segments += fell_back.segments + _overhangs(index, R, Q, ends, h)
     cut = np.bincount(chains.pair, minlength=len(index))
-    notes += direct_notes + fallback_notes
+    notes += direct_notes + fell_back.notes
     notes += [
         PairNote(int(index[c]), f"split at {cut[c]} crossing/overlap pieces")
         for c in np.flatnonzero(lensed & (cut > 1))
