@@ -21,7 +21,7 @@ core-demo:
 evaluate:
 	$$(tools/bootstrap.sh 5.0.1) tools/evaluate.py
 
-# The animator-style scenes of issues 11 and 12 (tools/scenes.py): every figure of the core next to
+# The animator-style scenes of issues 11 and 12 (tests/fixtures/scenes/): every figure of the core next to
 # the Blender-like baseline, in a few seconds (tools/scenes_blender.py adds Blender's own Interpolate).
 scenes:
 	$$(tools/bootstrap.sh 5.0.1) tools/scenes_report.py

@@ -12,11 +12,10 @@ from hypothesis import HealthCheck, settings
 
 _TESTS = os.path.dirname(os.path.abspath(__file__))
 _ROOT = os.path.dirname(_TESTS)
-# The core is imported as a top-level package from the repository root; the shared drawings
-# (shapes, the golden cases) sit in tests/fixtures.
+# The core is imported as a top-level package from the repository root (and the dev tools, for
+# tests/tools, as the package ``tools``); the shared drawings (shapes, the golden cases, the demo's
+# shots, the benchmark's drawings, the scenes) sit in tests/fixtures, which the tools read too.
 sys.path[:0] = [_ROOT, os.path.join(_TESTS, "fixtures")]
-# The dev tools' modules (the benchmark's drawings, the scenes, the real-data reader) for the tests of them.
-sys.path.append(os.path.join(_ROOT, "tools"))
 
 settings.register_profile("ci", max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("fuzz", max_examples=3000, deadline=None, suppress_health_check=list(HealthCheck))

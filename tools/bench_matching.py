@@ -27,35 +27,18 @@ import time
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, ROOT)
+# The core from the repository root; the drawings from the test fixtures, which the tests share.
+sys.path[:0] = [ROOT, os.path.join(ROOT, "tests", "fixtures")]
 
-from ballmorph_core.drawing.pairing.matching import match_strokes  # noqa: E402  (after the path set-up)
+from bench_drawings import reordered_hatching  # noqa: E402  (after the path set-up)
+
+from ballmorph_core.drawing.pairing.matching import match_strokes  # noqa: E402
 
 SIZES = (250, 500, 1000)
 #: The goal: time(1000) / time(500) at most this (the ball-map's bar, bench_ballmap.GROWTH_GOAL).
 GROWTH_GOAL = 2.5
 # Repeats: at least MIN_RUNS, then until BUDGET seconds are spent, at most MAX_RUNS.
 MIN_RUNS, MAX_RUNS, BUDGET = 2, 9, 2.0
-
-
-def reordered_hatching(n, seed=1):
-    """``n`` short hatch lines on a grid (0.3 apart, 0.22 long), redrawn moved by (0.02, 0.01)
-    with 0.003 of noise and listed in a random order.
-
-    Returns
-    -------
-    a, b : list of ndarray, shape (m_i, 2)
-        The keys' strokes, 2-5 points each.
-    perm : ndarray of int, shape (n,)
-        Stroke ``j`` of key B is stroke ``perm[j]`` of key A redrawn.
-    """
-    rng = np.random.default_rng(seed)
-    side = int(np.ceil(np.sqrt(n)))
-    along = [np.linspace(0.0, 1.0, int(rng.integers(2, 6)))[:, None] * [0.2, 0.1] for _ in range(n)]
-    a = [np.array([k % side, k // side]) * 0.3 + line for k, line in enumerate(along)]
-    perm = rng.permutation(n)
-    b = [a[p] + [0.02, 0.01] + rng.normal(0.0, 0.003, a[p].shape) for p in perm]
-    return a, b, perm
 
 
 def time_matching(n):

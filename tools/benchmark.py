@@ -59,9 +59,10 @@ import bpy
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# tools/ (the plain-CPython benchmarks) and tests/fixtures (the drawings they share with the tests).
+sys.path[:0] = [os.path.dirname(os.path.abspath(__file__)), os.path.join(ROOT, "tests", "fixtures")]
 
-import bench_ballmap  # noqa: E402  (tools/ on the path first; it imports no bpy)
+import bench_ballmap  # noqa: E402  (after the path set-up; it imports no bpy)
 import bench_matching  # noqa: E402  (the same)
 from bench_drawings import KINDS, make_keys  # noqa: E402  (the same)
 

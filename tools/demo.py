@@ -33,10 +33,11 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from shots import apple, bend_arch, bend_down, ellipse, floor, head_turn_keys, pear, stem
-
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The shots' drawings live with the test fixtures: the golden test draws the same keys.
+sys.path.insert(0, os.path.join(ROOT, "tests", "fixtures"))
+from shots import apple, bend_arch, bend_down, ellipse, floor, head_turn_keys, pear, stem  # noqa: E402
+
 OUT = os.path.join(ROOT, "out")
 ADDON_ID = "ballmorph_inbetween"
 REPO_MODULE = "ballmorph_demo"

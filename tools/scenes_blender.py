@@ -1,4 +1,4 @@
-"""The scenes of tools/scenes.py through Blender's own Interpolate, next to the core and the baseline.
+"""The scenes of tests/fixtures/scenes/ through Blender's own Interpolate, next to the core and the baseline.
 
     $(tools/bootstrap.sh 5.0.1) tools/scenes_blender.py [NAME_PART ...]
 
@@ -13,7 +13,8 @@ import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path[:0] = [HERE, os.path.dirname(HERE), os.path.join(os.path.dirname(HERE), "tests", "blender")]
+TESTS = os.path.join(os.path.dirname(HERE), "tests")
+sys.path[:0] = [HERE, os.path.dirname(HERE), os.path.join(TESTS, "fixtures"), os.path.join(TESTS, "blender")]
 
 import bpy  # noqa: E402
 import gp_data  # noqa: E402

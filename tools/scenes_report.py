@@ -1,4 +1,4 @@
-"""Every scene of tools/scenes.py through the core and the Blender-like baseline: one table.
+"""Every scene of tests/fixtures/scenes/ through the core and the Blender-like baseline: one table.
 
     python tools/scenes_report.py [NAME_PART ...] [--messages]
     python tools/scenes_report.py --xfail-table
@@ -15,10 +15,11 @@ import sys
 import textwrap
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The core from the repository root; the scenes from the test fixtures (the tests assert them).
+sys.path[:0] = [ROOT, os.path.join(ROOT, "tests", "fixtures")]
 
-import scenes
+import scenes  # noqa: E402
 
 
 def _rows(scene):
@@ -41,7 +42,7 @@ def print_table(lines):
 
 
 def xfail_table():
-    """Print ``XFAIL_TODAY`` as it should read for today's core (to paste into tools/scenes.py)."""
+    """Print ``XFAIL_TODAY`` as it should read for today's core (to paste into tests/fixtures/scenes/registry.py)."""
     print("XFAIL_TODAY = {")
     for name, scene in scenes.SCENES.items():
         frames, _ = scene.run_core()

@@ -200,11 +200,11 @@ def test_in_background_the_handler_draws_nothing_and_raises_nothing(shot, previe
     handler, cache = preview
     assert bpy.app.background
     bpy.context.scene.ballmorph_inbetween.path_preview = True
-    drawn = []
-    monkeypatch.setattr(handler, "_draw_lines", drawn.append)
+    fake = _FakeGPU()  # what a draw would ask of the GPU
+    fake.install(monkeypatch)
     computed = cache.computed
     assert handler.draw() is None
-    assert drawn == [] and cache.computed == computed  # not even the geometry
+    assert fake.log == [] and fake.batches == [] and cache.computed == computed  # not even the geometry
 
 
 class _FakeGPU:

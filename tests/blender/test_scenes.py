@@ -1,4 +1,4 @@
-"""Issues 11 and 12 in Blender: the scenes of tools/scenes.py as real Grease Pencil keys.
+"""Issues 11 and 12 in Blender: the scenes of tests/fixtures/scenes/ as real Grease Pencil keys.
 
 Each scene's keys are written on frames 1 and 9 with plain ``foreach_set`` (gp_data), the real
 operator fills frames 2..8 (7 in-betweens, linear timing, the scene's options), the frames are
@@ -9,16 +9,11 @@ Blender stores float32, so the float64 twins of the turn scenes are left out (th
 twins run), and so are the tangent-ball scenes: the operator does not offer that morph.
 """
 
-import os
-import sys
-
 import bpy
 import gp_data
 import numpy as np
 import pytest
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-import scenes
+import scenes  # tests/fixtures, on the path by tests/conftest.py
 
 FIRST, LAST = 1, 9
 

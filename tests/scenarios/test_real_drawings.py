@@ -8,11 +8,11 @@ from shapes import circle, distance_to_polyline
 
 import ballmorph_core as bm
 from ballmorph_core.drawing.frames.layout import _carry
-from ballmorph_core.drawing.pair_morphs.crossings import split_pair
+from ballmorph_core.drawing.pair_morphs.crossings import cut_chains, find_events
 from ballmorph_core.drawing.pair_morphs.pipeline import PairMorph
 from ballmorph_core.drawing.pair_morphs.registration import Fits, endpoint_similarity, fit_similarity, motions
 from ballmorph_core.geometry.intersections import crossings, is_simple
-from ballmorph_core.geometry.polyline import curve_length, orient_clockwise
+from ballmorph_core.geometry.polyline import curve_length, orient_clockwise, resample, scale_of
 from ballmorph_core.geometry.ragged import Ragged
 from ballmorph_core.geometry.similarity import Similarity
 
@@ -158,16 +158,28 @@ def test_composite_of_a_compatible_pair_is_the_ball_morph():
 # ------------------------------------------------------------------ splitting
 
 
+def _lenses(P, Q, closed, spacing):
+    """Steps 6 and 8 of the pipeline on one pair: its events (find_events) and the chains it is
+    cut into (cut_chains), with the pair lensed."""
+    R, Qr = Ragged.from_list([P], [closed]), Ragged.from_list([Q], [closed])
+    scale = np.array([scale_of(P, Q)])
+    events = find_events(R, Qr, scale, np.array([float(spacing)]), np.ones(1, dtype=bool))
+    if not events.agree[0]:
+        return events, None
+    chains = cut_chains(R, Qr, events, np.ones(1, dtype=bool), np.zeros(0, np.int64), np.zeros(1, bool), scale)
+    return events, chains
+
+
 def test_crossing_strokes_split_into_lenses_that_share_endpoints():
     x = np.linspace(0, 1, 200)
     P = np.c_[x, 0.2 * np.sin(2 * np.pi * x)]
     Q = np.c_[x, 0.05 * np.sin(np.pi * x)]
-    pieces = split_pair(P, Q, False, 0.01)
-    assert [pc.kind for pc in pieces] == ["gap", "gap"]
-    for pc in pieces:
-        np.testing.assert_array_equal(pc.P[[0, -1]], pc.Q[[0, -1]])
-        assert bm.classify(pc.P, pc.Q) == "quasi-disjoint-strokes"
-    np.testing.assert_allclose(pieces[0].P[-1], pieces[1].P[0])
+    _, chains = _lenses(P, Q, False, 0.01)
+    assert len(chains) == 2 and not chains.static.any()  # two lenses, no overlap
+    for lens in chains.setups:
+        np.testing.assert_array_equal(lens.P[[0, -1]], lens.Q[[0, -1]])
+        assert bm.classify(lens.P, lens.Q) == "quasi-disjoint-strokes"
+    np.testing.assert_allclose(chains.setups[0].P[-1], chains.setups[1].P[0])
 
 
 def test_overlapping_portion_stays_static():
@@ -189,15 +201,16 @@ def test_tangled_crossings_are_rejected():
     t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
     wobble = orient_clockwise(np.c_[(1 + 0.3 * np.cos(5 * t)) * np.cos(t), (1 + 0.3 * np.cos(5 * t)) * np.sin(t)])
     # Five lobes crossing a circle ten times in the same order still split...
-    assert len(split_pair(c, wobble, True, 0.02)) == 10
-    # ...but a stroke crossing in the opposite order along each curve does not.
-    x = np.linspace(0, 1, 300)
-    P = np.c_[x, 0.3 * np.sin(3 * np.pi * x)]
-    Q = np.c_[x[::-1] * 0 + x, -0.3 * np.sin(3 * np.pi * x) * np.cos(6 * np.pi * x)]
-    try:
-        split_pair(P, Q, False, 0.01)
-    except bm.IncompatibleCurvesError as exc:
-        assert "order" in str(exc)
+    events, chains = _lenses(c, wobble, True, 0.02)
+    assert events.agree[0] and len(chains) == 10
+    # ...but a stroke crossing a line at 0.7, then 0.3, then 0.5 of it does not (the line
+    # meets those crossings in another order), and the pair says why.
+    corners = [(0, 0), (0.2, 0.3), (0.7, 0.3), (0.7, -0.3), (0.3, -0.3), (0.3, 0.15), (0.5, 0.15), (0.5, -0.15), (1, 0)]
+    tangled = resample(np.array(corners, dtype=np.float64), False, count=300, smooth=False)
+    line = np.c_[np.linspace(0, 1, 200), np.zeros(200)]
+    events, chains = _lenses(line, tangled, False, 0.01)
+    assert not events.agree[0] and chains is None
+    assert "order" in events.why_tangled(0)
 
 
 # ------------------------------------------------------------------ the pipeline
@@ -314,14 +327,14 @@ def test_a_pair_alone_is_morphed_as_in_its_drawing(method, carrier):
 
 
 def test_ball_mapping_in_batches_changes_nothing(monkeypatch):
-    """A huge drawing's lenses are ball-mapped in batches (pipeline.BALLMAP_BATCH_POINTS):
+    """A huge drawing's lenses are ball-mapped in batches (chain_maps.BALLMAP_BATCH_POINTS):
     cutting the same drawing into one batch per pair gives the same in-betweens."""
-    pipeline = importlib.import_module("ballmorph_core.drawing.pair_morphs.pipeline")
+    chain_maps = importlib.import_module("ballmorph_core.drawing.pair_morphs.chain_maps")
 
     key_a, key_b = _drawing_4_and_5()
     times = np.linspace(0, 1, 5)
     one = bm.inbetween(key_a, key_b, times)
-    monkeypatch.setattr(pipeline, "BALLMAP_BATCH_POINTS", 10)  # every pair a batch of its own
+    monkeypatch.setattr(chain_maps, "BALLMAP_BATCH_POINTS", 10)  # every pair a batch of its own
     many = bm.inbetween(key_a, key_b, times)
     assert [p.method for p in many.pairs] == [p.method for p in one.pairs]
     for a, b in zip(one.frames, many.frames):

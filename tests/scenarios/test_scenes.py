@@ -1,4 +1,4 @@
-"""Issues 11 and 12: the scenes of tools/scenes.py through the core, every figure asserted.
+"""Issues 11 and 12: the scenes of tests/fixtures/scenes/ through the core, every figure asserted.
 
 A scene today's core misses is ``xfail(strict=True)`` with the figures it misses today
 (``scenes.XFAIL_TODAY``): main stays green, and the marker must go once the core meets them.
@@ -147,8 +147,8 @@ def test_radial_figure_passes_a_sliding_outline_and_fails_a_rotating_one():
     scene = scenes.SCENES["outline-start-moved"]
     keys = scene.key_drawings()
     profiles = (
-        lambda th: scenes._outline_profile(0.08, 0.0, th),
-        lambda th: scenes._outline_profile(0.1, 0.02, th),
+        lambda th: scenes.outline_profile(0.08, 0.0, th),
+        lambda th: scenes.outline_profile(0.1, 0.02, th),
     )
 
     def at(t):

@@ -7,7 +7,8 @@ import os
 
 import numpy as np
 import pytest
-import realdata as rd
+
+from tools import realdata as rd
 
 
 def square(side, n_per_side=1, start=0):

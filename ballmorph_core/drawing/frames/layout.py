@@ -56,14 +56,6 @@ class BallRows:
     q: np.ndarray
     offset: np.ndarray
 
-    def without(self, pairs):
-        """The chains of the other pairs (BallRows)."""
-        keep = ~np.isin(self.pair, list(pairs))
-        rows = np.repeat(keep, self.sizes)
-        chains = (self.pair, self.order, self.sizes, self.range_p, self.range_q, self.static)
-        per_sample = (self.u_p, self.u_q, self.p, self.m, self.q, self.offset)
-        return BallRows(*(a[keep] for a in chains), *(a[rows] for a in per_sample))
-
     @classmethod
     def empty(cls):
         """No chain at all."""
@@ -95,9 +87,12 @@ class Segment:
     range_p, range_q : tuple of float
         Arc-length start and end of its pieces on the pair's curves.
     morph : Morph
-        ``morph.u_p`` and ``u_q`` are the fractions along the pieces.
+        ``morph.u_p`` and ``u_q`` are the fractions along the pieces, unless ``u_p`` says otherwise.
     offset : ndarray, shape (K, 2), optional
         Added as ``(1 - t)`` times this to each sample (the end gaps of open strokes).
+    u_p : ndarray, shape (K,), optional
+        The samples' fractions along the piece of P when they are not the morph's own (a morph of
+        a common part placed on the whole curve, see :func:`..pair_morphs.chain_maps.placed`).
     """
 
     pair: int
@@ -106,6 +101,12 @@ class Segment:
     range_q: tuple
     morph: object
     offset: np.ndarray = None
+    u_p: np.ndarray = None
+
+    @property
+    def fractions_p(self):
+        """The samples' fractions along the piece of P, shape (K,)."""
+        return self.morph.u_p if self.u_p is None else self.u_p
 
 
 @dataclass
@@ -149,7 +150,7 @@ class PairFrames:
 
 def _chains(ball, segments):
     """Every chain (ball rows first, then the segments): pair, order, size, ranges (arrays)."""
-    sizes = [len(s.morph.u_p) for s in segments]
+    sizes = [len(s.fractions_p) for s in segments]
     pair = np.r_[ball.pair, [s.pair for s in segments]].astype(np.int64)
     order = np.r_[ball.order, [s.order for s in segments]].astype(np.int64)
     ranges = [
@@ -306,7 +307,7 @@ class Layout:
         c = chain[rows]
         owner = pair[c]
         self.offsets = np.searchsorted(owner, np.arange(len(self.closed) + 1))
-        u_p = np.concatenate([ball.u_p, *[s.morph.u_p for s in segments]])[rows]
+        u_p = np.concatenate([ball.u_p, *[s.fractions_p for s in segments]])[rows]
         u_q = np.concatenate([ball.u_q, *[s.morph.u_q for s in segments]])[rows]
         loop = self.closed[owner]
         self.u_a = _fractions(u_p, range_p, lengths[:, 0], c, owner, loop)
@@ -331,7 +332,7 @@ class Layout:
         self._ball_shift = _Shift.of(np.arange(self._ball.stop), offset) if offset.any() else None
         # Each segment's kept rows (local to it) and their place in the frames, from one search
         # of every segment's rows at once (a drawing has hundreds of segments: its overhangs).
-        sizes = np.array([len(s.morph.u_p) for s in segments], dtype=np.int64)
+        sizes = np.array([len(s.fractions_p) for s in segments], dtype=np.int64)
         starts = np.cumsum(sizes) - sizes
         kept_rows = np.flatnonzero(keep[n_ball:])
         frame_rows = position[n_ball:][kept_rows]

@@ -26,6 +26,7 @@ from ... import tolerances as tol
 from ...geometry.intersections import batch_crossings, simple_curves
 from ...geometry.projection import NearestEdges
 from ...geometry.ragged import Ragged
+from .pair_plans import PairNote
 from .registration import Motions, fit_pairs, identity_residual, motions
 
 __all__ = [
@@ -198,24 +199,29 @@ def carrier_motions(P, Q, carrier, scale, drawing=None):
     return motions(P, fits, kind, scale, ask & ~changed, drawing), kept
 
 
-def note_shape_changes(notes, index, motion, shape_change):
-    """Say, in each such pair's notes, why a pair that changes shape got no carrier.
+def note_shape_changes(index, motion, shape_change):
+    """Why each pair that changes shape got no carrier, as notes of its report.
 
     Parameters
     ----------
-    notes : list of list of str
-        Every pair's notes (of the drawing).
     index : ndarray of int, shape (C,)
         The batch's pairs in the drawing.
     motion : Motions
     shape_change : ndarray, shape (C,)
         From :func:`carrier_motions`.
+
+    Returns
+    -------
+    tuple of PairNote
     """
+    notes = []
     for c in np.flatnonzero(~np.isnan(shape_change) & ~motion.moving):
         if np.isinf(shape_change[c]):
-            notes[index[c]].append("no carrier: squashed in place it travels less than turned by its registration")
-            continue
-        notes[index[c]].append(
-            f"no carrier: its registration leaves {shape_change[c]:.0%} of the curves' distance"
-            " (they change shape, they do not move)"
-        )
+            text = "no carrier: squashed in place it travels less than turned by its registration"
+        else:
+            text = (
+                f"no carrier: its registration leaves {shape_change[c]:.0%} of the curves' distance"
+                " (they change shape, they do not move)"
+            )
+        notes.append(PairNote(int(index[c]), text))
+    return tuple(notes)

@@ -8,7 +8,7 @@ during the morph, as the paper requires of every morph it compares.
 
 :func:`find_events` finds the crossings and overlaps of every pair of a batch at once and
 whether they come in the same order along both curves; :func:`cut_chains` cuts the pairs into
-their pieces. :func:`split_pair` is the same for one pair.
+their pieces.
 """
 
 from dataclasses import dataclass
@@ -17,13 +17,10 @@ import numpy as np
 
 from ... import tolerances as tol
 from ...ballmap.topology import PairSetup
-from ...errors import IncompatibleCurvesError
 from ...geometry.intersections import batch_crossings, matched_hits
-from ...geometry.polyline import scale_of
 from ...geometry.projection import nearest_within
-from ...geometry.ragged import Ragged
 
-__all__ = ["Events", "Chains", "find_events", "cross", "cut_chains", "Piece", "split_pair", "MAX_HITS_PER_POINT"]
+__all__ = ["Events", "Chains", "find_events", "cross", "cut_chains", "MAX_HITS_PER_POINT"]
 
 #: Crossings in the same order along both curves cut them into lenses, and every lens holds a
 #: vertex of P or Q (two straight pieces meet once), so such a pair has at most ``n_P + n_Q + 1``
@@ -388,63 +385,3 @@ def cut_chains(R, Q, events, lensed, whole, coincident, scale):
     static = np.r_[np.zeros(len(g_pair), bool), np.ones(len(o), bool), np.zeros(len(whole), bool)]
     order = np.lexsort((key, pair))
     return Chains(pair[order], [setups[k] for k in order], range_p[order], range_q[order], static[order])
-
-
-@dataclass
-class Piece:
-    """One piece of a split pair.
-
-    Attributes
-    ----------
-    P, Q : ndarray, shape (n, 2), (m, 2)
-        Stroke pieces sharing both endpoints (exactly).
-    kind : str
-        ``'gap'`` (to be morphed) or ``'overlap'`` (P and Q coincide: static).
-    range_p, range_q : tuple of float
-        Arc-length start and end on P and on Q (for loops the end may exceed the length).
-    """
-
-    P: np.ndarray
-    Q: np.ndarray
-    kind: str
-    range_p: tuple
-    range_q: tuple
-
-
-def split_pair(P, Q, closed, spacing):
-    """Split one crossing or overlapping pair into pieces (a batch of one of the steps above).
-
-    Parameters
-    ----------
-    P, Q : ndarray, shape (N, 2), (M, 2)
-        Running the same way: strokes starting at the same point and ending at the same point.
-    closed : bool
-    spacing : float
-        Sampling used to find overlaps.
-
-    Returns
-    -------
-    list of Piece
-        In order along P. Empty if the curves neither cross nor overlap.
-
-    Raises
-    ------
-    IncompatibleCurvesError
-        If the crossings and overlaps do not come in the same order along both curves (then the
-        pair does not decompose into lenses: paper Fig. 8 and 9, right).
-    """
-    R, Qr = Ragged.from_list([P], [closed]), Ragged.from_list([Q], [closed])
-    scale = np.array([scale_of(P, Q)])
-    events = find_events(R, Qr, scale, np.array([float(spacing)]), np.ones(1, dtype=bool))
-    if not events.agree[0]:
-        raise IncompatibleCurvesError(
-            "the curves cross in a different order along each one (tangled), so they do not "
-            "split into lens-shaped stroke pairs"
-        )
-    if events.count[0] == 0:
-        return []
-    chains = cut_chains(R, Qr, events, np.ones(1, dtype=bool), np.zeros(0, np.int64), np.zeros(1, bool), scale)
-    return [
-        Piece(s.P, s.Q, "overlap" if st else "gap", tuple(rp), tuple(rq))
-        for s, st, rp, rq in zip(chains.setups, chains.static, chains.range_p, chains.range_q)
-    ]

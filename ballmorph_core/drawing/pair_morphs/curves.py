@@ -1,14 +1,14 @@
 """A stroke pair's curves as the pair pipeline receives them (:class:`PairCurves`), and its
 first step, *prepare*: each pair's curves validated, or left to move point by point."""
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ...errors import InvalidCurveError
 from ...geometry.polyline import already_clean, as_curve, curve_length, resolve_spacing
 
-__all__ = ["PairCurves", "prepare", "prepare_pairs"]
+__all__ = ["PairCurves", "Prepared", "prepare", "prepare_pairs"]
 
 
 @dataclass
@@ -51,37 +51,61 @@ class PairCurves:
 
 
 def prepare(pair, method, spacing, clean=False):
-    """Step 1: validate a pair's curves (in place); False when it can only move point by point.
+    """Step 1 for one pair: its curves validated.
 
     ``clean``: both curves are known to be valid as they are (:func:`prepare_pairs`): copied.
+
+    Returns
+    -------
+    prepared : PairCurves
+        ``pair`` with its curves ``P``, ``Q`` (None when it can only move point by point), its
+        ``closed`` flag and its notes set (``pair`` itself is left as it is).
+    ready : bool
+        False when it can only move point by point.
     """
-    pair.closed = pair.closed_a and pair.closed_b
+    closed = pair.closed_a and pair.closed_b
+    notes = list(pair.notes)
     if pair.closed_a != pair.closed_b:
-        pair.notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
+        notes.append("one key's stroke is cyclic and the other's is not: morphed as open strokes")
     try:
         if clean:
-            pair.P, pair.Q = (np.array(xy, dtype=np.float64, copy=True) for xy in (pair.xy_a, pair.xy_b))
+            P, Q = (np.array(xy, dtype=np.float64, copy=True) for xy in (pair.xy_a, pair.xy_b))
         else:
-            pair.P, pair.Q = as_curve(pair.xy_a, "P", pair.closed), as_curve(pair.xy_b, "Q", pair.closed)
+            P, Q = as_curve(pair.xy_a, "P", closed), as_curve(pair.xy_b, "Q", closed)
     except InvalidCurveError as exc:
-        pair.notes.append(f"too few distinct points ({exc})")
-        pair.P = pair.Q = None
-        return False
+        notes.append(f"too few distinct points ({exc})")
+        return replace(pair, P=None, Q=None, closed=closed, notes=notes), False
     if spacing is not None:
         try:
-            resolve_spacing(pair.P, pair.Q, pair.closed, spacing)
+            resolve_spacing(P, Q, closed, spacing)
         except InvalidCurveError as exc:
-            pair.notes.append(f"{method} failed ({exc})")
-            pair.P = pair.Q = None
-            return False
-    return True
+            notes.append(f"{method} failed ({exc})")
+            return replace(pair, P=None, Q=None, closed=closed, notes=notes), False
+    return replace(pair, P=P, Q=Q, closed=closed, notes=notes), True
+
+
+@dataclass(frozen=True)
+class Prepared:
+    """What step 1 made of every pair.
+
+    Attributes
+    ----------
+    pairs : list of PairCurves
+        Every pair, prepared (see :func:`prepare`).
+    ready : list of int
+        The pairs whose curves are valid (the others move point by point).
+    """
+
+    pairs: list
+    ready: list
 
 
 def prepare_pairs(pairs, method, spacing):
-    """Step 1 for every pair: the pairs that are ready (list of int).
+    """Step 1 for every pair (a Prepared; ``pairs`` are left as they are).
 
     Curves a drawing's batch shows need no cleaning skip the per-curve validation.
     """
     closed = [p.closed_a and p.closed_b for p in pairs]
     clean = already_clean([p.xy_a for p in pairs], closed) & already_clean([p.xy_b for p in pairs], closed)
-    return [c for c, pair in enumerate(pairs) if prepare(pair, method, spacing, bool(clean[c]))]
+    prepared = [prepare(pair, method, spacing, bool(clean[c])) for c, pair in enumerate(pairs)]
+    return Prepared([pair for pair, _ in prepared], [c for c, (_, ready) in enumerate(prepared) if ready])

@@ -1,15 +1,90 @@
 """The plan of every stroke pair of a drawing: its morphs laid out, ball-mapped samples and
-carrier motions (:class:`PairPlans`), which the pipeline's routes fill and :meth:`PairPlans.frames`
-evaluates at any times."""
+carrier motions (:class:`PairPlans`), gathered by the pipeline from what each step planned
+(:class:`Planned`) and evaluated at any times by :meth:`PairPlans.frames`."""
 
-from dataclasses import fields
+from dataclasses import dataclass, fields
 
 import numpy as np
 
 from ..frames.layout import BallRows, Layout, PairFrames, Segment
 from ..strokes import PairMorphs
 
-__all__ = ["PairPlans"]
+__all__ = ["PairNote", "Planned", "PairPlans", "whole_segment"]
+
+
+@dataclass(frozen=True)
+class PairNote:
+    """One line of a pair's report (a fallback, a split, a missing carrier).
+
+    Attributes
+    ----------
+    pair : int
+        The pair, in the drawing.
+    text : str
+    """
+
+    pair: int
+    text: str
+
+
+@dataclass(frozen=True)
+class Planned:
+    """What one step of the pipeline planned for the pairs it took; :meth:`PairPlans.gather`
+    writes it into the plans (the steps do not write into the plans themselves, but for
+    :func:`.point_routes.dot_route`, which still calls :meth:`PairPlans.add_morph`).
+
+    Attributes
+    ----------
+    pairs : ndarray of int, shape (C,)
+        The pairs the step took, in the drawing.
+    routes : tuple of Route
+        The route each of them took, C of them.
+    closed : ndarray of bool, shape (C,)
+    lengths : ndarray, shape (C, 2)
+        The arc lengths of each pair's two curves, as the step morphed them.
+    segments : tuple of Segment
+        The morphs of the pairs' chains, in the order they are laid out.
+    notes : tuple of PairNote
+        What the pairs' reports say, in order.
+    motions : Motions, optional
+        The carriers of the pairs (C of them); None leaves the carriers as they are.
+    joined : ndarray of bool, shape (C,), optional
+        The loops cut at their crossings (their chains joined end to end); None for none.
+    ball : BallRows, optional
+        The samples of the pairs' ball-mapped chains.
+    """
+
+    pairs: np.ndarray
+    routes: tuple
+    closed: np.ndarray
+    lengths: np.ndarray
+    segments: tuple = ()
+    notes: tuple = ()
+    motions: object = None
+    joined: np.ndarray = None
+    ball: BallRows = None
+
+    @classmethod
+    def nothing(cls):
+        """A step that took no pair."""
+        return cls(np.zeros(0, dtype=np.int64), (), np.zeros(0, dtype=bool), np.zeros((0, 2)))
+
+
+def whole_segment(pair, morph, lengths):
+    """The Segment of a morph of a whole pair whose curves are ``lengths`` (P, Q) long.
+
+    Parameters
+    ----------
+    pair : int
+    morph : Morph
+    lengths : array_like, shape (2,)
+
+    Returns
+    -------
+    Segment
+    """
+    length_p, length_q = np.asarray(lengths, dtype=np.float64)
+    return Segment(int(pair), 0, (0.0, length_p), (0.0, length_q), morph=morph)
 
 
 class PairPlans:
@@ -36,7 +111,8 @@ class PairPlans:
 
     def add_morph(self, c, morph, closed, lengths=(1.0, 1.0), order=0, ranges=None, offset=None):
         """A morph for (a chain of) pair ``c``; ``ranges`` are its pieces' arc lengths on the pair
-        (default: the whole pair, of ``lengths``); ``offset`` see :class:`~.layout.Segment`."""
+        (default: the whole pair, of ``lengths``); ``offset`` see :class:`~.layout.Segment`.
+        Left for :func:`.point_routes.dot_route`; the other steps return a :class:`Planned`."""
         if ranges is None:
             self.closed[c], self.lengths[c] = closed, lengths
             ranges = ((0.0, self.lengths[c, 0]), (0.0, self.lengths[c, 1]))
@@ -51,16 +127,25 @@ class PairPlans:
         for c, route in zip(pairs, routes):
             self.routes[int(c)] = route
 
-    def drop(self, pairs, notes_kept):
-        """Forget what was planned for ``pairs`` (keeping their first ``notes_kept[c]`` notes)."""
-        self.segments = [s for s in self.segments if s.pair not in pairs]
-        self.ball = [rows.without(pairs) for rows in self.ball]
-        for c in pairs:
-            del self.notes[c][notes_kept[c] :]
-            self.routes[c] = None
+    def gather(self, planned):
+        """What one step planned (:class:`Planned`) written into the plans: the pairs' flags,
+        lengths, routes and carriers, their segments and ball-mapped samples after the others',
+        their notes after the notes they have."""
+        pairs = np.asarray(planned.pairs, dtype=np.int64)
+        if planned.motions is not None and len(pairs):
+            self.motions.put(pairs, planned.motions)
+        self.closed[pairs], self.lengths[pairs] = planned.closed, planned.lengths
+        if planned.joined is not None:
+            self.joined[pairs] = planned.joined
+        self.segments.extend(planned.segments)
+        if planned.ball is not None:
+            self.ball.append(planned.ball)
+        for note in planned.notes:
+            self.notes[note.pair].append(note.text)
+        self.set_routes(pairs, planned.routes)
 
     def finish(self, kind="circular"):
-        """Name each pair's morphs and lay the segments out (step 8)."""
+        """Name each pair's morphs and lay the segments out (step 11)."""
         ball = _joined(self.ball)
         methods = [set() for _ in self.used]
         for seg in self.segments:

@@ -29,25 +29,26 @@ Ball-morph methods::
    itself), else linear interpolation (LINEAR: loops side by side, strokes that do not share
    their endpoints without a carrier); the report says why.
 8. *cut chains* (:mod:`.crossings`): the lenses, overlaps and whole pairs the ball-maps run on.
-9. *map chains*: the ball-maps of every chain of every pair, in batches of about
-   ``BALLMAP_BATCH_POINTS`` input points.
+9. *map chains* (:mod:`.chain_maps`): the ball-maps of every chain of every pair, in batches
+   of about ``BALLMAP_BATCH_POINTS`` input points.
 10. *fall back* (:mod:`.fallbacks`): a chain that is not b-compatible gets the composite
     ball-morph, then aligned interpolation.
 11. *lay out* (:mod:`..frames.layout`, :class:`.pair_plans.PairPlans`): every chain's samples
     in order, evaluated at any times; each pair's PairMorphs (morphs, carrier, route).
 
-The paper's comparison morphs take *prepare*, then their own morph with its fallback. Every
-step works on all pairs at once (a single pair is a batch of one), and nothing here depends on
-the in-between times: :class:`PairPlans` is the plan, :meth:`PairPlans.frames` its evaluation.
+Each step returns what it planned for the pairs it took (:class:`.pair_plans.Planned`: their
+routes, segments, notes, carriers) and :func:`plan_pairs` gathers it into the plans; no step
+writes into another's results. The paper's comparison morphs take *prepare*, then their own
+morph with its fallback. Every step works on all pairs at once (a single pair is a batch of
+one), and nothing here depends on the in-between times: :class:`PairPlans` is the plan,
+:meth:`PairPlans.frames` its evaluation.
 """
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
 from ... import tolerances as tol
-from ...ballmap.correspondence import map_batch
-from ...ballmap.onemap import OneWayMap
 from ...geometry.intersections import simple_curves
 from ...geometry.polyline import (
     coarsen,
@@ -57,9 +58,10 @@ from ...geometry.polyline import (
     resolve_spacing,
 )
 from ...geometry.ragged import Ragged
-from ..frames.layout import BallRows
+from ..frames.layout import Segment
 from ..strokes import Route
 from .carrier_choice import carrier_motions, note_shape_changes
+from .chain_maps import ball_rows, map_chains, placed
 from .crossings import cross, cut_chains, find_events
 from .curves import PairCurves, prepare_pairs
 from .deforming import DEFORMING_NOTE, SQUASHED, deforms, similar_in_place, squashes_in_place, tangent_morphs
@@ -75,16 +77,11 @@ from .fallbacks import (
     point_motion,
     unsplittable,
 )
-from .pair_plans import PairPlans
+from .pair_plans import PairNote, PairPlans, Planned, whole_segment
 from .point_routes import dot_route, guarded, own_points_route, polyline_route
 from .registration import Motions, identity_residual, orientation_free
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
-
-#: The ball-maps of a drawing run in batches of about this many input points (whole pairs: each
-#: pair's chains share one tolerance): one batch for a typical drawing, several for a huge one,
-#: which bounds the ball-map's temporaries.
-BALLMAP_BATCH_POINTS = 60_000
 
 #: Registered curves within this fraction of their size of each other (RMS) are the same stroke
 #: redrawn: their points are matched by arc length and the carrier does the motion. A ball-map
@@ -92,7 +89,7 @@ BALLMAP_BATCH_POINTS = 60_000
 NEAR = 0.01
 
 
-@dataclass
+@dataclass(frozen=True)
 class _Routes:
     """What happens to each pair of a ball-route batch (a Route each: CARRIER, NEAR, WHOLE,
     LENSES, TANGENT, ALIGNED for curves lying over each other that cannot be cut into lenses,
@@ -103,7 +100,7 @@ class _Routes:
 
 
 def choose_routes(R, Q, events, coincident, near, carrier, scale):
-    """Step 4: the route of every pair (see the module docstring); ``near`` marks the pairs
+    """Step 7: the route of every pair (see the module docstring); ``near`` marks the pairs
     within ``NEAR`` of each other that cross or overlap (the near route)."""
     n, closed = len(R), R.closed
     kind = np.where(closed & (events.count == 0), Route.WHOLE, Route.LENSES).astype(object)
@@ -137,164 +134,33 @@ def choose_routes(R, Q, events, coincident, near, carrier, scale):
     return _Routes(kind, reason)
 
 
-@dataclass
-class _ChainMaps:
-    """The ball-maps of every chain that was mapped (step 6), as arrays.
+@dataclass(frozen=True)
+class _FellBack:
+    """What step 10, *fall back*, did with a batch's chains.
 
     Attributes
     ----------
-    samples : OneWayMap
-        Their samples, ``chain`` the chain's index in the Chains.
-    lengths : ndarray, shape (H, 2)
-        Length of each chain's dense P and Q (0 where not mapped).
-    reports : list of CompatibilityReport or None
+    good : ndarray of bool, shape (H,)
+        The chains whose ball-maps hold.
+    segments : list of Segment
+        The fallbacks of the others (composite, else aligned interpolation).
+    notes : list of PairNote
+        Which fallback each took, and why.
     """
 
-    samples: OneWayMap
-    lengths: np.ndarray
-    reports: list
+    good: np.ndarray
+    segments: list
+    notes: list
 
 
-def map_chains(chains, spacing, eps):
-    """Step 6: the ball-maps of every chain but the static overlaps, in batches of whole pairs."""
-    mapped = np.flatnonzero(~chains.static)
-    sizes = [len(chains.setups[k].P) + len(chains.setups[k].Q) for k in mapped]
-    starts = np.cumsum([0] + sizes)[:-1] // BALLMAP_BATCH_POINTS
-    pair = chains.pair[mapped]
-    first_of_pair = np.r_[True, pair[1:] != pair[:-1]]
-    batch_of = np.maximum.accumulate(np.where(first_of_pair, starts, 0)) if len(mapped) else starts
-    parts, lengths, reports = [], np.zeros((len(chains), 2)), [None] * len(chains)
-    for number in np.unique(batch_of):
-        members = mapped[batch_of == number]
-        samples, lengths[members], batch_reports = _mapped_batch(chains, members, spacing, eps)
-        samples.chain = members[samples.chain]
-        parts.append(samples)
-        for i, report in zip(members, batch_reports):
-            reports[i] = report
-    return _ChainMaps(OneWayMap.concatenate(parts) if parts else OneWayMap.empty(), lengths, reports)
-
-
-def _mapped_batch(chains, members, spacing, eps):
-    """What :func:`map_chains` keeps of the ball-maps of chains ``members``: their samples
-    (OneWayMap), the lengths of their dense curves (shape (K, 2)) and their reports. The rest of
-    the batch (its dense curves and their tables, tens of MiB for a big drawing) goes before the
-    next batch is made."""
-    owners = chains.pair[members]
-    batch = map_batch([chains.setups[i] for i in members], spacing[owners], "symmetric", eps[owners])
-    return batch.samples, np.c_[batch.sides_p.rg.length, batch.sides_q.rg.length], batch.reports
-
-
-def _ball_rows(chains, maps, index, good, ends):
-    """The ball route's samples (BallRows): the chains whose ball-maps hold, and the overlaps
-    (ranges on the pairs' whole curves, offsets undoing the end gaps' displacement)."""
-    rows = maps.samples.take(good[maps.samples.chain])
-    statics = np.flatnonzero(chains.static)
-    overlap = Ragged.from_list([chains.setups[k].P for k in statics], False)
-    chain = np.r_[rows.chain, statics[overlap.owner]].astype(np.int64)
-    order = np.argsort(chain, kind="stable")
-    # An overlap stays where it is: its fractions along the piece are its own.
-    along = overlap.s / np.maximum(overlap.length, tol.TINY)[overlap.owner]
-    lengths = np.maximum(maps.lengths[rows.chain], tol.TINY)
-    u_p, u_q = np.r_[rows.s_src / lengths[:, 0], along], np.r_[rows.s_dst / lengths[:, 1], along]
-    p, m, q = (np.concatenate([getattr(rows, f), overlap.pts]) for f in ("src", "m", "dst"))
-    chain, kept = chain[order], np.flatnonzero(good | chains.static)
-    first = np.searchsorted(chains.pair, chains.pair[kept])
-    u_p, offset, on_whole = _on_whole(ends, chains.pair, chains.range_p, u_p[order], chain)
-    owner = chains.pair[kept]
-    return BallRows(
-        pair=index[owner],
-        order=kept - first,
-        sizes=np.bincount(chain, minlength=len(chains))[kept],
-        range_p=on_whole[kept],
-        range_q=ends.on_q(owner[:, None], chains.range_q[kept]),
-        static=chains.static[kept],
-        u_p=u_p,
-        u_q=u_q[order],
-        p=np.take(p, order, axis=0),
-        m=np.take(m, order, axis=0),
-        q=np.take(q, order, axis=0),
-        offset=offset,
-    )
-
-
-def _on_whole(ends, pair, range_p, u_p, chain):
-    """Samples at fractions ``u_p`` of chains at ``range_p`` on the common parts, placed on the
-    whole registered curves: their fractions of the chains' ranges there, the offsets undoing
-    the displacement, and those ranges.
-
-    Parameters
-    ----------
-    ends : Ends
-    pair : ndarray of int, shape (G,)
-        Each chain's pair.
-    range_p : ndarray, shape (G, 2)
-        Each chain's range on its pair's common part.
-    u_p : ndarray, shape (K,)
-    chain : ndarray of int, shape (K,)
-        Each sample's chain.
-
-    Returns
-    -------
-    u_p, offset, range_p : ndarrays, shapes (K,), (K, 2), (G, 2)
-    """
-    s = range_p[chain, 0] + u_p * (range_p[chain, 1] - range_p[chain, 0])
-    ranges = ends.on_p(pair[:, None], range_p)
-    at, offset = ends.place(pair[chain], s)
-    start = ranges[chain, 0]
-    span = ranges[chain, 1] - start
-    u = np.divide(at - start, span, out=u_p.astype(np.float64), where=np.abs(span) > 0)
-    return u, offset, ranges
-
-
-def _add_piece(plans, ends, index, c, morph, closed, order, ranges):
-    """A morph of chain ``order`` of (local) pair ``c`` whose pieces lie at ``ranges`` along
-    the common parts: placed on the whole curves, its samples' displacement undone."""
-    _add_pieces(plans, ends, index, [c], [morph], [closed], [order], np.asarray(ranges, dtype=np.float64)[None])
-
-
-def _add_pieces(plans, ends, index, pairs, morphs, closed, orders, ranges):
-    """:func:`_add_piece` of several morphs at once (their samples placed together).
-
-    Parameters
-    ----------
-    plans : PairPlans
-    ends : Ends
-    index : ndarray of int, shape (C,)
-        The batch's pairs in the drawing.
-    pairs : array_like of int, shape (G,)
-        The (local) pair of each morph.
-    morphs : list of Morph
-        G morphs; their ``u_p`` are replaced by fractions on the whole curves.
-    closed : array_like of bool, shape (G,)
-    orders : array_like of int, shape (G,)
-        Each morph's chain order within its pair.
-    ranges : ndarray, shape (G, 2, 2)
-        Each morph's arc-length ranges on the common parts of P and of Q.
-    """
-    pairs = np.asarray(pairs, dtype=np.int64)
-    counts = np.array([len(m.u_p) for m in morphs], dtype=np.int64)
-    u_p = np.concatenate([m.u_p for m in morphs]) if morphs else np.zeros(0)
-    u_p, offset, range_p = _on_whole(ends, pairs, ranges[:, 0], u_p, np.repeat(np.arange(len(pairs)), counts))
-    range_q = ends.on_q(pairs[:, None], ranges[:, 1])
-    stops = np.cumsum(counts)
-    for g, morph in enumerate(morphs):
-        lo, hi = stops[g] - counts[g], stops[g]
-        morph.u_p = u_p[lo:hi]
-        piece = (tuple(range_p[g]) if hi > lo else tuple(ranges[g, 0]), tuple(range_q[g]))
-        c = int(index[pairs[g]])
-        plans.add_morph(c, morph, bool(closed[g]), order=int(orders[g]), ranges=piece, offset=offset[lo:hi])
-
-
-def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
-    """Step 7 for chains that are not b-compatible: composite, then aligned interpolation (the notes say which).
-
-    Returns the chains whose ball-maps hold, shape (H,) of bool.
-    """
+def _fall_back(chains, maps, events, index, kind, spacing, ends):
+    """Step 10 for chains that are not b-compatible: composite, then aligned interpolation (the
+    notes say which); a _FellBack."""
     counts = np.bincount(chains.pair, minlength=len(index))
     good = np.array([r is not None and not r.violations for r in maps.reports], dtype=bool)
     failing = np.flatnonzero(~good & ~chains.static)
     if not len(failing):
-        return good
+        return _FellBack(good, [], [])
     orders = failing - np.searchsorted(chains.pair, chains.pair[failing])
     wanted = []
     for k, order in zip(failing, orders):
@@ -303,25 +169,22 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
         wanted.append(FailingChain(setup.P, setup.Q, setup.closed, spacing[c], where, maps.reports[k].describe()))
     # Every failing chain's composite ball-morph at once: one at a time, each paid a dozen
     # small ball-maps' fixed costs.
+    segments, notes = [], []
     for k, order, (morph, note) in zip(failing, orders, chain_fallbacks(wanted, kind)):
         c = chains.pair[k]
-        plans.notes[index[c]].append(note)
-        closed = chains.setups[k].closed
-        _add_piece(plans, ends, index, c, morph, closed, order, (chains.range_p[k], chains.range_q[k]))
-    return good
+        notes.append(PairNote(int(index[c]), note))
+        segments += placed(ends, index, [c], [morph], [order], [(chains.range_p[k], chains.range_q[k])])
+    return _FellBack(good, segments, notes)
 
 
-def register(P, Q, carrier, scale, drawing=None, given=None):
-    """Step 2: each pair's registration and carrier (see :mod:`.registration`).
+@dataclass(frozen=True)
+class Registered:
+    """What step 4, *register*, made of a batch of pairs.
 
-    Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
-    :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
-    ``drawing`` (a Similarity) is the keys' overall motion, the prior of symmetric shapes;
-    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
-
-    Returns
-    -------
+    Attributes
+    ----------
     motions : Motions
+        Each pair's carrier.
     R : Ragged
         The registered P.
     residual : ndarray, shape (C,)
@@ -331,6 +194,22 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
         the fraction of their distance the registration left; NaN for the other pairs.
     warps : dict
         Pair -> TangentWarp of the loops squashed in place (:mod:`.deforming`).
+    """
+
+    motions: Motions
+    R: Ragged
+    residual: np.ndarray
+    shape_change: np.ndarray
+    warps: dict
+
+
+def register(P, Q, carrier, scale, drawing=None, given=None):
+    """Step 4: each pair's registration and carrier (see :mod:`.registration`), a Registered.
+
+    Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
+    :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
+    ``drawing`` (a Similarity) is the keys' overall motion, the prior of symmetric shapes;
+    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
     """
     motion, kept = carrier_motions(P, Q, carrier, scale, drawing)
     # The motion of least travel: a loop squashed in place rather than turned (:mod:`.deforming`).
@@ -343,19 +222,21 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
             motion.put(np.array([c]), own)
     pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
-    return motion, R, identity_residual(R, Q), kept, warps
+    return Registered(motion, R, identity_residual(R, Q), kept, warps)
 
 
-def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
-    """Steps 2-7 for the pairs ``index`` of ``pairs`` (validated); returns their Motions."""
+def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
+    """Steps 4-10 for the pairs ``index`` of ``pairs`` (validated): what they planned (Planned)."""
     closed = np.array([pairs[c].closed for c in index], dtype=bool)
     # Curves drawn far more densely than they will be sampled are resampled first, each at its
     # own default spacing (the keys may differ in size a lot).
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
-    motions, R, residual, shape_change, warps = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
-    note_shape_changes(plans.notes, index, motions, shape_change)
+    registered = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    motions, R, shape_change, warps = registered.motions, registered.R, registered.shape_change, registered.warps
+    residual = registered.residual.copy()  # measured again below on the common parts
+    notes = list(note_shape_changes(index, motions, shape_change))
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
     h = default_spacings(R, Q) if spacing is None else np.full(len(index), float(spacing))
@@ -377,70 +258,72 @@ def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
     events = find_events(Rc, Qc, scale, h / 2, ~coincident & ~crossing_near & ~deforming)
     routes = choose_routes(Rc, Qc, events, coincident, crossing_near | (near & (events.count > 0)), carrier, scale)
     # Nested loops as drawn with carrier 'none': the paper's ball-morph, asked for.
-    routes.route[
-        deforming
-        | similar_in_place(P, Q, (routes.route == Route.WHOLE) & ~motions.moving & closed & (carrier != "none"))
-    ] = Route.TANGENT
-    plans.set_routes(index, routes.route)
-    plans.closed[index], plans.lengths[index] = closed, np.c_[R.length, Q.length]
-    whole_ranges = np.stack([np.c_[np.zeros(len(index)), Rc.length], np.c_[np.zeros(len(index)), Qc.length]], 1)
-    _no_ball_routes(plans, ends, index, routes, (Rc, Qc, closed), h, whole_ranges)
-    _tangent_route(
-        plans, ends, index, np.flatnonzero(routes.route == Route.TANGENT), (Rc, Qc, closed, warps), whole_ranges
-    )
-    near = np.flatnonzero(routes.route == Route.NEAR)
-    if len(near):
-        morphs = arc_length_morphs(Rc.take(near), Qc.take(near), h[near])
-        _add_pieces(plans, ends, index, near, morphs, closed[near], np.zeros(len(near)), whole_ranges[near])
+    in_place = similar_in_place(P, Q, (routes.route == Route.WHOLE) & ~motions.moving & closed & (carrier != "none"))
+    routes = _Routes(np.where(deforming | in_place, Route.TANGENT, routes.route), routes.reason)
+    segments, direct_notes = _direct_routes(ends, index, routes, (Rc, Qc, closed, warps), h)
     lensed = routes.route == Route.LENSES
     whole = np.flatnonzero((routes.route == Route.WHOLE) | (routes.route == Route.CARRIER))
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
-    plans.joined[index] = closed & lensed
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
-    good = _fall_back(plans, chains, maps, events, index, kind, h, ends)
-    plans.ball.append(_ball_rows(chains, maps, index, good, ends))
-    _add_overhangs(plans, index, R, Q, ends, h)
-    pieces = np.bincount(chains.pair, minlength=len(index))
-    for c in np.flatnonzero(lensed & (pieces > 1)):
-        plans.notes[index[c]].append(f"split at {pieces[c]} crossing/overlap pieces")
-    return motions
+    fell_back = _fall_back(chains, maps, events, index, kind, h, ends)
+    ball = ball_rows(chains, maps, index, fell_back.good, ends)
+    segments += fell_back.segments + _overhangs(index, R, Q, ends, h)
+    cut = np.bincount(chains.pair, minlength=len(index))
+    notes += direct_notes + fell_back.notes
+    notes += [
+        PairNote(int(index[c]), f"split at {cut[c]} crossing/overlap pieces")
+        for c in np.flatnonzero(lensed & (cut > 1))
+    ]
+    lengths = np.c_[R.length, Q.length]
+    return Planned(
+        index, tuple(routes.route), closed, lengths, tuple(segments), tuple(notes), motions, closed & lensed, ball
+    )
 
 
-def _no_ball_routes(plans, ends, index, routes, curves, h, ranges):
-    """The pairs of ``routes`` (_Routes) no ball-morph can follow: LINEAR, ALIGNED, each with
-    the note that says why; ``curves`` are the batch's ``(R, Q, closed)``."""
-    R, Q, closed = curves
+def _direct_routes(ends, index, routes, curves, h):
+    """The segments and notes of the pairs of ``routes`` (_Routes) whose morphs take the whole
+    common parts directly, no ball-map of theirs asked: LINEAR and ALIGNED (each with the note
+    that says why), TANGENT and NEAR. ``curves`` are the batch's common parts R and Q (Ragged),
+    its loops' flags and the warps already made (pair -> TangentWarp).
+
+    Returns
+    -------
+    segments : list of Segment
+    notes : list of PairNote
+    """
+    R, Q, closed, warps = curves
+    ranges = np.stack([np.c_[np.zeros(len(index)), R.length], np.c_[np.zeros(len(index)), Q.length]], 1)
+    segments, notes = [], []
     for c in np.flatnonzero(routes.route == Route.LINEAR):
         morph, note = linear_fallback(R.curve(c), Q.curve(c), bool(closed[c]), h[c], routes.reason[c])
-        plans.notes[index[c]].append(note)
-        _add_piece(plans, ends, index, c, morph, bool(closed[c]), 0, ranges[c])
+        notes.append(PairNote(int(index[c]), note))
+        segments += placed(ends, index, [c], [morph], [0], ranges[c])
     aligned = np.flatnonzero(routes.route == Route.ALIGNED)
     if len(aligned):
         pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in aligned]
-        morphs, notes = aligned_fallbacks(pairs, h[aligned], [routes.reason[c] for c in aligned])
-        for c, note in zip(aligned, notes):
-            plans.notes[index[c]].append(note)
-        _add_pieces(plans, ends, index, aligned, morphs, closed[aligned], np.zeros(len(aligned)), ranges[aligned])
+        morphs, said = aligned_fallbacks(pairs, h[aligned], [routes.reason[c] for c in aligned])
+        notes += [PairNote(int(index[c]), note) for c, note in zip(aligned, said)]
+        segments += placed(ends, index, aligned, morphs, np.zeros(len(aligned)), ranges[aligned])
+    tangent = np.flatnonzero(routes.route == Route.TANGENT)
+    if len(tangent):
+        # Changing shape where they lie: tangent-aligned, straight paths (:mod:`.deforming`),
+        # warped together (a squash's warps made by :func:`register`).
+        pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in tangent]
+        morphs = tangent_morphs(pairs, [warps.get(int(c)) for c in tangent])
+        notes += [PairNote(int(index[c]), DEFORMING_NOTE) for c in tangent]
+        segments += placed(ends, index, tangent, morphs, np.zeros(len(tangent)), ranges[tangent])
+    near = np.flatnonzero(routes.route == Route.NEAR)
+    if len(near):
+        morphs = arc_length_morphs(R.take(near), Q.take(near), h[near])
+        segments += placed(ends, index, near, morphs, np.zeros(len(near)), ranges[near])
+    return segments, notes
 
 
-def _tangent_route(plans, ends, index, rows, curves, ranges):
-    """The pairs ``rows`` that change shape where they lie: tangent-aligned, straight paths
-    (:mod:`.deforming`), warped together. ``curves``: the common parts R and Q (Ragged), the
-    loops' flags and the warps already made (pair -> TangentWarp: a squash's, see
-    :func:`register`)."""
-    R, Q, closed, known = curves
-    if not len(rows):
-        return
-    pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in rows]
-    morphs = tangent_morphs(pairs, [known.get(int(c)) for c in rows])
-    for c in rows:
-        plans.notes[index[c]].append(DEFORMING_NOTE)
-    _add_pieces(plans, ends, index, rows, morphs, closed[rows], np.zeros(len(rows)), ranges[rows])
-
-
-def _add_overhangs(plans, index, R, Q, ends, spacing):
+def _overhangs(index, R, Q, ends, spacing):
     """The parts of open strokes beyond their common part (see :mod:`.ends`): first and last
-    chains of their pairs, sliding into the common part's ends or growing out of them."""
+    chains of their pairs, sliding into the common part's ends or growing out of them; their
+    Segments (list)."""
+    segments = []
     for c in range(len(index)):
         for which, order in ((0, -1), (1, np.iinfo(np.int32).max)):
             start_or_end = (0.0, R.length[c]), (0.0, Q.length[c])
@@ -455,7 +338,8 @@ def _add_overhangs(plans, index, R, Q, ends, spacing):
                 morph = overhang_morph(piece, s0 - at, s1 - at, attach - at, gap, grow, spacing[c])
                 other = ends.keep_q[c, which] if not grow else ends.keep_p[c, which]
                 ranges = ((s0, s1), (other, other)) if not grow else ((other, other), (s0, s1))
-                plans.add_morph(int(index[c]), morph, False, order=int(order), ranges=ranges)
+                segments.append(Segment(int(index[c]), int(order), *ranges, morph=morph))
+    return segments
 
 
 def _piece(curves, c, s0, s1):
@@ -475,48 +359,63 @@ def _piece(curves, c, s0, s1):
     return curves.curve(c)[first : last + 1].copy(), float(s[first])
 
 
-def _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing=None):
+def _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing=None):
     """The ball route for every ready pair at once; should it fail (a bug), pair by pair, so one
-    pair never stops the others: a failing pair takes linear interpolation and says why."""
-    index = np.asarray(ready)
-    kept = {c: len(plans.notes[c]) for c in ready}
+    pair never stops the others: a failing pair takes linear interpolation and says why.
+
+    Returns
+    -------
+    list of Planned
+        What the route planned: one for the batch, or one per pair.
+    """
     try:
-        return _ball_route(plans, pairs, index, kind, carrier, spacing, drawing)
+        return [_ball_route(pairs, np.asarray(ready), kind, carrier, spacing, drawing)]
     except Exception as exc:  # reported below, pair by pair
         batch_error = f"{type(exc).__name__}: {exc}"
-    plans.drop(set(ready), kept)
     parts = []
     for c in ready:
         try:
-            parts.append(_ball_route(plans, pairs, np.array([c]), kind, carrier, spacing, drawing))
+            parts.append(_ball_route(pairs, np.array([c]), kind, carrier, spacing, drawing))
         except Exception as exc:
-            plans.drop({c}, kept)
             pair = pairs[c]
             reason = f"the {kind}-ball morph failed ({type(exc).__name__}: {exc}; with the others: {batch_error})"
             morph, note = linear_fallback(
                 pair.P, pair.Q, pair.closed, resolve_spacing(pair.P, pair.Q, pair.closed, None), reason
             )
-            plans.notes[c].append(note)
-            plans.add_morph(c, morph, pair.closed, pair.lengths)
-            plans.set_route([c], Route.LINEAR)
-            parts.append(Motions.identity(1))
-    names = [f.name for f in fields(Motions) if f.name != "kind"]
-    return Motions(*(np.concatenate([getattr(m, name) for m in parts]) for name in names), parts[-1].kind)
+            segments, lengths = (whole_segment(c, morph, pair.lengths),), np.array([pair.lengths], dtype=np.float64)
+            closed = np.array([pair.closed])
+            notes = (PairNote(c, note),)
+            parts.append(Planned(np.array([c]), (Route.LINEAR,), closed, lengths, segments, notes, Motions.identity(1)))
+    return parts
 
 
-def _comparison_route(plans, pairs, ready, method, spacing):
-    """The paper's comparison morphs, pair by pair, each with its fallback."""
+def _comparison_route(pairs, ready, method, spacing):
+    """The paper's comparison morphs, pair by pair, each with its fallback (a Planned)."""
     if not ready:
-        return
+        return Planned.nothing()
     closed = np.array([pairs[c].closed for c in ready], dtype=bool)
     Ps = coarsen(Ragged.from_list([pairs[c].P for c in ready], closed), spacing)
     Qs = coarsen(Ragged.from_list([pairs[c].Q for c in ready], closed), spacing)
+    segments, notes = [], []
     for k, c in enumerate(ready):
         P, Q, loop = Ps.curve(k), Qs.curve(k), bool(closed[k])
-        morph, notes = comparison_morph(P, Q, loop, method, resolve_spacing(P, Q, loop, spacing))
-        plans.notes[c] += notes
-        plans.add_morph(c, morph, loop, (Ps.length[k], Qs.length[k]))
-    plans.set_route(ready, Route.COMPARISON)
+        morph, said = comparison_morph(P, Q, loop, method, resolve_spacing(P, Q, loop, spacing))
+        notes += [PairNote(c, text) for text in said]
+        segments.append(whole_segment(c, morph, (Ps.length[k], Qs.length[k])))
+    lengths = np.c_[Ps.length, Qs.length]
+    return Planned(np.asarray(ready), (Route.COMPARISON,) * len(ready), closed, lengths, tuple(segments), tuple(notes))
+
+
+def _point_motions(pairs, dots):
+    """The dots of a comparison morph: straight point motion, no carrier (a Planned)."""
+    segments = [
+        whole_segment(c, point_motion(pairs[c].xy_a, pairs[c].u_a, pairs[c].xy_b, pairs[c].u_b), (1.0, 1.0))
+        for c in dots
+    ]
+    n = len(dots)
+    return Planned(
+        np.asarray(dots, dtype=np.int64), (Route.DOT,) * n, np.zeros(n, bool), np.ones((n, 2)), tuple(segments)
+    )
 
 
 def _witnessed(drawing, pairs, ready):
@@ -551,14 +450,13 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     -------
     PairPlans
     """
-    ready = prepare_pairs(pairs, method, spacing)
+    prepared = prepare_pairs(pairs, method, spacing)
+    pairs, ready = prepared.pairs, prepared.ready
     plans = PairPlans(pairs)
     dots = [c for c, pair in enumerate(pairs) if pair.P is None]
     if method not in BALL_METHODS:
-        for c in dots:
-            plans.add_morph(c, point_motion(pairs[c].xy_a, pairs[c].u_a, pairs[c].xy_b, pairs[c].u_b), False)
-        plans.set_route(dots, Route.DOT)
-        _comparison_route(plans, pairs, ready, method, spacing)
+        plans.gather(_point_motions(pairs, dots))
+        plans.gather(_comparison_route(pairs, ready, method, spacing))
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
@@ -568,11 +466,11 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     pieces = [c for c in ready if pairs[c].motion is not None]
     ready = [c for c in ready if pairs[c].motion is None]
     for route in (own_points_route, polyline_route):
-        ready = guarded(route, plans, pairs, ready, carrier, drawing)
+        planned, ready = guarded(route, pairs, ready, carrier, drawing)
+        plans.gather(planned)
     ready = sorted(ready + pieces)
-    if ready:
-        motions = _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing)
-        plans.motions.put(np.asarray(ready), motions)
+    for planned in _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing) if ready else ():
+        plans.gather(planned)
     return plans.finish(kind)
 
 

@@ -1,7 +1,8 @@
 """The routes that keep the keys' own points (before the ball route): pairs whose points match one
 for one under a similarity (:mod:`.exact_fit`) and polylines with as many corners
-(:mod:`.polylines`), each on its carrier, each guarded so that a failure sends its pairs on; and
-dots, moved straight or riding on the drawing's turn."""
+(:mod:`.polylines`), each on its carrier, each returning what it planned (:class:`.Planned`) and
+guarded so that a failure sends its pairs on; and dots, moved straight or riding on the
+drawing's turn."""
 
 import numpy as np
 
@@ -15,28 +16,49 @@ from ..strokes import Route
 from .carrier_choice import carrier_motions, note_shape_changes
 from .exact_fit import exact_fit, may_be_exact
 from .fallbacks import point_motion
+from .pair_plans import Planned, whole_segment
 from .polylines import corners_of, polyline_morph
 from .registration import Fits, motions, riding_fits, similarity_matrices
 
 __all__ = ["guarded", "dot_route", "own_points_route", "polyline_route"]
 
 
-def guarded(route, plans, pairs, ready, carrier, drawing):
-    """A route for the pairs it takes; should it fail (a bug), it takes none of them and every
-    ready pair goes on to the ball route, which has its own pair-by-pair isolation."""
-    kept = {c: len(plans.notes[c]) for c in ready}
-    motions_before = plans.motions.take(np.arange(len(pairs)))
+def guarded(route, pairs, ready, carrier, drawing):
+    """A route for the pairs it takes (what it planned, and the other ready pairs); should it
+    fail (a bug), it takes none of them and every ready pair goes on to the ball route, which
+    has its own pair-by-pair isolation."""
     try:
-        return route(plans, pairs, ready, carrier, drawing)
+        return route(pairs, ready, carrier, drawing)
     except Exception:  # the ball route plans them instead, and reports anything it cannot do
-        plans.drop(set(ready), kept)
-        plans.motions = motions_before
-        return ready
+        return Planned.nothing(), ready
 
 
-def polyline_route(plans, pairs, ready, carrier, drawing):
+def _taken(pairs, found, route, segments, motion, notes=()):
+    """What a route that keeps the keys' points planned for the pairs ``found`` (ints): their
+    whole-pair ``segments`` on their carriers ``motion``."""
+    index = np.asarray(found, dtype=np.int64)
+    return Planned(
+        index,
+        (route,) * len(index),
+        np.array([pairs[c].closed for c in index], dtype=bool),
+        np.array([pairs[c].lengths for c in index], dtype=np.float64).reshape(-1, 2),
+        tuple(segments),
+        tuple(notes),
+        motion,
+    )
+
+
+def polyline_route(pairs, ready, carrier, drawing):
     """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
-    straight, on the carrier. Returns the other ready pairs."""
+    straight, on the carrier.
+
+    Returns
+    -------
+    planned : Planned
+        What it planned for the pairs it took.
+    rest : list of int
+        The other ready pairs.
+    """
     found, rest = [], []
     closed = [pairs[c].closed for c in ready]
     of_p, of_q = corners_of([pairs[c].P for c in ready], closed), corners_of([pairs[c].Q for c in ready], closed)
@@ -46,28 +68,36 @@ def polyline_route(plans, pairs, ready, carrier, drawing):
         else:
             found.append((c, ca, cb))
     if not found:
-        return rest
+        return Planned.nothing(), rest
     index = np.array([c for c, _, _ in found])
     P = Ragged.from_list([pairs[c].P for c in index], [pairs[c].closed for c in index])
     Q = Ragged.from_list([pairs[c].Q for c in index], P.closed)
     scale = pair_scales(P, Q)
     motion, shape_change = carrier_motions(P, Q, carrier, scale, drawing)
-    note_shape_changes(plans.notes, index, motion, shape_change)
-    plans.motions.put(index, motion)
+    segments = []
     for k, (c, ca, cb) in enumerate(found):
         pair = pairs[c]
 
         def register_a(pts, k=k):
             return pts @ motion.A[k].T + motion.b[k] if motion.moving[k] else pts
 
-        plans.add_morph(c, polyline_morph(pair.P, ca, pair.Q, cb, pair.closed, register_a), pair.closed, pair.lengths)
-    plans.set_route([c for c, _, _ in found], Route.POLYLINE)
-    return rest
+        morph = polyline_morph(pair.P, ca, pair.Q, cb, pair.closed, register_a)
+        segments.append(whole_segment(c, morph, pair.lengths))
+    notes = note_shape_changes(index, motion, shape_change)
+    return _taken(pairs, index, Route.POLYLINE, segments, motion, notes), rest
 
 
-def own_points_route(plans, pairs, ready, carrier, drawing):
+def own_points_route(pairs, ready, carrier, drawing):
     """Pairs whose points match one for one under a similarity (see :mod:`.exact_fit`): the key's
-    own points, moved by the carrier. Returns the other ready pairs."""
+    own points, moved by the carrier.
+
+    Returns
+    -------
+    planned : Planned
+        What it planned for the pairs it took.
+    rest : list of int
+        The other ready pairs.
+    """
     rest, found = [], []
     turn = 0.0 if drawing is None else drawing.turn
     maybe = may_be_exact(
@@ -81,7 +111,7 @@ def own_points_route(plans, pairs, ready, carrier, drawing):
         else:
             found.append((c, fit))
     if not found:
-        return rest
+        return Planned.nothing(), rest
     index = np.array([c for c, _ in found])
     P = Ragged.from_list([pairs[c].xy_a for c in index], [pairs[c].closed for c in index])
     a = np.array([fit.a for _, fit in found])
@@ -92,15 +122,14 @@ def own_points_route(plans, pairs, ready, carrier, drawing):
     fits = Fits(similarity_matrices(a), from_complex(b), np.zeros(len(index)))
     kind = "rigid" if carrier == "rigid" else "similarity"
     motion = motions(P, fits, kind, scale, ~still & (carrier != "none"), drawing)
-    plans.motions.put(index, motion)
+    segments = []
     for k, (c, fit) in enumerate(found):
         pair = pairs[c]
         moved = pair.xy_a @ motion.A[k].T + motion.b[k] if motion.moving[k] else pair.xy_a
         order = (np.arange(len(pair.xy_b)) + fit.shift) % len(pair.xy_b)
         morph = PathMorph("own points", pair.closed, LinearPaths(moved, pair.xy_b[order]), pair.u_a, pair.u_b[order])
-        plans.add_morph(c, morph, pair.closed, pair.lengths)
-    plans.set_route([c for c, _ in found], Route.OWN_POINTS)
-    return rest
+        segments.append(whole_segment(c, morph, pair.lengths))
+    return _taken(pairs, index, Route.OWN_POINTS, segments, motion), rest
 
 
 def dot_route(plans, pairs, dots, carrier, drawing):

@@ -506,13 +506,14 @@ def test_nearest_edges_pick_the_least_candidate_stepping_or_sorting(seed, short_
         pts[rng.integers(n)] = pts[0]
         curves.append(pts)
     batch = Ragged.from_list(curves, [bool(rng.random() < 0.5) for _ in curves])
-    owner = rng.integers(0, len(curves), 80)
-    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 3, 80) % batch.n[owner]]
-    points = np.where(rng.random((80, 1)) < 0.4, on_vertex, rng.uniform(-0.5, 1.5, (80, 2)))
-    reach = rng.choice([0.01, 0.2, np.inf], 80)
+    # Three queries on every curve at least: more than every edge twice, so the tree searches.
+    owner = np.r_[rng.integers(0, len(curves), 80), np.repeat(np.arange(len(curves)), 3)]
+    k = len(owner)
+    on_vertex = batch.pts[batch.offsets[owner] + rng.integers(0, 3, k) % batch.n[owner]]
+    points = np.where(rng.random((k, 1)) < 0.4, on_vertex, rng.uniform(-0.5, 1.5, (k, 2)))
+    reach = rng.choice([0.01, 0.2, np.inf], k)
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(projection, "_SHORT_RUNS", short_runs)
-        patch.setattr(projection, "_DIRECT_PAIRS_PER_EDGE", 0)
         got = NearestEdges(batch).within(points, owner, reach)
     for g, w in zip(got, _nearest_edges_brute(points, owner, batch, reach)):
         np.testing.assert_array_equal(g, w)
@@ -540,9 +541,10 @@ def test_nearest_edges_cut_only_reaches_their_far_corner_would(seed, scale):
 
 
 @pytest.mark.parametrize("seed", range(6))
-def test_few_queries_per_curve_measure_every_edge_as_the_tree_would(seed, monkeypatch):
+def test_few_queries_per_curve_measure_every_edge_as_the_tree_would(seed):
     # One query per curve (the ends of strokes): every edge of its curve is measured and no
-    # tree is built; the very answers of the tree's search and of the brute force.
+    # tree is built; the very answers of the tree's search (which three queries per curve
+    # take: more than every edge twice) and of the brute force.
     rng = np.random.default_rng(seed)
     curves = [np.cumsum(rng.normal(0, 0.05, (int(rng.integers(2, 120)), 2)), axis=0) for _ in range(7)]
     curves[0][3 % len(curves[0])] = curves[0][0]  # a zero-length edge or an exact tie
@@ -555,11 +557,11 @@ def test_few_queries_per_curve_measure_every_edge_as_the_tree_would(seed, monkey
     direct = NearestEdges(batch)
     got = direct.within(points, owner, reach)
     assert "_index" not in vars(direct)
-    monkeypatch.setattr(projection, "_DIRECT_PAIRS_PER_EDGE", 0)
     searched = NearestEdges(batch)
-    for g, t, w in zip(got, searched.within(points, owner, reach), want):
+    thrice = [np.repeat(a, 3, axis=0) for a in (points, owner, reach)]
+    for g, t, w in zip(got, searched.within(*thrice), want):
         np.testing.assert_array_equal(g, w)
-        np.testing.assert_array_equal(t, w)
+        np.testing.assert_array_equal(t, np.repeat(w, 3))
     assert "_index" in vars(searched)
 
 

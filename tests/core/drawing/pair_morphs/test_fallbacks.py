@@ -148,7 +148,7 @@ def test_one_batch_builds_every_stage_ball_morph_of_a_side(monkeypatch):
 
 
 def _jagged(n, seed, points=60):
-    """The benchmark's jagged redraws (tools/bench_drawings.py): wavy strokes redrawn with a
+    """The benchmark's jagged redraws (tests/fixtures/bench_drawings.py): wavy strokes redrawn with a
     tremor that crosses the first drawing again and again, as two StrokeSets on the XZ canvas."""
     keys = bench_drawings.make_keys("jagged", n, points, seed)
     return tuple(StrokeSet.from_strokes([np.c_[s[:, 0], np.zeros(len(s)), s[:, 1]] for s in key]) for key in keys)

@@ -1,11 +1,17 @@
 """The stroke-pair pipeline (drawing/pair_morphs/pipeline.py): the route each pair takes is a
-field of its report (``PairReport.used.route``), never parsed from the report's words."""
+field of its report (``PairReport.used.route``), never parsed from the report's words; steps
+return what they planned (Planned) and the pipeline gathers it."""
 
 import numpy as np
 import pytest
 from shapes import circle
 
 import ballmorph_core as bm
+from ballmorph_core.drawing.pair_morphs.curves import PairCurves, prepare_pairs
+from ballmorph_core.drawing.pair_morphs.fallbacks import point_motion
+from ballmorph_core.drawing.pair_morphs.pair_plans import PairNote, PairPlans, Planned, whole_segment
+from ballmorph_core.drawing.pair_morphs.pipeline import plan_pairs
+from ballmorph_core.drawing.pair_morphs.point_routes import guarded, own_points_route
 from ballmorph_core.drawing.strokes import Route
 
 
@@ -56,3 +62,50 @@ def test_a_dot_moves_point_by_point():
 def test_the_papers_comparison_morphs_take_their_own_route(method):
     route, pair = _route(_arch(0.2), _arch(0.45), False, method=method)
     assert route == Route.COMPARISON and method in pair.used.morphs, pair
+
+
+def _pair_curves(a, b, closed):
+    u = [np.linspace(0.0, 1.0, len(c)) for c in (a, b)]
+    return PairCurves(np.asarray(a, float), u[0], closed, np.asarray(b, float), u[1], closed)
+
+
+def test_planning_leaves_the_pairs_it_is_given_as_they_were():
+    """Step 1 returns prepared copies: the pairs plan_pairs receives keep no curves or notes of it."""
+    pairs = [_pair_curves(circle(1.0, 40), circle(1.2, 50), True), _pair_curves([[0.0, 0.0]], [[1.0, 0.0]], False)]
+    pairs.append(PairCurves(pairs[0].xy_a, pairs[0].u_a, True, pairs[0].xy_b, pairs[0].u_b, False))
+    plans = plan_pairs(pairs)
+    assert all(p.P is None and p.Q is None and not p.notes and p.closed is False for p in pairs)
+    assert any("cyclic and the other's is not" in note for note in plans.notes[2])
+    assert any("too few distinct points" in note for note in plans.notes[1])
+    assert plans.used[1].route == Route.DOT and all(m.route is not None for m in plans.used)
+
+
+def test_a_failing_route_takes_no_pair_and_sends_them_all_on():
+    """guarded: a route that raises plans nothing (nothing to undo) and every ready pair goes on."""
+    pairs = [_pair_curves(circle(1.0, 40), circle(1.0, 40) + 1.0, True)]
+
+    def broken(pairs, ready, carrier, drawing):
+        raise ZeroDivisionError("simulated core bug")
+
+    planned, rest = guarded(broken, pairs, [0], "similarity", None)
+    assert rest == [0] and len(planned.pairs) == 0 and not planned.segments and not planned.notes
+    planned, rest = guarded(
+        own_points_route, prepare_pairs(pairs, "circular-ball", None).pairs, [0], "similarity", None
+    )
+    assert rest == [] and planned.routes == (Route.OWN_POINTS,) and len(planned.segments) == 1
+
+
+def test_a_step_s_plan_is_gathered_in_order():
+    """PairPlans.gather writes what a step planned: routes, flags, notes after the pair's own."""
+    pairs = [_pair_curves(circle(1.0, 40), circle(1.0, 40), True) for _ in range(3)]
+    plans = PairPlans(pairs)
+    morph = point_motion(circle(1.0, 8), np.linspace(0, 1, 8), circle(1.0, 8), np.linspace(0, 1, 8))
+    notes = (PairNote(2, "first"), PairNote(0, "zero"), PairNote(2, "second"))
+    segments = (whole_segment(2, morph, (3.0, 4.0)), whole_segment(0, morph, (1.0, 2.0)))
+    closed, lengths = np.array([True, False]), np.array([[3.0, 4.0], [1.0, 2.0]])
+    plans.gather(Planned(np.array([2, 0]), (Route.LINEAR, Route.NEAR), closed, lengths, segments, notes))
+    assert plans.routes == [Route.NEAR, None, Route.LINEAR]
+    assert plans.notes == [["zero"], [], ["first", "second"]]
+    np.testing.assert_array_equal(plans.closed, [False, False, True])
+    np.testing.assert_array_equal(plans.lengths, [[1.0, 2.0], [1.0, 1.0], [3.0, 4.0]])
+    assert [s.pair for s in plans.segments] == [2, 0] and plans.segments[0].range_q == (0.0, 4.0)

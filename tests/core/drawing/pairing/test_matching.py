@@ -4,7 +4,6 @@ import itertools
 import time
 
 import bench_drawings
-import bench_matching
 import numpy as np
 import pytest
 from hypothesis import given
@@ -332,7 +331,7 @@ def test_a_guess_s_last_solve_is_skipped_only_where_it_cannot_win(monkeypatch):
     # here whatever it accounts for): its guess's tables are far behind the best matching,
     # and the last of them is not solved.
     monkeypatch.setattr(motion_search, "MATCH_ORDER_EXPLAINS", -np.inf)
-    a, b, perm = bench_matching.reordered_hatching(60, 4)
+    a, b, perm = bench_drawings.reordered_hatching(60, 4)
     flags = [False] * 60
     solves = []
 
@@ -607,16 +606,6 @@ def test_every_row_wanting_one_column_is_solved_by_the_rearrangement_inequality(
     k = min(r, c)
     np.testing.assert_array_equal(rows, np.arange(r - k, r))
     np.testing.assert_array_equal(cols, np.arange(c - k, c))
-
-
-def test_the_matching_benchmark_times_right_matchings_and_rejects_bad_sizes(capsys):
-    assert bench_matching.main(["--sizes", "20,40", "--markdown"]) == 0
-    table = capsys.readouterr().out
-    assert "| 20 |" in table and "| 40 |" in table and "x |" in table
-    for bad in ("ten", "0", ""):
-        with pytest.raises(SystemExit):
-            bench_matching.main(["--sizes", bad])
-        assert "--sizes" in capsys.readouterr().err
 
 
 def _turned_arcs(n, degrees, scale=1.0, seed=3):

@@ -2,7 +2,6 @@
 strokes widened, and the drawing order's guess (issue 14: a drawing of many small strokes)."""
 
 import bench_drawings
-import bench_matching
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -118,7 +117,7 @@ def test_the_near_pairs_match_as_the_whole_table(draw, monkeypatch):
 def _hatching_matched_without_the_whole_table(monkeypatch, n, move=(0.0, 0.0)):
     """Whether ``n`` reordered hatch lines, key B also moved by ``move``, pair right with the
     whole table never priced (two bools)."""
-    a, b, perm = bench_matching.reordered_hatching(n, 2)
+    a, b, perm = bench_drawings.reordered_hatching(n, 2)
     b = [s + move for s in b]
     flags = [False] * n
     made = []
@@ -137,7 +136,7 @@ def test_a_stroke_whose_partner_is_far_gets_all_its_pairs_priced(monkeypatch):
     # One hatch line of key B is redrawn three lines away: the pairs about it cost more than
     # the near level, so potentials break the first certificate; those strokes' pairs are all
     # priced, and the solve then settles the drawing as the whole table does.
-    a, b, perm = bench_matching.reordered_hatching(120, 3)
+    a, b, perm = bench_drawings.reordered_hatching(120, 3)
     far = int(np.flatnonzero(perm == 0)[0])
     b[far] = b[far] + [0.9, 0.6]
     flags = [False] * 120
@@ -238,7 +237,7 @@ def test_a_few_strokes_always_try_the_drawing_order_guess(monkeypatch):
 def _candidates_per_stroke(n):
     """Pairs a stroke of ``n`` reordered hatch lines may form (its place term alone below the
     limit), on average over the strokes."""
-    a, b, _ = bench_matching.reordered_hatching(n, 3)
+    a, b, _ = bench_drawings.reordered_hatching(n, 3)
     table = _table(((a, [False] * n), (b, [False] * n)))
     return len(table.near(1.0 + 0j, 0j)[0]) / n
 
@@ -251,7 +250,7 @@ def test_a_hatch_line_reaches_as_many_candidates_however_many_lines_are_drawn():
     small, large = _candidates_per_stroke(800), _candidates_per_stroke(1600)
     assert large <= 1.25 * small
     # ... and up to that count, the floor is the drawing's share, as it always was.
-    a, b, _ = bench_matching.reordered_hatching(100, 3)
+    a, b, _ = bench_drawings.reordered_hatching(100, 3)
     table = _table(((a, [False] * 100), (b, [False] * 100)))
     keys = [descriptors.KeyDescriptors(k, [False] * 100, "a", "c", descriptors.MATCH_SAMPLES) for k in (a, b)]
     assert table.dot_spread == descriptors.DOT_SPREAD * max(k.diagonal for k in keys)
@@ -260,7 +259,7 @@ def test_a_hatch_line_reaches_as_many_candidates_however_many_lines_are_drawn():
 def _moved_hatching(n, seed, far, angle, turn=0.0):
     """Reordered hatch lines (key A) and a motion moving them ``far`` of the drawing's width
     towards ``angle``, turned by ``turn`` (radians): the table and the motion."""
-    a, b, _ = bench_matching.reordered_hatching(n, seed)
+    a, b, _ = bench_drawings.reordered_hatching(n, seed)
     width = 0.3 * np.ceil(np.sqrt(n))
     return _table(((a, [False] * n), (b, [False] * n))), (np.exp(1j * turn), far * width * np.exp(1j * angle))
 
