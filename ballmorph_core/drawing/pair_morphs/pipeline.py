@@ -6,8 +6,9 @@ Ball-morph methods::
             -> choose routes -> cut chains -> map chains -> fall back -> lay out
 
 1. *prepare* (:mod:`.curves`): validate each pair's curves; strokes with fewer than two
-   distinct points move straight, point by point (riding the drawing's turn when it turns, the
-   DOT route); a loop paired with an open stroke is morphed as two open strokes.
+   distinct points move straight, point by point (riding their group's turn, or the drawing's
+   when it turns and some stroke shows it: :class:`.registration.Rides`; the DOT route); a
+   loop paired with an open stroke is morphed as two open strokes.
 2. *own points* (:mod:`.point_routes`, :mod:`.exact_fit`): pairs whose points match one for
    one under a similarity keep them (OWN_POINTS).
 3. *polylines* (:mod:`.point_routes`, :mod:`.polylines`): polylines with as many corners go
@@ -57,8 +58,9 @@ from ...geometry.polyline import (
     resolve_spacing,
 )
 from ...geometry.ragged import Ragged
+from ...geometry.similarity import Similarity
 from ..frames.layout import BallRows
-from ..strokes import Route
+from ..strokes import Route, as_written
 from .carrier_choice import carrier_motions, note_shape_changes
 from .crossings import cross, cut_chains, find_events
 from .curves import PairCurves, prepare_pairs
@@ -77,7 +79,7 @@ from .fallbacks import (
 )
 from .pair_plans import PairPlans
 from .point_routes import dot_route, guarded, own_points_route, polyline_route
-from .registration import Motions, identity_residual, orientation_free
+from .registration import Motions, Rides, identity_residual
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 
@@ -311,13 +313,14 @@ def _fall_back(plans, chains, maps, events, index, kind, spacing, ends):
     return good
 
 
-def register(P, Q, carrier, scale, drawing=None, given=None):
+def register(P, Q, carrier, scale, drawing=None, given=None, rides=None):
     """Step 2: each pair's registration and carrier (see :mod:`.registration`).
 
     Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
     :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
     ``drawing`` (a Similarity) is the keys' overall motion, the prior of symmetric shapes;
-    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
+    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen;
+    ``rides`` (Rides) what the strokes without an orientation of their own ride.
 
     Returns
     -------
@@ -332,9 +335,9 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     warps : dict
         Pair -> TangentWarp of the loops squashed in place (:mod:`.deforming`).
     """
-    motion, kept = carrier_motions(P, Q, carrier, scale, drawing)
+    motion, kept = carrier_motions(P, Q, carrier, scale, drawing, rides)
     # The motion of least travel: a loop squashed in place rather than turned (:mod:`.deforming`).
-    stretched, stretch, squashed, warps = squashes_in_place(P, Q, motion, scale, drawing)
+    stretched, stretch, squashed, warps = squashes_in_place(P, Q, motion, scale, drawing, rides)
     motion.put(stretched, stretch)
     motion.put(squashed, Motions.identity(len(squashed), motion.kind))
     kept[squashed] = SQUASHED
@@ -346,7 +349,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     return motion, R, identity_residual(R, Q), kept, warps
 
 
-def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
+def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None, rides=None):
     """Steps 2-7 for the pairs ``index`` of ``pairs`` (validated); returns their Motions."""
     closed = np.array([pairs[c].closed for c in index], dtype=bool)
     # Curves drawn far more densely than they will be sampled are resampled first, each at its
@@ -354,7 +357,8 @@ def _ball_route(plans, pairs, index, kind, carrier, spacing, drawing=None):
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
-    motions, R, residual, shape_change, warps = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    ridden = None if rides is None else rides.take(index)
+    motions, R, residual, shape_change, warps = register(P, Q, carrier, pair_scales(P, Q), drawing, given, ridden)
     note_shape_changes(plans.notes, index, motions, shape_change)
     scale = pair_scales(R, Q)
     # Sample where the morph happens: between the registered P (Q's size) and Q.
@@ -475,20 +479,20 @@ def _piece(curves, c, s0, s1):
     return curves.curve(c)[first : last + 1].copy(), float(s[first])
 
 
-def _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing=None):
+def _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing=None, rides=None):
     """The ball route for every ready pair at once; should it fail (a bug), pair by pair, so one
     pair never stops the others: a failing pair takes linear interpolation and says why."""
     index = np.asarray(ready)
     kept = {c: len(plans.notes[c]) for c in ready}
     try:
-        return _ball_route(plans, pairs, index, kind, carrier, spacing, drawing)
+        return _ball_route(plans, pairs, index, kind, carrier, spacing, drawing, rides)
     except Exception as exc:  # reported below, pair by pair
         batch_error = f"{type(exc).__name__}: {exc}"
     plans.drop(set(ready), kept)
     parts = []
     for c in ready:
         try:
-            parts.append(_ball_route(plans, pairs, np.array([c]), kind, carrier, spacing, drawing))
+            parts.append(_ball_route(plans, pairs, np.array([c]), kind, carrier, spacing, drawing, rides))
         except Exception as exc:
             plans.drop({c}, kept)
             pair = pairs[c]
@@ -519,18 +523,14 @@ def _comparison_route(plans, pairs, ready, method, spacing):
     plans.set_route(ready, Route.COMPARISON)
 
 
-def _witnessed(drawing, pairs, ready):
-    """The drawing's motion, or None when no stroke of it has an orientation of its own (dots,
-    circles): their centroids alone fit any turn (two dots fit a similarity exactly), so nothing
-    shows the drawing turning, and strokes without an orientation must not ride that turn."""
-    if drawing is None:
-        return None
-    if any(not pairs[c].closed for c in ready):
-        return drawing  # an open stroke has a direction: it shows how the drawing turns
-    if not ready:
-        return None
-    P = Ragged.from_list([pairs[c].P for c in ready], np.ones(len(ready), bool))
-    return None if orientation_free(P).all() else drawing
+def _note_rides(plans, pairs, rides):
+    """Say, in its notes, that a stroke without an orientation of its own rode its group's turn."""
+    for c in np.flatnonzero(~np.isnan(rides.a) & ~np.isnan(rides.group) & plans.motions.moving):
+        group = pairs[c].group
+        plans.notes[c].append(
+            f"rode its group's motion (stroke {as_written(group.loop)} and the strokes inside it,"
+            f" turning {np.degrees(group.motion.turn):.0f}°)"
+        )
 
 
 def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None, drawing=None):
@@ -562,17 +562,22 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
-    drawing = _witnessed(drawing, pairs, ready)
-    dot_route(plans, pairs, dots, carrier, drawing)
+    rides = Rides.of_pairs(pairs, ready, dots, drawing)
+    if drawing is not None and not rides.witnessed:
+        # Nothing shows the drawing's turn (circles and dots alone: their centroids fit any):
+        # no prior of symmetric fits either; its scale still counts (strokes sliding start at it).
+        drawing = Similarity(drawing.scale)
+    dot_route(plans, pairs, dots, carrier, drawing, rides)
     # Pieces of hinted pairs share their pair's carrier: only the ball route takes them.
     pieces = [c for c in ready if pairs[c].motion is not None]
     ready = [c for c in ready if pairs[c].motion is None]
     for route in (own_points_route, polyline_route):
-        ready = guarded(route, plans, pairs, ready, carrier, drawing)
+        ready = guarded(route, plans, pairs, ready, carrier, drawing, rides)
     ready = sorted(ready + pieces)
     if ready:
-        motions = _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing)
+        motions = _isolated_ball_route(plans, pairs, ready, kind, carrier, spacing, drawing, rides)
         plans.motions.put(np.asarray(ready), motions)
+    _note_rides(plans, pairs, rides)
     return plans.finish(kind)
 
 

@@ -1,7 +1,7 @@
 """The routes that keep the keys' own points (before the ball route): pairs whose points match one
 for one under a similarity (:mod:`.exact_fit`) and polylines with as many corners
 (:mod:`.polylines`), each on its carrier, each guarded so that a failure sends its pairs on; and
-dots, moved straight or riding on the drawing's turn."""
+dots, moved straight or riding on their group's or the drawing's turn (:class:`.registration.Rides`)."""
 
 import numpy as np
 
@@ -21,20 +21,20 @@ from .registration import Fits, motions, riding_fits, similarity_matrices
 __all__ = ["guarded", "dot_route", "own_points_route", "polyline_route"]
 
 
-def guarded(route, plans, pairs, ready, carrier, drawing):
+def guarded(route, plans, pairs, ready, carrier, drawing, rides):
     """A route for the pairs it takes; should it fail (a bug), it takes none of them and every
     ready pair goes on to the ball route, which has its own pair-by-pair isolation."""
     kept = {c: len(plans.notes[c]) for c in ready}
     motions_before = plans.motions.take(np.arange(len(pairs)))
     try:
-        return route(plans, pairs, ready, carrier, drawing)
+        return route(plans, pairs, ready, carrier, drawing, rides)
     except Exception:  # the ball route plans them instead, and reports anything it cannot do
         plans.drop(set(ready), kept)
         plans.motions = motions_before
         return ready
 
 
-def polyline_route(plans, pairs, ready, carrier, drawing):
+def polyline_route(plans, pairs, ready, carrier, drawing, rides):
     """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
     straight, on the carrier. Returns the other ready pairs."""
     found, rest = [], []
@@ -51,7 +51,7 @@ def polyline_route(plans, pairs, ready, carrier, drawing):
     P = Ragged.from_list([pairs[c].P for c in index], [pairs[c].closed for c in index])
     Q = Ragged.from_list([pairs[c].Q for c in index], P.closed)
     scale = pair_scales(P, Q)
-    motion, shape_change = carrier_motions(P, Q, carrier, scale, drawing)
+    motion, shape_change = carrier_motions(P, Q, carrier, scale, drawing, rides.take(index))
     note_shape_changes(plans.notes, index, motion, shape_change)
     plans.motions.put(index, motion)
     for k, (c, ca, cb) in enumerate(found):
@@ -65,9 +65,10 @@ def polyline_route(plans, pairs, ready, carrier, drawing):
     return rest
 
 
-def own_points_route(plans, pairs, ready, carrier, drawing):
+def own_points_route(plans, pairs, ready, carrier, drawing, rides):
     """Pairs whose points match one for one under a similarity (see :mod:`.exact_fit`): the key's
-    own points, moved by the carrier. Returns the other ready pairs."""
+    own points, moved by the carrier (a loop that rides a turn matched at the turn it rides).
+    Returns the other ready pairs."""
     rest, found = [], []
     turn = 0.0 if drawing is None else drawing.turn
     maybe = may_be_exact(
@@ -75,7 +76,8 @@ def own_points_route(plans, pairs, ready, carrier, drawing):
     )
     for c, tried in zip(ready, maybe):
         pair = pairs[c]
-        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn) if tried else None
+        own = turn if np.isnan(rides.a[c]) else float(np.angle(rides.a[c]))
+        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=own) if tried else None
         if fit is None:
             rest.append(c)
         else:
@@ -91,7 +93,7 @@ def own_points_route(plans, pairs, ready, carrier, drawing):
     still = (np.abs(a - 1.0) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale)
     fits = Fits(similarity_matrices(a), from_complex(b), np.zeros(len(index)))
     kind = "rigid" if carrier == "rigid" else "similarity"
-    motion = motions(P, fits, kind, scale, ~still & (carrier != "none"), drawing)
+    motion = motions(P, fits, kind, scale, ~still & (carrier != "none"), drawing, rides=rides.take(index))
     plans.motions.put(index, motion)
     for k, (c, fit) in enumerate(found):
         pair = pairs[c]
@@ -103,23 +105,25 @@ def own_points_route(plans, pairs, ready, carrier, drawing):
     return rest
 
 
-def dot_route(plans, pairs, dots, carrier, drawing):
+def dot_route(plans, pairs, dots, carrier, drawing, rides):
     """Pairs with no shape to fit (strokes of fewer than two distinct points: dots): straight
-    point motion, on the drawing's turn when it turns (see :func:`.registration.riding_fits`;
-    pivoting where the drawing does, a dot on a turning wheel rides its arc)."""
+    point motion, on the turn they ride (``rides``: their group's, or the drawing's when it
+    turns and shows it; see :func:`.registration.riding_fits`; pivoting where the drawing or the
+    group does, a dot on a turning wheel rides its arc)."""
     if not dots:
         return
     xy = [pairs[c].xy_a for c in dots], [pairs[c].xy_b for c in dots]
-    if drawing is None or carrier == "none":
+    if carrier == "none":
         moving = np.zeros(len(dots), bool)
     else:
         P, Q = (Ragged.from_list(side, np.zeros(len(dots), bool)) for side in xy)
-        fits, moving = riding_fits(P, Q, drawing)
+        ridden = rides.take(np.asarray(dots))
+        fits, moving = riding_fits(P, Q, ridden.a)
         # The reach of a pivot: the drawing's size (a dot has none of its own).
         every = np.concatenate([pair.xy_a for pair in pairs])
         size = np.full(len(dots), float(np.linalg.norm(every.max(axis=0) - every.min(axis=0))))
         kind = "rigid" if carrier == "rigid" else "similarity"
-        motion = motions(P, fits, kind, size, moving, drawing)
+        motion = motions(P, fits, kind, size, moving, drawing, rides=ridden)
         plans.motions.put(np.asarray(dots), motion)
     for k, c in enumerate(dots):
         pair = pairs[c]
