@@ -1090,6 +1090,65 @@ def figure_riding(keys, frames, times):
     return _at_most("rider off its group's motion / wheel size", worst, 0.005, _percent(worst), "≤ 0.5%")
 
 
+def _inside(point, xy):
+    """Whether ``point`` lies inside the loop ``xy`` (even-odd rule)."""
+    a, b = xy, np.roll(xy, -1, axis=0)
+    straddle = (a[:, 1] > point[1]) != (b[:, 1] > point[1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = a[:, 0] + (point[1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+    return bool(np.count_nonzero(straddle & (point[0] < x)) % 2)
+
+
+def _rider_and_rim(drawing):
+    """The smallest stroke (the rider), the smallest loop around its centre (the rim) and the
+    open strokes whose centres lie inside that loop (the spokes), in drawing order."""
+    rider = min(drawing, key=lambda s: (s.length, len(s.xy)))
+    at = _centre(rider)
+    loops = [s for s in drawing if s.cyclic and s is not rider and _inside(at, s.xy)]
+    rim = min(loops, key=lambda s: abs(signed_area(s.xy))) if loops else None
+    spokes = (
+        [] if rim is None else [s for s in drawing if not s.cyclic and s is not rider and _inside(_centre(s), rim.xy)]
+    )
+    return rider, rim, spokes
+
+
+def figure_on_arc(keys, frames, times):
+    """The smallest stroke (a tyre valve) rides on the group it lies in (a wheel on a car that
+    only translates): on every in-between its centre is as far from the centre of the smallest
+    loop around it (the rim) as on the first key, within 0.5% of that loop's size."""
+    rider, rim, _ = _rider_and_rim(keys[0])
+    if rim is None:
+        return _at_most("rider off its arc / wheel size", np.inf, 0.005, "no loop around it", "≤ 0.5%")
+    size = float(np.ptp(rim.xy, axis=0).max())
+    reach = float(np.linalg.norm(_centre(rider) - _centre(rim)))
+    worst = 0.0
+    for frame in frames:
+        rider, rim, _ = _rider_and_rim(frame)
+        off = np.inf if rim is None else abs(float(np.linalg.norm(_centre(rider) - _centre(rim))) - reach)
+        worst = max(worst, off / size)
+    return _at_most("rider off its arc / wheel size", worst, 0.005, _percent(worst), "≤ 0.5%")
+
+
+def figure_group_turns(keys, frames, times):
+    """The open strokes inside the rim (spokes) move as one with the rider: on every in-between
+    their centres and the rider's sit where one similarity takes the first key's (RMS within 0.5%
+    of the rim's size): a wheel's spokes turn with it, none a symmetry step off."""
+    rider, rim, spokes = _rider_and_rim(keys[0])
+    size = float(np.ptp(rim.xy, axis=0).max())
+    first = np.array([_centre(s) for s in [*spokes, rider]])
+    worst = 0.0
+    for frame in frames:
+        rider, rim, spokes = _rider_and_rim(frame)
+        if rim is None or len(spokes) + 1 != len(first):
+            worst = np.inf
+            break
+        now = np.array([_centre(s) for s in [*spokes, rider]])
+        a, b = fit_similarity(first, now)
+        fitted = a * (first[:, 0] + 1j * first[:, 1]) + b
+        worst = max(worst, float(np.sqrt(np.mean(np.abs(fitted - (now[:, 0] + 1j * now[:, 1])) ** 2))) / size)
+    return _at_most("group's strokes off one motion / wheel size", worst, 0.005, _percent(worst), "≤ 0.5%")
+
+
 # ------------------------------------------------------------------ scenes
 
 
@@ -1631,6 +1690,39 @@ def _wheel_scenes():
         )
 
 
+def car_wheel(turn=-30.0, valve_at=60.0, dot=False):
+    """A car body (an outline, a window, a door line) that only translates, and its wheel
+    (:func:`wheel`: rim, hub, eight curved spokes, one shorter, a tyre valve) rolling with it:
+    turning ``turn`` degrees as it travels its radius times the turn. Keys A and B as lists of
+    strokes (the body's first), and the cyclic flags."""
+    roll = abs(np.radians(turn))
+    a, b, cyclic = wheel(turn, roll, valve_at, 1.0, dot)
+
+    def body(shift):
+        outline = [(-2.2, 0.3), (3.0, 0.3), (3.0, 1.6), (1.8, 1.6), (1.2, 2.5), (-1.0, 2.5), (-1.6, 1.6), (-2.2, 1.6)]
+        window = [(-0.8, 1.75), (0.9, 1.75), (0.9, 2.3), (-0.6, 2.3)]
+        return [
+            polyline(outline, 4, closed=True) + shift,
+            polyline(window, 3, closed=True) + shift,
+            bowed((0.0, 0.45), (0.0, 1.55), 0.05, 20) + shift,
+        ]
+
+    return body(np.zeros(2)) + a, body(np.array([roll, 0.0])) + b, [True, True, False] + cyclic
+
+
+def _car_scenes():
+    for turn, dot in ((-30.0, False), (-60.0, False), (-60.0, True), (-90.0, False)):
+        a, b, cyclic = car_wheel(turn, dot=dot)
+        what = "a dot" if dot else "a small circle"
+        about = (
+            f"a car body that only translates, its wheel rolling with it and turning {turn:.0f}°"
+            f" (eight spokes, one shorter), its valve {what} near the rim"
+        )
+        name = f"car-wheel{turn:.0f}{'-dot' if dot else ''}"
+        keys = (key(a, cyclic), key(b, cyclic))
+        yield _scene(name, 39, about, keys, [figure_on_arc, figure_group_turns, figure_unpaired])
+
+
 def figure_eight(width=1.0, start=0.0, n=120):
     """A figure eight (one loop crossing itself, lobes left and right) ``width`` wide and 1 high,
     drawn from ``start`` degrees along its parameter: shape (n, 2)."""
@@ -1705,6 +1797,7 @@ def _all_scenes():
     yield from _split_scenes()
     yield from _travel_scenes()
     yield from _wheel_scenes()
+    yield from _car_scenes()
     yield _eight_scene()
     yield from _restroke_scenes()
     yield _rope_scene()
