@@ -8,14 +8,19 @@ from any one pair (eight similar spokes pair each with its nearest neighbour: a 
 off the wheel's turn; only the shorter spoke says which step is right):
 
 - *pivot and scale*: the loop's centre in each key, the ratio of the loops' lengths;
-- *turn*: the group's ink in polar coordinates about the pivot (``RADIUS_BINS`` rings x
+- *turn*: the ink of the group's strokes that have an orientation (open strokes, loops that are
+  not circles: never the riders, nor the loop when it is a circle; a group with none shows no
+  turn, and a pupil glancing across a round eye moves straight) in polar coordinates about the
+  pivot (``RADIUS_BINS`` rings x
   ``TURN_BINS`` angles, arc-length weighted, blurred by ``BLUR`` bins along the angle), each
   ring's angular profile correlated with the other key's by FFT; the turn of the summed
   correlation's peak (refined between bins by a parabola). Peaks within ``EQUAL_PEAKS`` of the
   best are equally good (a symmetric wheel): the one closest to the turn the riders show about
   the pivot wins, else the smallest.
 
-A group is kept when the correlation explains the group (``GROUP_FIT``) and its turn differs
+A group whose oriented strokes all lie where the drawing's motion takes them (within ``STILL``
+of the loop's size) moves with the drawing: it is not searched. A group is kept when the
+correlation explains the group (``GROUP_FIT``) and its turn differs
 from the drawing's by more than ``registration.TURN_AGREE`` (otherwise the drawing's motion
 already is the group's: drawings whose groups turn as they do keep their frames). Where the
 group's open strokes are paired a symmetry step off its motion, they are paired again under it
@@ -33,13 +38,16 @@ import numpy as np
 
 from ... import tolerances as tol
 from ...geometry.similarity import Similarity, as_complex
+from ...geometry.spatial import box_pairs
 from ..pair_morphs.registration import TURN_AGREE, orientation_free
 from .assignment import solve_assignment
 
 __all__ = ["GroupMotion", "Groups", "ride_groups", "GROUP_FIT", "EQUAL_PEAKS", "REPAIRED"]
 
-#: Polar bins of a group's ink: rings (out to the farthest ink) and angles.
+#: Polar bins of a group's ink: rings (out to ``REACH`` times the loop's radius, the radius of a
+#: circle as long as the loop; farther ink in the last ring) and angles.
 RADIUS_BINS = 24
+REACH = 2.0
 TURN_BINS = 720
 #: Gaussian blur along the angle, in bins (a hand-redrawn stroke is not exactly turned).
 BLUR = 2.0
@@ -50,7 +58,11 @@ EQUAL_PEAKS = 1e-2
 #: The group's open strokes are paired again when that divides their distance (under the
 #: group's motion, RMS of end-to-end samples) by at least this.
 REPAIRED = 2.0
-#: Samples per stroke for the distances of :data:`REPAIRED`, and ink samples per loop length.
+#: A group whose oriented strokes lie within this fraction of its loop's size (RMS) of where the
+#: drawing's motion takes them moves with the drawing (its turn is not searched).
+STILL = 0.01
+#: Samples per stroke for the distances of :data:`REPAIRED` and ``STILL``, and ink samples per
+#: stroke (the longest of a group).
 PAIR_SAMPLES = 16
 INK_SAMPLES = 512
 
@@ -126,33 +138,86 @@ def ride_groups(rg_a, rg_b, matched, drawing, fixed=()):
         return out
     ca, cb = rg_a.centroids()[ia], rg_b.centroids()[jb]
     area = np.abs(rg_a.signed_areas()[ia])
+    # Every (rider, loop) whose box holds the rider's centre, then whose loop holds it in both keys.
+    loops = np.flatnonzero(loop)
+    r, q = _boxes_around(ca[riders], rg_a.boxes()[ia[loops]])
+    r, q = riders[r], loops[q]
+    keep = (r != q) & (area[q] > area[r])
+    r, q = r[keep], q[keep]
+    keep = rg_a.contains(ca[r], ia[q])
+    r, q = r[keep], q[keep]
+    keep = rg_b.contains(cb[r], jb[q])
+    r, q = r[keep], q[keep]
     enclosing = {}
-    for r in riders:
-        ask = np.flatnonzero(loop & (np.arange(len(ia)) != r) & (area > area[r]))
-        if not len(ask):
-            continue
-        inside = rg_a.contains(np.repeat(ca[r][None], len(ask), 0), ia[ask])
-        inside &= rg_b.contains(np.repeat(cb[r][None], len(ask), 0), jb[ask])
-        if inside.any():
-            enclosing.setdefault(int(ask[inside][np.argmin(area[ask[inside]])]), []).append(int(r))
-    for q, its_riders in enclosing.items():
-        _group(out, rg_a, rg_b, (ia, jb, ca, cb), q, its_riders, drawing, set(fixed))
+    if len(r):
+        order = np.lexsort((area[q], r))  # by rider, the smallest loop first
+        r, q = r[order], q[order]
+        first = np.r_[True, r[1:] != r[:-1]]
+        for rider_k, loop_k in zip(r[first], q[first]):
+            enclosing.setdefault(int(loop_k), []).append(int(rider_k))
+    if not enclosing:
+        return out
+    rider = dot | free
+    off = _off_drawing(rg_a, rg_b, matched, drawing)
+    boxes = rg_a.boxes()[ia]
+    loops = np.array(sorted(enclosing), np.int64)
+    at, k = _boxes_around(ca, boxes[loops])  # every stroke's centre in the loops' boxes
+    order = np.argsort(k, kind="stable")
+    at, k = at[order], k[order]
+    starts = np.searchsorted(k, np.arange(len(loops) + 1))
+    for n, q in enumerate(loops):
+        others = at[starts[n] : starts[n + 1]]
+        others = others[others != q]
+        _group(out, rg_a, rg_b, (ia, jb, ca, cb, rider, boxes[q], off, others), q, enclosing[q], drawing, set(fixed))
     return out
+
+
+def _off_drawing(rg_a, rg_b, matched, drawing):
+    """How far each pair's B stroke lies from where the drawing's motion takes its A stroke:
+    RMS of ``PAIR_SAMPLES`` samples (loops: at the best cyclic shift), shape (len(matched),)."""
+    ia = np.array([i for i, _, _ in matched], np.int64)
+    jb = np.array([j for _, j, _ in matched], np.int64)
+    flip = np.array([f for _, _, f in matched], bool)
+    k = np.full(len(ia), PAIR_SAMPLES)
+    xa = drawing.a * as_complex(rg_a.take(ia).resample(k, smooth=False).pts).reshape(len(ia), -1) + drawing.b
+    xb = as_complex(rg_b.take(jb).resample(k, smooth=False).pts).reshape(len(jb), -1)
+    xb = np.where(flip[:, None], xb[:, ::-1], xb)
+    loop = rg_a.closed[ia] & rg_b.closed[jb]
+    shifts = np.arange(PAIR_SAMPLES) if loop.any() else np.zeros(1, np.int64)
+    gaps = [np.sqrt(np.mean(np.abs(xa - np.roll(xb, -s, axis=1)) ** 2, axis=1)) for s in shifts]
+    return np.where(loop, np.min(gaps, axis=0), gaps[0])
+
+
+def _boxes_around(points, boxes):
+    """Every (point, box) with the box holding the point: two index arrays (a grid's candidate
+    pairs, each point a box a round-off wide, then tested)."""
+    if not (len(points) and len(boxes)):
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    eps = tol.ROUNDOFF * max(float(np.abs(points).max()), float(np.abs(boxes).max()), 1.0)
+    r, k = box_pairs(np.c_[points - eps, points + eps], boxes)
+    inside = np.all((boxes[k, :2] <= points[r]) & (boxes[k, 2:] >= points[r]), axis=1)
+    return r[inside], k[inside]
 
 
 def _group(out, rg_a, rg_b, pairs, q, riders, drawing, fixed):
     """The group of loop pair ``q`` (its motion, its re-pairing), written into ``out``."""
-    ia, jb, ca, cb = pairs
-    others = np.flatnonzero(np.arange(len(ia)) != q)
+    ia, jb, ca, cb, rider, box, off, others = pairs
+    # The cheap test first, on every stroke in the loop's box (the group's oriented ones among them).
+    size = float(np.max(box[2:] - box[:2]))
+    if off[np.r_[q, others][~rider[np.r_[q, others]]]].max(initial=0.0) <= STILL * size:
+        return
     inside = rg_a.contains(ca[others], np.full(len(others), ia[q])) & rg_b.contains(
         cb[others], np.full(len(others), jb[q])
     )
     members = np.r_[q, others[inside]]
-    pivot_a, pivot_b = rg_a.centroids()[ia[q]], rg_b.centroids()[jb[q]]
+    oriented = members[~rider[members]]
+    if not len(oriented):
+        return
+    pivot_a, pivot_b = ca[q], cb[q]
     scale = rg_b.length[jb[q]] / max(rg_a.length[ia[q]], tol.TINY)
     unit = max(rg_a.length[ia[q]] / (2 * np.pi), tol.TINY)
-    ink_a = _polar_ink(rg_a.take(ia[members]), pivot_a, unit)
-    ink_b = _polar_ink(rg_b.take(jb[members]), pivot_b, unit * scale)
+    ink_a = _polar_ink(rg_a.take(ia[oriented]), pivot_a, unit)
+    ink_b = _polar_ink(rg_b.take(jb[oriented]), pivot_b, unit * scale)
     corr = np.fft.ifft(np.conj(np.fft.fft(ink_a, axis=1)) * np.fft.fft(ink_b, axis=1), axis=1).real.sum(axis=0)
     norm = np.sqrt(np.sum(ink_a**2) * np.sum(ink_b**2))
     best = float(corr.max())
@@ -178,7 +243,7 @@ def _polar_ink(rg, pivot, unit):
     z = as_complex(samples.pts - pivot) / unit
     weight = np.repeat(rg.length / counts, counts)
     weight[weight <= 0] = 1.0 / INK_SAMPLES  # a dot's ink
-    r = np.minimum((np.abs(z) / max(float(np.abs(z).max()), tol.TINY) * RADIUS_BINS).astype(np.int64), RADIUS_BINS - 1)
+    r = np.minimum((np.abs(z) / REACH * RADIUS_BINS).astype(np.int64), RADIUS_BINS - 1)
     t = np.round(np.angle(z) / (2 * np.pi) * TURN_BINS).astype(np.int64) % TURN_BINS
     ink = np.zeros((RADIUS_BINS, TURN_BINS))
     np.add.at(ink, (r, t), weight)

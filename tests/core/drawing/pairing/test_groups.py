@@ -79,3 +79,16 @@ def test_a_valve_on_a_rolling_car_wheel_stays_on_its_arc(turn, dot):
     report = result.pairs[VALVE]
     assert "rode its group's motion (stroke 4 and the strokes inside it" in report.reason, report.reason
     assert not any("rode" in p.reason for p in result.pairs[:RIM])  # the body: its own motion
+
+
+def test_a_pupil_glancing_across_a_round_eye_moves_straight():
+    """Nothing in a round eye but its pupil shows a turn (the pupil's own move would fit a half
+    turn about the eye's centre): no group, the pupil moves straight."""
+    brow = scenes.bowed((-1.0, 1.3), (1.0, 1.3), 0.2, 20)
+    a = [scenes.circle(1.0, (0.0, 0.0), 64), scenes.circle(0.2, (-0.6, 0.0), 24), brow]
+    b = [scenes.circle(1.0, (0.0, 0.0), 64), scenes.circle(0.2, (0.6, 0.0), 24), brow]
+    A, B, matched, drawing = _matched(a, b, [True, True, False])
+    assert ride_groups(A, B, matched, drawing).members == {}
+    keys = scenes.key(a, [True, True, False]), scenes.key(b, [True, True, False])
+    middle = bm.inbetween(keys[0].stroke_set(), keys[1].stroke_set(), [0.5]).frames[0]
+    np.testing.assert_allclose(middle.positions[middle.points(1)][:, [0, 2]].mean(axis=0), [0.0, 0.0], atol=1e-6)
