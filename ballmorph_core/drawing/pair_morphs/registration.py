@@ -546,7 +546,7 @@ class Rides:
             group = pairs[c].group
             if group is not None:
                 if abs(group.motion.turn) > TURN_AGREE:
-                    rides.a[c] = group.motion.a
+                    rides.a[c] = _on_arc(pairs[c], group)
             elif witnessed and _turning(drawing):
                 rides.a[c] = drawing.a
         for c, pair in enumerate(pairs):
@@ -558,6 +558,22 @@ class Rides:
     def take(self, rows):
         """The rides of some pairs (Rides)."""
         return Rides(self.a[rows], self.group[rows], self.pivot[rows], self.witnessed)
+
+
+def _on_arc(pair, group):
+    """The turn and scale a rider takes from its group (GroupMotion): the group's, its turn made
+    the rider's own about the group's pivot where the two agree within ``TURN_AGREE`` (a valve
+    drawn a little off where the wheel took it still keeps its distance from the hub)."""
+    curves = (pair.xy_a, pair.xy_b) if pair.P is None else (pair.P, pair.Q)
+    ca, cb = (Ragged.from_list([xy], [pair.P is not None and pair.closed]).centroids()[0] for xy in curves)
+    pivot = complex(*group.pivot)
+    za, zb = complex(*ca) - pivot, complex(*cb) - (group.motion.a * pivot + group.motion.b)
+    if abs(za) <= tol.ROUNDOFF * (abs(pivot) + 1.0) or abs(zb) <= 0.0:
+        return group.motion.a
+    off = np.angle(zb / za / np.exp(1j * group.motion.turn))
+    if abs(off) > TURN_AGREE:
+        return group.motion.a
+    return group.motion.scale * np.exp(1j * (group.motion.turn + off))
 
 
 def _drawing_turns(P, fits, moving, rides):

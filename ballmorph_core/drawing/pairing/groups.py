@@ -11,25 +11,26 @@ off the wheel's turn; only the shorter spoke says which step is right):
 - *turn*: the ink of the group's strokes that have an orientation (open strokes, loops that are
   not circles: never the riders, nor the loop when it is a circle; a group with none shows no
   turn, and a pupil glancing across a round eye moves straight) in polar coordinates about the
-  pivot (``RADIUS_BINS`` rings x
-  ``TURN_BINS`` angles, arc-length weighted, blurred by ``BLUR`` bins along the angle), each
-  ring's angular profile correlated with the other key's by FFT; the turn of the summed
+  pivot (``RADIUS_BINS`` rings x ``TURN_BINS`` angles, arc-length weighted, blurred by ``BLUR``
+  bins along the angle), each ring's angular profile correlated with the other key's by FFT;
+  the turn of the summed
   correlation's peak (refined between bins by a parabola). Peaks within ``EQUAL_PEAKS`` of the
   best are equally good (a symmetric wheel): the one closest to the turn the riders show about
   the pivot wins, else the smallest.
 
 A group whose oriented strokes all lie where the drawing's motion takes them (within ``STILL``
 of the loop's size) moves with the drawing: it is not searched. A group is kept when the
-correlation explains the group (``GROUP_FIT``) and its turn differs
-from the drawing's by more than ``registration.TURN_AGREE`` (otherwise the drawing's motion
-already is the group's: drawings whose groups turn as they do keep their frames). Where the
-group's open strokes are paired a symmetry step off its motion, they are paired again under it
-(the assignment of least distance once the group's motion is applied, kept when it at least
-halves the pairs' distance): the spokes then turn with the wheel.
+correlation explains the group (``GROUP_FIT``) and its turn differs from the drawing's by more
+than ``registration.TURN_AGREE`` (otherwise the drawing's motion already is the group's:
+drawings whose groups turn as they do keep their frames). Where the group's open strokes are
+paired a symmetry step off its motion, they are paired again under it (the assignment of least
+distance once the group's motion is applied, kept when it at least halves the pairs'
+distance): the spokes then turn with the wheel.
 
 The pair pipeline reads each pair's :class:`GroupMotion` (see
-:mod:`..pair_morphs.registration`): riders take the group's turn, and the group's pairs that
-turn with it turn about its pivot (the hub moves straight, as a rolling wheel's does).
+:mod:`..pair_morphs.registration`): riders take the group's turn (their own about its pivot
+where that agrees with it), and the group's pairs that turn with it turn about its pivot (the
+hub moves straight, as a rolling wheel's does).
 """
 
 from dataclasses import dataclass, field
