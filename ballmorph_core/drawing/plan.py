@@ -21,6 +21,7 @@ from .keys.hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hi
 from .keys.projected import KeyStroke, ProjectedKey, StrokePair
 from .pair_morphs.fallbacks import STRAIGHT_POINT_MOTION, point_motion
 from .pair_morphs.pipeline import PairCurves, plan_pairs
+from .pairing.groups import ride_groups
 from .pairing.matching import match_strokes, pair_direction
 from .pairing.redrawn import Joined, cut_frame, join_pieces, joined_stroke
 from .reports.pair_reports import pair_report, piece_report, unmatched_report
@@ -135,18 +136,45 @@ class InbetweenPlan:
         matched, drawing = self._match(key_a, key_b, matching, hints)
         hinted_strokes = {h.stroke_a for h in hints}, {h.stroke_b for h in hints}
         self.joined = self._join_pieces(matched, hinted_strokes)
+        groups = self._groups(matched, drawing, hinted_strokes, matching)
+        matched = groups.matched
         self.strokes = [self._pair_strokes(k, i, j, flip, drawing) for k, (i, j, flip) in enumerate(matched)]
         hinted = pair_hints(hints, self.strokes, ka, kb, self.messages)
         self.strokes, hinted = self._orient_by_hints(hinted, hints)
         self.has_hints = HINT in key_a.point_attributes or HINT in key_b.point_attributes
-        self.pieces = Pieces(
-            [_curves(a, b) for a, b, _ in self.strokes], self.strokes, hinted, carrier, drawing, _curves
-        )
+        curves = [_curves(a, b) for a, b, _ in self.strokes]
+        for k, group in groups.members.items():
+            curves[k].group = group
+        self.pieces = Pieces(curves, self.strokes, hinted, carrier, drawing, _curves)
         self.pairs = plan_pairs(self.pieces.curves, method, carrier, spacing, drawing)
         self.planarity = _planarity_messages(points, plane)
         self._samples = None  # _Samples, from the first evaluation
         self._staged = np.empty((0, 0, 2))  # the pairs' frames of a chunk of times (see _frames)
         self._recycled = Recycled()  # the arrays of the last evaluation's in-betweens
+
+    def _groups(self, matched, drawing, hinted_strokes, matching):
+        """The groups that move together (:mod:`.pairing.groups`), their strokes paired again
+        under the group's motion where the matching paired them a symmetry step off (never
+        hinted, travelled, joined or index-matched pairs)."""
+        fixed = {
+            k
+            for k, (i, j, _) in enumerate(matched)
+            if matching == "index"
+            or k in self.joined
+            or i in hinted_strokes[0]
+            or j in hinted_strokes[1]
+            or (i, j) in self.travelled
+        }
+        groups = ride_groups(self.ka.rg, self.kb.rg, matched, drawing, fixed)
+        for loop, count in groups.repaired:
+            self.messages.append(
+                Message(
+                    "INFO",
+                    f"the strokes inside stroke {as_written(loop)} of the first key move together: "
+                    f"{count} of them paired again under their group's motion",
+                )
+            )
+        return groups
 
     def _hinted_motion(self, forced, hints):
         """How the hints say the drawing moves (complex ``a, b``): the hinted registration of

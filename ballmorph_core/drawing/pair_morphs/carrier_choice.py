@@ -165,7 +165,7 @@ def shape_changes(P, Q, fits, ask):
     return changed, kept
 
 
-def carrier_motions(P, Q, carrier, scale, drawing=None):
+def carrier_motions(P, Q, carrier, scale, drawing=None, rides=None):
     """The carrier of every pair (see the module docstring).
 
     Parameters
@@ -176,6 +176,8 @@ def carrier_motions(P, Q, carrier, scale, drawing=None):
     scale : ndarray, shape (C,)
     drawing : Similarity, optional
         The keys' overall motion (symmetric shapes turn with it).
+    rides : Rides, optional
+        What each pair rides (see :func:`.registration.motions`).
 
     Returns
     -------
@@ -196,7 +198,7 @@ def carrier_motions(P, Q, carrier, scale, drawing=None):
     ask = ~handled_directly(P, Q, scale) & ~still
     changed, kept = shape_changes(P, Q, fits, ask)
     kept[~changed] = np.nan
-    return motions(P, fits, kind, scale, ask & ~changed, drawing), kept
+    return motions(P, fits, kind, scale, ask & ~changed, drawing, rides=rides), kept
 
 
 def note_shape_changes(index, motion, shape_change):

@@ -43,6 +43,9 @@ class PairCurves:
     #: (Motions of one pair), shared by its pieces so they stay joined, and ends that are the
     #: hinted points (moved, never trimmed).
     motion: object = None
+    #: Set for the pairs of a group that moves together (:mod:`..pairing.groups`): the group's
+    #: GroupMotion, which a stroke without an orientation of its own rides.
+    group: object = None
 
     @property
     def lengths(self):

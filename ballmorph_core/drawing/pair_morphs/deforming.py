@@ -85,7 +85,7 @@ def similar_in_place(P, Q, ask):
     return out
 
 
-def squashes_in_place(P, Q, motions, scale, drawing=None):
+def squashes_in_place(P, Q, motions, scale, drawing=None, rides=None):
     """Loops whose carrier turns them a lot where squashing them in place travels less: the
     motion of least travel among those that fit (issue 38).
 
@@ -105,6 +105,8 @@ def squashes_in_place(P, Q, motions, scale, drawing=None):
         Their carriers.
     scale : ndarray, shape (C,)
     drawing : Similarity, optional
+    rides : Rides, optional
+        What each pair rides (see :func:`~.registration.motions`).
 
     Returns
     -------
@@ -142,7 +144,8 @@ def squashes_in_place(P, Q, motions, scale, drawing=None):
     if len(keep):
         sub = Fits(fits.A[keep], fits.b[keep], fits.residual[keep])
         moving = np.ones(len(keep), dtype=bool)
-        stretch = registered_motions(Pr.take(keep), sub, motions.kind, scale[rows[keep]], moving, drawing)
+        ridden = None if rides is None else rides.take(rows[keep])
+        stretch = registered_motions(Pr.take(keep), sub, motions.kind, scale[rows[keep]], moving, drawing, rides=ridden)
     return rows[keep], stretch, rows[by_tangent], warps
 
 

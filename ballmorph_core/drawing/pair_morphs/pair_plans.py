@@ -30,8 +30,7 @@ class PairNote:
 @dataclass(frozen=True)
 class Planned:
     """What one step of the pipeline planned for the pairs it took; :meth:`PairPlans.gather`
-    writes it into the plans (the steps do not write into the plans themselves, but for
-    :func:`.point_routes.dot_route`, which still calls :meth:`PairPlans.add_morph`).
+    writes it into the plans (the steps never write into the plans themselves).
 
     Attributes
     ----------
@@ -65,9 +64,10 @@ class Planned:
     ball: BallRows = None
 
     @classmethod
-    def nothing(cls):
-        """A step that took no pair."""
-        return cls(np.zeros(0, dtype=np.int64), (), np.zeros(0, dtype=bool), np.zeros((0, 2)))
+    def nothing(cls, notes=()):
+        """A step that took no pair (``notes``, PairNotes, still say something of pairs other
+        steps took)."""
+        return cls(np.zeros(0, dtype=np.int64), (), np.zeros(0, dtype=bool), np.zeros((0, 2)), notes=tuple(notes))
 
 
 def whole_segment(pair, morph, lengths):
@@ -108,19 +108,6 @@ class PairPlans:
         self.lengths = np.ones((n, 2))
         self.motions, self.layout = None, None
         self.routes = [None] * n  # each pair's Route, set by the route that takes it
-
-    def add_morph(self, c, morph, closed, lengths=(1.0, 1.0), order=0, ranges=None, offset=None):
-        """A morph for (a chain of) pair ``c``; ``ranges`` are its pieces' arc lengths on the pair
-        (default: the whole pair, of ``lengths``); ``offset`` see :class:`~.layout.Segment`.
-        Left for :func:`.point_routes.dot_route`; the other steps return a :class:`Planned`."""
-        if ranges is None:
-            self.closed[c], self.lengths[c] = closed, lengths
-            ranges = ((0.0, self.lengths[c, 0]), (0.0, self.lengths[c, 1]))
-        self.segments.append(Segment(c, order, *ranges, morph=morph, offset=offset))
-
-    def set_route(self, pairs, route):
-        """``pairs`` (ints) took ``route`` (a Route)."""
-        self.set_routes(pairs, [route] * len(pairs))
 
     def set_routes(self, pairs, routes):
         """Each of ``pairs`` (ints) took its Route of ``routes``."""

@@ -6,8 +6,9 @@ Ball-morph methods::
             -> choose routes -> cut chains -> map chains -> fall back -> lay out
 
 1. *prepare* (:mod:`.curves`): validate each pair's curves; strokes with fewer than two
-   distinct points move straight, point by point (riding the drawing's turn when it turns, the
-   DOT route); a loop paired with an open stroke is morphed as two open strokes.
+   distinct points move straight, point by point (riding their group's turn, or the drawing's
+   when it turns and some stroke shows it: :class:`.registration.Rides`; the DOT route); a
+   loop paired with an open stroke is morphed as two open strokes.
 2. *own points* (:mod:`.point_routes`, :mod:`.exact_fit`): pairs whose points match one for
    one under a similarity keep them (OWN_POINTS).
 3. *polylines* (:mod:`.point_routes`, :mod:`.polylines`): polylines with as many corners go
@@ -58,8 +59,9 @@ from ...geometry.polyline import (
     resolve_spacing,
 )
 from ...geometry.ragged import Ragged
+from ...geometry.similarity import Similarity
 from ..frames.layout import Segment
-from ..strokes import Route
+from ..strokes import Route, as_written
 from .carrier_choice import carrier_motions, note_shape_changes
 from .chain_maps import ball_rows, map_chains, placed
 from .crossings import cross, cut_chains, find_events
@@ -79,7 +81,7 @@ from .fallbacks import (
 )
 from .pair_plans import PairNote, PairPlans, Planned, whole_segment
 from .point_routes import dot_route, guarded, own_points_route, polyline_route
-from .registration import Motions, identity_residual, orientation_free
+from .registration import Motions, Rides, identity_residual
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 
@@ -203,17 +205,18 @@ class Registered:
     warps: dict
 
 
-def register(P, Q, carrier, scale, drawing=None, given=None):
+def register(P, Q, carrier, scale, drawing=None, given=None, rides=None):
     """Step 4: each pair's registration and carrier (see :mod:`.registration`), a Registered.
 
     Pairs the ball-morph follows as drawn, loops that change shape where they lie (see
     :mod:`.carrier_choice`) and every pair with carrier 'none' get none;
     ``drawing`` (a Similarity) is the keys' overall motion, the prior of symmetric shapes;
-    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen.
+    ``given`` (list of Motions of one pair or None, per pair) are carriers already chosen;
+    ``rides`` (Rides) what the strokes without an orientation of their own ride.
     """
-    motion, kept = carrier_motions(P, Q, carrier, scale, drawing)
+    motion, kept = carrier_motions(P, Q, carrier, scale, drawing, rides)
     # The motion of least travel: a loop squashed in place rather than turned (:mod:`.deforming`).
-    stretched, stretch, squashed, warps = squashes_in_place(P, Q, motion, scale, drawing)
+    stretched, stretch, squashed, warps = squashes_in_place(P, Q, motion, scale, drawing, rides)
     motion.put(stretched, stretch)
     motion.put(squashed, Motions.identity(len(squashed), motion.kind))
     kept[squashed] = SQUASHED
@@ -225,7 +228,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None):
     return Registered(motion, R, identity_residual(R, Q), kept, warps)
 
 
-def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
+def _ball_route(pairs, index, kind, carrier, spacing, drawing=None, rides=None):
     """Steps 4-10 for the pairs ``index`` of ``pairs`` (validated): what they planned (Planned)."""
     closed = np.array([pairs[c].closed for c in index], dtype=bool)
     # Curves drawn far more densely than they will be sampled are resampled first, each at its
@@ -233,7 +236,8 @@ def _ball_route(pairs, index, kind, carrier, spacing, drawing=None):
     P = coarsen(Ragged.from_list([pairs[c].P for c in index], closed), spacing)
     Q = coarsen(Ragged.from_list([pairs[c].Q for c in index], closed), spacing)
     given = [pairs[c].motion for c in index]
-    registered = register(P, Q, carrier, pair_scales(P, Q), drawing, given)
+    ridden = None if rides is None else rides.take(index)
+    registered = register(P, Q, carrier, pair_scales(P, Q), drawing, given, ridden)
     motions, R, shape_change, warps = registered.motions, registered.R, registered.shape_change, registered.warps
     residual = registered.residual.copy()  # measured again below on the common parts
     notes = list(note_shape_changes(index, motions, shape_change))
@@ -359,7 +363,7 @@ def _piece(curves, c, s0, s1):
     return curves.curve(c)[first : last + 1].copy(), float(s[first])
 
 
-def _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing=None):
+def _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing=None, rides=None):
     """The ball route for every ready pair at once; should it fail (a bug), pair by pair, so one
     pair never stops the others: a failing pair takes linear interpolation and says why.
 
@@ -369,13 +373,13 @@ def _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing=None):
         What the route planned: one for the batch, or one per pair.
     """
     try:
-        return [_ball_route(pairs, np.asarray(ready), kind, carrier, spacing, drawing)]
+        return [_ball_route(pairs, np.asarray(ready), kind, carrier, spacing, drawing, rides)]
     except Exception as exc:  # reported below, pair by pair
         batch_error = f"{type(exc).__name__}: {exc}"
     parts = []
     for c in ready:
         try:
-            parts.append(_ball_route(pairs, np.array([c]), kind, carrier, spacing, drawing))
+            parts.append(_ball_route(pairs, np.array([c]), kind, carrier, spacing, drawing, rides))
         except Exception as exc:
             pair = pairs[c]
             reason = f"the {kind}-ball morph failed ({type(exc).__name__}: {exc}; with the others: {batch_error})"
@@ -418,18 +422,17 @@ def _point_motions(pairs, dots):
     )
 
 
-def _witnessed(drawing, pairs, ready):
-    """The drawing's motion, or None when no stroke of it has an orientation of its own (dots,
-    circles): their centroids alone fit any turn (two dots fit a similarity exactly), so nothing
-    shows the drawing turning, and strokes without an orientation must not ride that turn."""
-    if drawing is None:
-        return None
-    if any(not pairs[c].closed for c in ready):
-        return drawing  # an open stroke has a direction: it shows how the drawing turns
-    if not ready:
-        return None
-    P = Ragged.from_list([pairs[c].P for c in ready], np.ones(len(ready), bool))
-    return None if orientation_free(P).all() else drawing
+def _ride_notes(pairs, rides, moving):
+    """Notes saying that a stroke without an orientation of its own rode its group's turn
+    (PairNotes; ``moving``: each pair's carrier moves it, shape (C,) of bool)."""
+    return tuple(
+        PairNote(
+            int(c),
+            f"rode its group's motion (stroke {as_written(pairs[c].group.loop)} and the strokes inside it,"
+            f" turning {np.degrees(pairs[c].group.motion.turn):.0f}°)",
+        )
+        for c in np.flatnonzero(~np.isnan(rides.a) & ~np.isnan(rides.group) & moving)
+    )
 
 
 def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None, drawing=None):
@@ -460,17 +463,22 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
         return plans.finish()
     kind = method[: -len("-ball")]
     plans.motions = Motions.identity(len(pairs), "rigid" if carrier == "rigid" else "similarity")
-    drawing = _witnessed(drawing, pairs, ready)
-    dot_route(plans, pairs, dots, carrier, drawing)
+    rides = Rides.of_pairs(pairs, ready, dots, drawing)
+    if drawing is not None and not rides.witnessed:
+        # Nothing shows the drawing's turn (circles and dots alone: their centroids fit any):
+        # no prior of symmetric fits either; its scale still counts (strokes sliding start at it).
+        drawing = Similarity(drawing.scale)
+    plans.gather(dot_route(pairs, dots, carrier, drawing, rides))
     # Pieces of hinted pairs share their pair's carrier: only the ball route takes them.
     pieces = [c for c in ready if pairs[c].motion is not None]
     ready = [c for c in ready if pairs[c].motion is None]
     for route in (own_points_route, polyline_route):
-        planned, ready = guarded(route, pairs, ready, carrier, drawing)
+        planned, ready = guarded(route, pairs, ready, carrier, drawing, rides)
         plans.gather(planned)
     ready = sorted(ready + pieces)
-    for planned in _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing) if ready else ():
+    for planned in _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing, rides) if ready else ():
         plans.gather(planned)
+    plans.gather(Planned.nothing(notes=_ride_notes(pairs, rides, plans.motions.moving)))
     return plans.finish(kind)
 
 

@@ -1,8 +1,8 @@
 """The routes that keep the keys' own points (before the ball route): pairs whose points match one
 for one under a similarity (:mod:`.exact_fit`) and polylines with as many corners
 (:mod:`.polylines`), each on its carrier, each returning what it planned (:class:`.Planned`) and
-guarded so that a failure sends its pairs on; and dots, moved straight or riding on the
-drawing's turn."""
+guarded so that a failure sends its pairs on; and dots, moved straight or riding on their
+group's or the drawing's turn (:class:`.registration.Rides`)."""
 
 import numpy as np
 
@@ -23,12 +23,12 @@ from .registration import Fits, motions, riding_fits, similarity_matrices
 __all__ = ["guarded", "dot_route", "own_points_route", "polyline_route"]
 
 
-def guarded(route, pairs, ready, carrier, drawing):
+def guarded(route, pairs, ready, carrier, drawing, rides):
     """A route for the pairs it takes (what it planned, and the other ready pairs); should it
     fail (a bug), it takes none of them and every ready pair goes on to the ball route, which
     has its own pair-by-pair isolation."""
     try:
-        return route(pairs, ready, carrier, drawing)
+        return route(pairs, ready, carrier, drawing, rides)
     except Exception:  # the ball route plans them instead, and reports anything it cannot do
         return Planned.nothing(), ready
 
@@ -48,7 +48,7 @@ def _taken(pairs, found, route, segments, motion, notes=()):
     )
 
 
-def polyline_route(pairs, ready, carrier, drawing):
+def polyline_route(pairs, ready, carrier, drawing, rides):
     """Pairs of polylines with as many corners (see :mod:`.polylines`): corner to corner, edges
     straight, on the carrier.
 
@@ -73,7 +73,7 @@ def polyline_route(pairs, ready, carrier, drawing):
     P = Ragged.from_list([pairs[c].P for c in index], [pairs[c].closed for c in index])
     Q = Ragged.from_list([pairs[c].Q for c in index], P.closed)
     scale = pair_scales(P, Q)
-    motion, shape_change = carrier_motions(P, Q, carrier, scale, drawing)
+    motion, shape_change = carrier_motions(P, Q, carrier, scale, drawing, rides.take(index))
     segments = []
     for k, (c, ca, cb) in enumerate(found):
         pair = pairs[c]
@@ -87,9 +87,9 @@ def polyline_route(pairs, ready, carrier, drawing):
     return _taken(pairs, index, Route.POLYLINE, segments, motion, notes), rest
 
 
-def own_points_route(pairs, ready, carrier, drawing):
+def own_points_route(pairs, ready, carrier, drawing, rides):
     """Pairs whose points match one for one under a similarity (see :mod:`.exact_fit`): the key's
-    own points, moved by the carrier.
+    own points, moved by the carrier (a loop that rides a turn matched at the turn it rides).
 
     Returns
     -------
@@ -105,7 +105,8 @@ def own_points_route(pairs, ready, carrier, drawing):
     )
     for c, tried in zip(ready, maybe):
         pair = pairs[c]
-        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=turn) if tried else None
+        own = turn if np.isnan(rides.a[c]) else float(np.angle(rides.a[c]))
+        fit = exact_fit(pair.xy_a, pair.xy_b, pair.closed, similarity=carrier != "none", turn=own) if tried else None
         if fit is None:
             rest.append(c)
         else:
@@ -121,7 +122,7 @@ def own_points_route(pairs, ready, carrier, drawing):
     still = (np.abs(a - 1.0) <= tol.IDENTITY) & (np.abs(b) <= tol.IDENTITY * scale)
     fits = Fits(similarity_matrices(a), from_complex(b), np.zeros(len(index)))
     kind = "rigid" if carrier == "rigid" else "similarity"
-    motion = motions(P, fits, kind, scale, ~still & (carrier != "none"), drawing)
+    motion = motions(P, fits, kind, scale, ~still & (carrier != "none"), drawing, rides=rides.take(index))
     segments = []
     for k, (c, fit) in enumerate(found):
         pair = pairs[c]
@@ -132,26 +133,37 @@ def own_points_route(pairs, ready, carrier, drawing):
     return _taken(pairs, index, Route.OWN_POINTS, segments, motion), rest
 
 
-def dot_route(plans, pairs, dots, carrier, drawing):
+def dot_route(pairs, dots, carrier, drawing, rides):
     """Pairs with no shape to fit (strokes of fewer than two distinct points: dots): straight
-    point motion, on the drawing's turn when it turns (see :func:`.registration.riding_fits`;
-    pivoting where the drawing does, a dot on a turning wheel rides its arc)."""
+    point motion, on the turn they ride (``rides``: their group's, or the drawing's when it
+    turns and shows it; see :func:`.registration.riding_fits`; pivoting where the drawing or the
+    group does, a dot on a turning wheel rides its arc). What it planned (:class:`.Planned`)."""
     if not dots:
-        return
+        return Planned.nothing()
     xy = [pairs[c].xy_a for c in dots], [pairs[c].xy_b for c in dots]
-    if drawing is None or carrier == "none":
+    motion = None
+    if carrier == "none":
         moving = np.zeros(len(dots), bool)
     else:
         P, Q = (Ragged.from_list(side, np.zeros(len(dots), bool)) for side in xy)
-        fits, moving = riding_fits(P, Q, drawing)
+        ridden = rides.take(np.asarray(dots))
+        fits, moving = riding_fits(P, Q, ridden.a)
         # The reach of a pivot: the drawing's size (a dot has none of its own).
         every = np.concatenate([pair.xy_a for pair in pairs])
         size = np.full(len(dots), float(np.linalg.norm(every.max(axis=0) - every.min(axis=0))))
         kind = "rigid" if carrier == "rigid" else "similarity"
-        motion = motions(P, fits, kind, size, moving, drawing)
-        plans.motions.put(np.asarray(dots), motion)
+        motion = motions(P, fits, kind, size, moving, drawing, rides=ridden)
+    segments = []
     for k, c in enumerate(dots):
         pair = pairs[c]
         start = pair.xy_a @ motion.A[k].T + motion.b[k] if moving[k] else pair.xy_a
-        plans.add_morph(c, point_motion(start, pair.u_a, pair.xy_b, pair.u_b), False)
-    plans.set_route(dots, Route.DOT)
+        segments.append(whole_segment(c, point_motion(start, pair.u_a, pair.xy_b, pair.u_b), (1.0, 1.0)))
+    n = len(dots)
+    return Planned(
+        np.asarray(dots, dtype=np.int64),
+        (Route.DOT,) * n,
+        np.zeros(n, bool),
+        np.ones((n, 2)),
+        tuple(segments),
+        motions=motion,
+    )

@@ -48,6 +48,7 @@ __all__ = [
     "motions",
     "orientation_free",
     "riding_fits",
+    "Rides",
     "endpoint_similarity",
     "fit_similarity",
 ]
@@ -488,17 +489,104 @@ def _turning(drawing):
     return drawing is not None and abs(drawing.turn) > TURN_AGREE and 1 / MAX_STRETCH <= drawing.scale <= MAX_STRETCH
 
 
-def _drawing_turns(P, fits, moving, drawing):
-    """``fits`` (Fits) where the moving loops with no orientation of their own take the
-    drawing's turn (their own scale, their centroid's image kept): a valve on a turning wheel
-    rides on its arc instead of crossing the wheel straight. The same ``fits`` when none does,
-    or when the drawing does not turn (:func:`_turning`)."""
-    if not (_turning(drawing) and len(P)):
+@dataclass
+class Rides:
+    """What the pairs of a batch ride on: the motion a pair with no orientation of its own (a
+    circle, a dot) takes instead of its own fit's turn, and the group a pair belongs to (see
+    :mod:`..pairing.groups`).
+
+    Attributes
+    ----------
+    a : ndarray of complex, shape (C,)
+        The turn and scale a rider takes (``z -> a z + b``, its centroid onto its partner's):
+        its group's, else the drawing's where the drawing turns (:func:`_turning`) and some
+        stroke of it has an orientation (shows the turn); NaN where the pair keeps its own fit.
+    group : ndarray of complex, shape (C,)
+        The turn and scale of the group the pair belongs to (NaN: none).
+    pivot : ndarray, shape (C, 2)
+        The group's pivot in key A: pairs turning with their group turn about it (NaN: none).
+    witnessed : bool
+        Whether some stroke of the drawing has an orientation of its own (shows its turn).
+    """
+
+    a: np.ndarray
+    group: np.ndarray
+    pivot: np.ndarray
+    witnessed: bool = True
+
+    @classmethod
+    def none(cls, n):
+        return cls(np.full(n, np.nan, complex), np.full(n, np.nan, complex), np.full((n, 2), np.nan))
+
+    @classmethod
+    def of_drawing(cls, P, drawing):
+        """The loops of ``P`` (Ragged) with no orientation of their own riding the drawing's
+        turn, where it turns (no group; nothing checks that some stroke shows the turn)."""
+        rides = cls.none(len(P))
+        if _turning(drawing) and len(P):
+            rides.a[orientation_free(P)] = drawing.a
+        return rides
+
+    @classmethod
+    def of_pairs(cls, pairs, ready, dots, drawing):
+        """Every pair's ride (Rides over ``pairs``, a list of PairCurves): the ready loops with
+        no orientation of their own (:func:`orientation_free`, asked once) and the ``dots``
+        ride their group's motion (``PairCurves.group``) where it turns, else the drawing's
+        where it turns and some ready stroke is open or oriented: circles and dots alone fit
+        any turn (two dots fit a similarity exactly), so nothing shows the drawing turning."""
+        rides = cls.none(len(pairs))
+        loops = [c for c in ready if pairs[c].closed]
+        riders = list(dots)
+        witnessed = len(loops) < len(ready)
+        if loops:
+            free = orientation_free(Ragged.from_list([pairs[c].P for c in loops], np.ones(len(loops), bool)))
+            riders += [c for c, f in zip(loops, free) if f]
+            witnessed |= not free.all()
+        for c in riders:
+            group = pairs[c].group
+            if group is not None:
+                if abs(group.motion.turn) > TURN_AGREE:
+                    rides.a[c] = _on_arc(pairs[c], group)
+            elif witnessed and _turning(drawing):
+                rides.a[c] = drawing.a
+        for c, pair in enumerate(pairs):
+            if pair.group is not None:
+                rides.group[c], rides.pivot[c] = pair.group.motion.a, pair.group.pivot
+        rides.witnessed = bool(witnessed)
+        return rides
+
+    def take(self, rows):
+        """The rides of some pairs (Rides)."""
+        return Rides(self.a[rows], self.group[rows], self.pivot[rows], self.witnessed)
+
+
+def _on_arc(pair, group):
+    """The turn and scale a rider takes from its group (GroupMotion): the group's, its turn made
+    the rider's own about the group's pivot where the two agree within ``TURN_AGREE`` (a valve
+    drawn a little off where the wheel took it still keeps its distance from the hub)."""
+    curves = (pair.xy_a, pair.xy_b) if pair.P is None else (pair.P, pair.Q)
+    ca, cb = (Ragged.from_list([xy], [pair.P is not None and pair.closed]).centroids()[0] for xy in curves)
+    pivot = complex(*group.pivot)
+    za, zb = complex(*ca) - pivot, complex(*cb) - (group.motion.a * pivot + group.motion.b)
+    if abs(za) <= tol.ROUNDOFF * (abs(pivot) + 1.0) or abs(zb) <= 0.0:
+        return group.motion.a
+    off = np.angle(zb / za / np.exp(1j * group.motion.turn))
+    if abs(off) > TURN_AGREE:
+        return group.motion.a
+    return group.motion.scale * np.exp(1j * (group.motion.turn + off))
+
+
+def _drawing_turns(P, fits, moving, rides):
+    """``fits`` (Fits) where the moving loops with no orientation of their own take the turn
+    they ride (``rides``, Rides: their group's or the drawing's; their own scale, their
+    centroid's image kept): a valve on a turning wheel rides on its arc instead of crossing the
+    wheel straight. The same ``fits`` when none rides."""
+    if not len(P):
         return fits
     A = fits.A
     # Similarities only: an affine fit's stretch (a ball squashing) is the loop's own.
     conformal = np.isclose(A[:, 0, 0], A[:, 1, 1]) & np.isclose(A[:, 0, 1], -A[:, 1, 0])
-    free = moving & conformal & orientation_free(P)
+    free = moving & conformal & P.closed & ~np.isnan(rides.a)
     if not free.any():
         return fits
     A, b = fits.A.copy(), fits.b.copy()
@@ -506,30 +594,30 @@ def _drawing_turns(P, fits, moving, drawing):
     centre = P.centroids()[rows]
     image = np.einsum("lij,lj->li", A[rows], centre) + b[rows]
     scale = np.sqrt(np.abs(np.linalg.det(A[rows])))
-    A[rows] = similarity_matrices(scale * np.exp(1j * drawing.turn))
+    A[rows] = similarity_matrices(scale * np.exp(1j * np.angle(rides.a[rows])))
     b[rows] = image - np.einsum("lij,lj->li", A[rows], centre)
     return Fits(A, b, fits.residual)
 
 
-def riding_fits(P, Q, drawing):
+def riding_fits(P, Q, a):
     """Registrations of pairs with no shape to fit (a dot and a dot: strokes of fewer than two
-    distinct points): the drawing's turn and scale, each P's centroid onto its Q's (Fits); and
-    which pairs they move (where the drawing turns, :func:`_turning`: else a straight move says
-    as much), shape (C,).
+    distinct points): each the motion it rides (``a``, :attr:`Rides.a`: its group's or the
+    drawing's turn and scale), each P's centroid onto its Q's (Fits); and which pairs they move
+    (those that ride: a straight move says as much for the others), shape (C,).
 
     Parameters
     ----------
     P, Q : Ragged
         The pairs' points (one location each, perhaps repeated).
-    drawing : DrawingMotion
+    a : ndarray of complex, shape (C,)
     """
-    A = np.tile(similarity_matrices(np.array([drawing.a])), (len(P), 1, 1))
+    moving = ~np.isnan(a)
+    A = similarity_matrices(np.where(moving, a, 1.0))
     b = Q.centroids() - np.einsum("lij,lj->li", A, P.centroids())
-    moving = np.full(len(P), _turning(drawing))
     return Fits(A, b, np.zeros(len(P))), moving
 
 
-def motions(P, fits, kind, scale, moving, drawing=None, turned=None):
+def motions(P, fits, kind, scale, moving, drawing=None, turned=None, rides=None):
     """The carrier motions of registered pairs (Motions).
 
     Parameters
@@ -550,10 +638,17 @@ def motions(P, fits, kind, scale, moving, drawing=None, turned=None):
     turned : ndarray of bool, shape (C,), optional
         Pairs whose turn is given (hinted: the animator said where a point goes): they keep
         it, oriented or not.
+    rides : Rides, optional
+        What each pair rides (default: :meth:`Rides.of_drawing`). Pairs turning with their
+        group (within ``TURN_AGREE``) turn about its pivot.
     """
-    fits = _drawing_turns(P, fits, moving if turned is None else moving & ~turned, drawing)
+    rides = Rides.of_drawing(P, drawing) if rides is None else rides
+    fits = _drawing_turns(P, fits, moving if turned is None else moving & ~turned, rides)
     theta, stretch = _polar(fits.A)
     pivot = _pivots(P, fits, _reach_scales(P, fits, scale, drawing))
+    grouped = ~np.isnan(rides.group)
+    grouped &= np.abs(np.angle(np.exp(1j * theta) * np.conj(np.where(grouped, rides.group, 1.0)))) <= TURN_AGREE
+    pivot[grouped] = rides.pivot[grouped]
     A, b = fits.A.copy(), fits.b.copy()
     if kind == "rigid":
         target = np.einsum("lij,lj->li", fits.A, pivot) + fits.b

@@ -12,6 +12,7 @@ from ballmorph_core.drawing.pair_morphs.fallbacks import point_motion
 from ballmorph_core.drawing.pair_morphs.pair_plans import PairNote, PairPlans, Planned, whole_segment
 from ballmorph_core.drawing.pair_morphs.pipeline import plan_pairs
 from ballmorph_core.drawing.pair_morphs.point_routes import guarded, own_points_route
+from ballmorph_core.drawing.pair_morphs.registration import Rides
 from ballmorph_core.drawing.strokes import Route
 
 
@@ -84,13 +85,14 @@ def test_a_failing_route_takes_no_pair_and_sends_them_all_on():
     """guarded: a route that raises plans nothing (nothing to undo) and every ready pair goes on."""
     pairs = [_pair_curves(circle(1.0, 40), circle(1.0, 40) + 1.0, True)]
 
-    def broken(pairs, ready, carrier, drawing):
+    def broken(pairs, ready, carrier, drawing, rides):
         raise ZeroDivisionError("simulated core bug")
 
-    planned, rest = guarded(broken, pairs, [0], "similarity", None)
+    rides = Rides.of_pairs(pairs, [0], [], None)
+    planned, rest = guarded(broken, pairs, [0], "similarity", None, rides)
     assert rest == [0] and len(planned.pairs) == 0 and not planned.segments and not planned.notes
     planned, rest = guarded(
-        own_points_route, prepare_pairs(pairs, "circular-ball", None).pairs, [0], "similarity", None
+        own_points_route, prepare_pairs(pairs, "circular-ball", None).pairs, [0], "similarity", None, rides
     )
     assert rest == [] and planned.routes == (Route.OWN_POINTS,) and len(planned.segments) == 1
 

@@ -71,3 +71,18 @@ def test_dots_alone_show_no_turn_to_ride():
     middle = bm.inbetween(key_a, key_b, [0.5], matching="index").frames[0]
     dot = middle.positions[middle.offsets[0] : middle.offsets[1]]
     np.testing.assert_allclose(dot[:, [0, 1]] if dot.shape[1] == 2 else dot[:, [0, 2]], [[0.5, 0.0]], atol=1e-9)
+
+
+def test_circles_alone_show_no_turn_to_ride():
+    """Circles only (no stroke shows a turn): their centroids fit the drawing a 40-degree turn,
+    but no circle rides it, nor takes it as the prior of its own symmetric fit: each moves
+    straight, its points matched where they lie (the guard sits where the riding happens,
+    :meth:`Rides.of_pairs`; the drawing's scale is kept)."""
+    a = [scenes.circle(0.2, (0.0, 0.0), 24), scenes.circle(0.2, (1.0, 0.0), 24)]
+    b = [scenes.circle(0.2, (0.0, 0.0), 24), scenes.circle(0.2, (np.cos(0.7), np.sin(0.7)), 24)]
+    keys = scenes.key(a, [True, True]), scenes.key(b, [True, True])
+    middle = bm.inbetween(keys[0].stroke_set(), keys[1].stroke_set(), [0.5]).frames[0]
+    xy = middle.positions[middle.points(1)][:, [0, 2]]
+    want = 0.5 * (a[1] + b[1])
+    np.testing.assert_allclose(xy, want, atol=1e-9)
+    assert all("rode" not in p.reason for p in bm.inbetween(keys[0].stroke_set(), keys[1].stroke_set(), [0.5]).pairs)
