@@ -115,7 +115,10 @@ def best_assignment(table, key_a, key_b, motion=None):
             # it), and its costs may say it cannot: then its solve, the costly part where
             # strokes look alike, is left out. (Earlier in a chain it may not be: a chain that
             # starts far behind often ends ahead, e.g. from a turned drawing.)
-            last = step == MATCH_MOTION_ITERATIONS - 1 and best is not None
+            # A bounded table's solves are the costly part at every step, where strokes crowd
+            # each other (a guessed turn taking the drawing over itself): any step whose costs
+            # say it cannot beat the best so far is left out.
+            last = best is not None and (table.bounded or step == MATCH_MOTION_ITERATIONS - 1)
             solved = assign_at(table, motion, best[0] if last else None)
             if solved is None:
                 break

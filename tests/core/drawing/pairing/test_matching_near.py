@@ -58,10 +58,15 @@ def _many_small_keys(seed):
     return (a, closed), (b, np.r_[closed[keep], np.zeros(extra, bool)])
 
 
-def _table(keys):
+def _table(keys, whole=False):
+    """The cost table of two keys; with ``whole``, one that may be laid out whole however many
+    pairs it has (the whole-table path's tests, on drawings above ``MATCH_WHOLE_MOST``)."""
     (sa, ca), (sb, cb) = keys
     key = [descriptors.KeyDescriptors(st, c, "k", "c", descriptors.MATCH_SAMPLES) for st, c in ((sa, ca), (sb, cb))]
-    return costs.CostTable(*key)
+    with pytest.MonkeyPatch.context() as patch:
+        if whole:
+            patch.setattr(costs, "MATCH_WHOLE_MOST", np.inf)
+        return costs.CostTable(*key)
 
 
 @settings(max_examples=40, deadline=None)
@@ -262,7 +267,8 @@ def _moved_hatching(n, seed, far, angle, turn=0.0):
     towards ``angle``, turned by ``turn`` (radians): the table and the motion."""
     a, b, _ = bench_matching.reordered_hatching(n, seed)
     width = 0.3 * np.ceil(np.sqrt(n))
-    return _table(((a, [False] * n), (b, [False] * n))), (np.exp(1j * turn), far * width * np.exp(1j * angle))
+    table = _table(((a, [False] * n), (b, [False] * n)), whole=True)
+    return table, (np.exp(1j * turn), far * width * np.exp(1j * angle))
 
 
 @settings(max_examples=12, deadline=None)
@@ -309,6 +315,7 @@ def test_where_most_pairs_may_form_they_are_not_listed_before_the_whole_table(mo
         return real(table, a, b, level, only_a, only_b)
 
     monkeypatch.setattr(costs.CostTable, "near", spy)
+    monkeypatch.setattr(costs, "MATCH_WHOLE_MOST", 400 * 400)  # (the whole-table path's own test)
     flags = [False] * 400
     match_strokes(key_a, key_b, flags, flags)
     assert certified.MATCH_NEAR_COST in levels and costs.MATCH_MAX_COST not in levels
