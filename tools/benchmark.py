@@ -692,17 +692,24 @@ def scribble_times():
     return times
 
 
-def plain_rows(tool):
-    """The rows of ``tool`` (bench_ballmap.py or bench_matching.py), run with ``--json`` in a
-    plain CPython subprocess (no bpy imported)."""
+def plain_rows(tool, *options):
+    """The rows of ``tool`` (bench_ballmap.py or bench_matching.py), run with ``--json`` (and
+    ``options``) in a plain CPython subprocess (no bpy imported)."""
     script = os.path.join(ROOT, "tools", tool)
-    out = subprocess.run([sys.executable, script, "--json"], capture_output=True, text=True, check=True).stdout
+    run = [sys.executable, script, "--json", *options]
+    out = subprocess.run(run, capture_output=True, text=True, check=True).stdout
     return json.loads(out)
 
 
-def goals(cases, ballmap_rows, methods, scribble, matching_rows=()):
+def goals(cases, ballmap_rows, methods, scribble, matching_rows=(), moving_rows=()):
     """(goal text, measured text, verdict) rows."""
-    return [*_time_goals(cases), *_growth_goals(ballmap_rows, matching_rows, scribble), *_memory_goals(cases)]
+    rows = [*_time_goals(cases), *_growth_goals(ballmap_rows, matching_rows, scribble), *_memory_goals(cases)]
+    worst = bench_matching.moving_goal(moving_rows) if moving_rows else None
+    if worst is not None:
+        sizes = f"{moving_rows[0]['n']:,} -> {moving_rows[-1]['n']:,}"
+        goal = f"match_strokes of the moving drawing {sizes} strokes, per doubling <= {bench_matching.MOVING_GOAL}"
+        rows.append((goal, f"{worst:.2f} (largest ratio)", worst <= bench_matching.MOVING_GOAL))
+    return rows
 
 
 def _time_goals(cases):
@@ -863,7 +870,7 @@ def _kind_section(kind, rows, methods, short):
     return lines
 
 
-def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows=()):
+def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows=(), moving_rows=()):
     short = {"CIRCULAR_BALL": "circular", "LINEAR_BALL": "linear", "PARABOLIC_BALL": "parabolic"}
     lines = [
         "# Benchmark: Ball-morph In-between against Blender's Interpolate Sequence",
@@ -887,7 +894,7 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_ro
         "| goal | measured | verdict |",
         "|---|---|---|",
     ]
-    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble, matching_rows):
+    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble, matching_rows, moving_rows):
         lines.append(f"| {goal} | {measured} | {'pass' if ok else '**FAIL**'} |")
     for kind in KINDS:
         rows = [c for c in cases if c.kind == kind]
@@ -939,6 +946,15 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_ro
             bench_matching.description(),
             "",
             bench_matching.markdown(matching_rows),
+        ]
+    if moving_rows:
+        lines += [
+            "",
+            "## Matching a moving drawing, 400 to 6,400 strokes (plain CPython, `tools/bench_matching.py --moving`)",
+            "",
+            bench_matching.moving_description(),
+            "",
+            bench_matching.markdown_moving(moving_rows),
         ]
     lines += ["", method_notes(cases)]
     return "\n".join(lines) + "\n"
@@ -1123,9 +1139,11 @@ def main(argv=None):
             say(f"memory {case.kind} {case.label}: " + "  ".join(f"{op} {v:.1f} MiB" for op, v in case.memory.items()))
     ballmap_rows = [] if args.no_ballmap else plain_rows("bench_ballmap.py")
     matching_rows = [] if args.no_ballmap else plain_rows("bench_matching.py")
+    moving_rows = [] if args.no_ballmap else plain_rows("bench_matching.py", "--moving")
     scribble = {} if args.no_ballmap else scribble_times()
     info["load_end"] = _read("/proc/loadavg").split()[:3]
-    text = report(cases, methods, ballmap_rows, scribble, info, time.perf_counter() - started, argv, matching_rows)
+    wall = time.perf_counter() - started
+    text = report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows, moving_rows)
     if args.write:
         with open(args.write, "w") as f:
             f.write(text)
