@@ -157,7 +157,7 @@ def description():
 
 def moving_description():
     """What ``--moving`` times (the docstring's paragraph on it), for reports."""
-    return __doc__.split("With ``--moving`` ", 1)[1].split("\n\nUsage")[0].replace("it times", "Times", 1).strip()
+    return __doc__.split("With ``--moving`` ", 1)[1].split("\n\nUsage")[0].replace("it times", "Times", 1).replace(" instead", "", 1).strip()
 
 
 def goal(rows, small=500, large=1000):

@@ -97,6 +97,9 @@ SCRIBBLE_POINTS = (1000, 2000, 3000)
 SCRIBBLE_GOAL = (2000, 2.0)  # this many points in at most this many seconds
 GOAL_METHOD = "CIRCULAR_BALL"
 GOAL_MEMORY = 2.0  # peak memory ours / built-in on the largest drawing, at most
+# Issue 41: peak memory of one cold circular run against the built-in's on a drawing of many
+# strokes (kind, strokes x points x in-betweens), at most GOAL_MEMORY; not timed, only probed.
+SCALE_MEMORY = ("open", (5000, 50, 3))
 # Where re-running over the operator's own earlier in-betweens is timed too.
 REPLACE_SIZES = ((100, 200, 9),)
 
@@ -701,9 +704,22 @@ def plain_rows(tool, *options):
     return json.loads(out)
 
 
-def goals(cases, ballmap_rows, methods, scribble, matching_rows=(), moving_rows=()):
+def _scale_memory_goal(memory):
+    """The goal row of the peak memory at SCALE_MEMORY (``memory``: {op: MiB}, empty when not probed)."""
+    if not memory:
+        return []
+    kind, size = SCALE_MEMORY
+    ours, theirs = memory[GOAL_METHOD], memory[BUILTIN]
+    ratio = ours / max(theirs, 1e-9)
+    label = "x".join(map(str, size))
+    goal = f"peak memory circular / built-in at {label} ({kind}, issue 41) <= {GOAL_MEMORY}"
+    return [(goal, f"{ratio:.2f} ({ours:.1f} MiB / {theirs:.1f} MiB)", ratio <= GOAL_MEMORY)]
+
+
+def goals(cases, ballmap_rows, methods, scribble, matching_rows=(), moving_rows=(), scale_memory=None):
     """(goal text, measured text, verdict) rows."""
     rows = [*_time_goals(cases), *_growth_goals(ballmap_rows, matching_rows, scribble), *_memory_goals(cases)]
+    rows += _scale_memory_goal(scale_memory)
     worst = bench_matching.moving_goal(moving_rows) if moving_rows else None
     if worst is not None:
         sizes = f"{moving_rows[0]['n']:,} -> {moving_rows[-1]['n']:,}"
@@ -870,7 +886,9 @@ def _kind_section(kind, rows, methods, short):
     return lines
 
 
-def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows=(), moving_rows=()):
+def report(
+    cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows=(), moving_rows=(), scale_memory=None
+):
     short = {"CIRCULAR_BALL": "circular", "LINEAR_BALL": "linear", "PARABOLIC_BALL": "parabolic"}
     lines = [
         "# Benchmark: Ball-morph In-between against Blender's Interpolate Sequence",
@@ -894,7 +912,7 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_ro
         "| goal | measured | verdict |",
         "|---|---|---|",
     ]
-    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble, matching_rows, moving_rows):
+    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble, matching_rows, moving_rows, scale_memory):
         lines.append(f"| {goal} | {measured} | {'pass' if ok else '**FAIL**'} |")
     for kind in KINDS:
         rows = [c for c in cases if c.kind == kind]
@@ -917,6 +935,7 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_ro
             ratio = c.memory[GOAL_METHOD] / max(c.memory[BUILTIN], 1e-9) if GOAL_METHOD in c.memory else None
             cells.append(f"{ratio:.1f}" if ratio is not None else "n/a")
             lines.append(f"| {c.kind} {c.label} | " + " | ".join(cells) + " |")
+    lines += _scale_memory_lines(scale_memory)
     if scribble:
         lines += [
             "",
@@ -947,17 +966,36 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_ro
             "",
             bench_matching.markdown(matching_rows),
         ]
-    if moving_rows:
-        lines += [
-            "",
-            "## Matching a moving drawing, 400 to 6,400 strokes (plain CPython, `tools/bench_matching.py --moving`)",
-            "",
-            bench_matching.moving_description(),
-            "",
-            bench_matching.markdown_moving(moving_rows),
-        ]
+    lines += _moving_lines(moving_rows)
     lines += ["", method_notes(cases)]
     return "\n".join(lines) + "\n"
+
+
+def _scale_memory_lines(memory):
+    """The report's line on the peak memory at SCALE_MEMORY (none when not probed)."""
+    if not memory:
+        return []
+    kind, size = SCALE_MEMORY
+    ratio = memory[GOAL_METHOD] / max(memory[BUILTIN], 1e-9)
+    return [
+        "",
+        f"Many strokes (issue 41), probed only (built-in and circular): {kind} {'x'.join(map(str, size))}:"
+        f" built-in {memory[BUILTIN]:.1f} MiB, circular {memory[GOAL_METHOD]:.1f} MiB ({ratio:.1f} times).",
+    ]
+
+
+def _moving_lines(rows):
+    """The report's section on matching the moving drawing (none when not run)."""
+    if not rows:
+        return []
+    return [
+        "",
+        "## Matching a moving drawing, 400 to 6,400 strokes (plain CPython, `tools/bench_matching.py --moving`)",
+        "",
+        bench_matching.moving_description(),
+        "",
+        bench_matching.markdown_moving(rows),
+    ]
 
 
 def method_notes(cases):
@@ -1140,10 +1178,14 @@ def main(argv=None):
     ballmap_rows = [] if args.no_ballmap else plain_rows("bench_ballmap.py")
     matching_rows = [] if args.no_ballmap else plain_rows("bench_matching.py")
     moving_rows = [] if args.no_ballmap else plain_rows("bench_matching.py", "--moving")
+    scale_memory = None
+    if not args.no_ballmap:
+        scale_memory = memory_of(Case(SCALE_MEMORY[0], *SCALE_MEMORY[1]), [BUILTIN, GOAL_METHOD])
+        say("memory at " + "  ".join(f"{op} {v:.1f} MiB" for op, v in scale_memory.items()))
     scribble = {} if args.no_ballmap else scribble_times()
     info["load_end"] = _read("/proc/loadavg").split()[:3]
     wall = time.perf_counter() - started
-    text = report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows, moving_rows)
+    text = report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows, moving_rows, scale_memory)
     if args.write:
         with open(args.write, "w") as f:
             f.write(text)
