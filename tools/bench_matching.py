@@ -157,7 +157,8 @@ def description():
 
 def moving_description():
     """What ``--moving`` times (the docstring's paragraph on it), for reports."""
-    return __doc__.split("With ``--moving`` ", 1)[1].split("\n\nUsage")[0].replace("it times", "Times", 1).replace(" instead", "", 1).strip()
+    text = __doc__.split("With ``--moving`` ", 1)[1].split("\n\nUsage")[0]
+    return text.replace("it times", "Times", 1).replace(" instead", "", 1).strip()
 
 
 def goal(rows, small=500, large=1000):

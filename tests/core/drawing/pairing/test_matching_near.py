@@ -120,6 +120,28 @@ def test_the_near_pairs_match_as_the_whole_table(draw, monkeypatch):
         assert np.mean(settled) > 0.5
 
 
+@pytest.mark.parametrize("draw", [_keys, _many_small_keys])
+def test_the_bounded_candidate_lists_match_as_the_whole_table(draw, monkeypatch):
+    # Every table made bounded (issue 41: what a drawing of thousands of strokes takes): each
+    # stroke's candidate lists, widened where the duals do not certify them, pair as the whole
+    # table does, and the drawing order is kept or left alike.
+    # (Chains far behind kept, as the whole-table path keeps them: see MATCH_BEHIND.)
+    monkeypatch.setattr(motion_search, "MATCH_BEHIND", np.inf)
+    for seed in range(12):
+        (sa, ca), (sb, cb) = draw(seed)
+        whole = match_strokes(sa, sb, ca, cb)
+        with monkeypatch.context() as bounded_only:
+            bounded_only.setattr(costs, "MATCH_WHOLE_MOST", 0)
+            bounded = match_strokes(sa, sb, ca, cb)
+        assert bounded.pairs == whole.pairs, seed
+        assert (bounded.unmatched_a, bounded.unmatched_b, bounded.method) == (
+            whole.unmatched_a,
+            whole.unmatched_b,
+            whole.method,
+        )
+        np.testing.assert_allclose(bounded.costs, whole.costs, rtol=0, atol=1e-6)
+
+
 def _hatching_matched_without_the_whole_table(monkeypatch, n, move=(0.0, 0.0)):
     """Whether ``n`` reordered hatch lines, key B also moved by ``move``, pair right with the
     whole table never priced (two bools)."""
