@@ -918,23 +918,7 @@ def report(
         rows = [c for c in cases if c.kind == kind]
         if rows:
             lines += _kind_section(kind, rows, methods, short)
-    probed = [c for c in cases if c.memory]
-    if probed:
-        ops = [BUILTIN, *methods]
-        lines += [
-            "",
-            "## Peak memory (MiB; one cold run, each in a fresh bpy process)",
-            "",
-            "| drawing | "
-            + " | ".join("built-in" if op == BUILTIN else short.get(op, op) for op in ops)
-            + " | circular / built-in |",
-            "|---|" + "---:|" * (len(ops) + 1),
-        ]
-        for c in probed:
-            cells = [f"{c.memory[op]:.1f}" for op in ops]
-            ratio = c.memory[GOAL_METHOD] / max(c.memory[BUILTIN], 1e-9) if GOAL_METHOD in c.memory else None
-            cells.append(f"{ratio:.1f}" if ratio is not None else "n/a")
-            lines.append(f"| {c.kind} {c.label} | " + " | ".join(cells) + " |")
+    lines += _memory_lines(cases, methods, short)
     lines += _scale_memory_lines(scale_memory)
     if scribble:
         lines += [
@@ -969,6 +953,29 @@ def report(
     lines += _moving_lines(moving_rows)
     lines += ["", method_notes(cases)]
     return "\n".join(lines) + "\n"
+
+
+def _memory_lines(cases, methods, short):
+    """The report's peak memory table (none when nothing was probed)."""
+    probed = [c for c in cases if c.memory]
+    if not probed:
+        return []
+    ops = [BUILTIN, *methods]
+    lines = [
+        "",
+        "## Peak memory (MiB; one cold run, each in a fresh bpy process)",
+        "",
+        "| drawing | "
+        + " | ".join("built-in" if op == BUILTIN else short.get(op, op) for op in ops)
+        + " | circular / built-in |",
+        "|---|" + "---:|" * (len(ops) + 1),
+    ]
+    for c in probed:
+        cells = [f"{c.memory[op]:.1f}" for op in ops]
+        ratio = c.memory[GOAL_METHOD] / max(c.memory[BUILTIN], 1e-9) if GOAL_METHOD in c.memory else None
+        cells.append(f"{ratio:.1f}" if ratio is not None else "n/a")
+        lines.append(f"| {c.kind} {c.label} | " + " | ".join(cells) + " |")
+    return lines
 
 
 def _scale_memory_lines(memory):
