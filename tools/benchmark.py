@@ -98,6 +98,9 @@ SCRIBBLE_POINTS = (1000, 2000, 3000)
 SCRIBBLE_GOAL = (2000, 2.0)  # this many points in at most this many seconds
 GOAL_METHOD = "CIRCULAR_BALL"
 GOAL_MEMORY = 2.0  # peak memory ours / built-in on the largest drawing, at most
+# Issue 41: peak memory of one cold circular run against the built-in's on a drawing of many
+# strokes (kind, strokes x points x in-betweens), at most GOAL_MEMORY; not timed, only probed.
+SCALE_MEMORY = ("open", (5000, 50, 3))
 # Where re-running over the operator's own earlier in-betweens is timed too.
 REPLACE_SIZES = ((100, 200, 9),)
 
@@ -693,17 +696,37 @@ def scribble_times():
     return times
 
 
-def plain_rows(tool):
-    """The rows of ``tool`` (bench_ballmap.py or bench_matching.py), run with ``--json`` in a
-    plain CPython subprocess (no bpy imported)."""
+def plain_rows(tool, *options):
+    """The rows of ``tool`` (bench_ballmap.py or bench_matching.py), run with ``--json`` (and
+    ``options``) in a plain CPython subprocess (no bpy imported)."""
     script = os.path.join(ROOT, "tools", tool)
-    out = subprocess.run([sys.executable, script, "--json"], capture_output=True, text=True, check=True).stdout
+    run = [sys.executable, script, "--json", *options]
+    out = subprocess.run(run, capture_output=True, text=True, check=True).stdout
     return json.loads(out)
 
 
-def goals(cases, ballmap_rows, methods, scribble, matching_rows=()):
+def _scale_memory_goal(memory):
+    """The goal row of the peak memory at SCALE_MEMORY (``memory``: {op: MiB}, empty when not probed)."""
+    if not memory:
+        return []
+    kind, size = SCALE_MEMORY
+    ours, theirs = memory[GOAL_METHOD], memory[BUILTIN]
+    ratio = ours / max(theirs, 1e-9)
+    label = "x".join(map(str, size))
+    goal = f"peak memory circular / built-in at {label} ({kind}, issue 41) <= {GOAL_MEMORY}"
+    return [(goal, f"{ratio:.2f} ({ours:.1f} MiB / {theirs:.1f} MiB)", ratio <= GOAL_MEMORY)]
+
+
+def goals(cases, ballmap_rows, methods, scribble, matching_rows=(), moving_rows=(), scale_memory=None):
     """(goal text, measured text, verdict) rows."""
-    return [*_time_goals(cases), *_growth_goals(ballmap_rows, matching_rows, scribble), *_memory_goals(cases)]
+    rows = [*_time_goals(cases), *_growth_goals(ballmap_rows, matching_rows, scribble), *_memory_goals(cases)]
+    rows += _scale_memory_goal(scale_memory)
+    worst = bench_matching.moving_goal(moving_rows) if moving_rows else None
+    if worst is not None:
+        sizes = f"{moving_rows[0]['n']:,} -> {moving_rows[-1]['n']:,}"
+        goal = f"match_strokes of the moving drawing {sizes} strokes, per doubling <= {bench_matching.MOVING_GOAL}"
+        rows.append((goal, f"{worst:.2f} (largest ratio)", worst <= bench_matching.MOVING_GOAL))
+    return rows
 
 
 def _time_goals(cases):
@@ -864,7 +887,9 @@ def _kind_section(kind, rows, methods, short):
     return lines
 
 
-def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows=()):
+def report(
+    cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows=(), moving_rows=(), scale_memory=None
+):
     short = {"CIRCULAR_BALL": "circular", "LINEAR_BALL": "linear", "PARABOLIC_BALL": "parabolic"}
     lines = [
         "# Benchmark: Ball-morph In-between against Blender's Interpolate Sequence",
@@ -888,29 +913,14 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_ro
         "| goal | measured | verdict |",
         "|---|---|---|",
     ]
-    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble, matching_rows):
+    for goal, measured, ok in goals(cases, ballmap_rows, methods, scribble, matching_rows, moving_rows, scale_memory):
         lines.append(f"| {goal} | {measured} | {'pass' if ok else '**FAIL**'} |")
     for kind in KINDS:
         rows = [c for c in cases if c.kind == kind]
         if rows:
             lines += _kind_section(kind, rows, methods, short)
-    probed = [c for c in cases if c.memory]
-    if probed:
-        ops = [BUILTIN, *methods]
-        lines += [
-            "",
-            "## Peak memory (MiB; one cold run, each in a fresh bpy process)",
-            "",
-            "| drawing | "
-            + " | ".join("built-in" if op == BUILTIN else short.get(op, op) for op in ops)
-            + " | circular / built-in |",
-            "|---|" + "---:|" * (len(ops) + 1),
-        ]
-        for c in probed:
-            cells = [f"{c.memory[op]:.1f}" for op in ops]
-            ratio = c.memory[GOAL_METHOD] / max(c.memory[BUILTIN], 1e-9) if GOAL_METHOD in c.memory else None
-            cells.append(f"{ratio:.1f}" if ratio is not None else "n/a")
-            lines.append(f"| {c.kind} {c.label} | " + " | ".join(cells) + " |")
+    lines += _memory_lines(cases, methods, short)
+    lines += _scale_memory_lines(scale_memory)
     if scribble:
         lines += [
             "",
@@ -941,8 +951,59 @@ def report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_ro
             "",
             bench_matching.markdown(matching_rows),
         ]
+    lines += _moving_lines(moving_rows)
     lines += ["", method_notes(cases)]
     return "\n".join(lines) + "\n"
+
+
+def _memory_lines(cases, methods, short):
+    """The report's peak memory table (none when nothing was probed)."""
+    probed = [c for c in cases if c.memory]
+    if not probed:
+        return []
+    ops = [BUILTIN, *methods]
+    lines = [
+        "",
+        "## Peak memory (MiB; one cold run, each in a fresh bpy process)",
+        "",
+        "| drawing | "
+        + " | ".join("built-in" if op == BUILTIN else short.get(op, op) for op in ops)
+        + " | circular / built-in |",
+        "|---|" + "---:|" * (len(ops) + 1),
+    ]
+    for c in probed:
+        cells = [f"{c.memory[op]:.1f}" for op in ops]
+        ratio = c.memory[GOAL_METHOD] / max(c.memory[BUILTIN], 1e-9) if GOAL_METHOD in c.memory else None
+        cells.append(f"{ratio:.1f}" if ratio is not None else "n/a")
+        lines.append(f"| {c.kind} {c.label} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def _scale_memory_lines(memory):
+    """The report's line on the peak memory at SCALE_MEMORY (none when not probed)."""
+    if not memory:
+        return []
+    kind, size = SCALE_MEMORY
+    ratio = memory[GOAL_METHOD] / max(memory[BUILTIN], 1e-9)
+    return [
+        "",
+        f"Many strokes (issue 41), probed only (built-in and circular): {kind} {'x'.join(map(str, size))}:"
+        f" built-in {memory[BUILTIN]:.1f} MiB, circular {memory[GOAL_METHOD]:.1f} MiB ({ratio:.1f} times).",
+    ]
+
+
+def _moving_lines(rows):
+    """The report's section on matching the moving drawing (none when not run)."""
+    if not rows:
+        return []
+    return [
+        "",
+        "## Matching a moving drawing, 400 to 6,400 strokes (plain CPython, `tools/bench_matching.py --moving`)",
+        "",
+        bench_matching.moving_description(),
+        "",
+        bench_matching.markdown_moving(rows),
+    ]
 
 
 def method_notes(cases):
@@ -1124,9 +1185,15 @@ def main(argv=None):
             say(f"memory {case.kind} {case.label}: " + "  ".join(f"{op} {v:.1f} MiB" for op, v in case.memory.items()))
     ballmap_rows = [] if args.no_ballmap else plain_rows("bench_ballmap.py")
     matching_rows = [] if args.no_ballmap else plain_rows("bench_matching.py")
+    moving_rows = [] if args.no_ballmap else plain_rows("bench_matching.py", "--moving")
+    scale_memory = None
+    if not args.no_ballmap:
+        scale_memory = memory_of(Case(SCALE_MEMORY[0], *SCALE_MEMORY[1]), [BUILTIN, GOAL_METHOD])
+        say("memory at " + "  ".join(f"{op} {v:.1f} MiB" for op, v in scale_memory.items()))
     scribble = {} if args.no_ballmap else scribble_times()
     info["load_end"] = _read("/proc/loadavg").split()[:3]
-    text = report(cases, methods, ballmap_rows, scribble, info, time.perf_counter() - started, argv, matching_rows)
+    wall = time.perf_counter() - started
+    text = report(cases, methods, ballmap_rows, scribble, info, wall, argv, matching_rows, moving_rows, scale_memory)
     if args.write:
         with open(args.write, "w") as f:
             f.write(text)

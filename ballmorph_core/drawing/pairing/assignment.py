@@ -198,6 +198,91 @@ class _Duals:
                 return
 
 
+class _Walk:
+    """The columns one sparse search has reached (:func:`_sparse_augment`), in the order reached:
+    each one's distance (inf once scanned), its final distance once scanned, the row it was
+    first reached from at that distance."""
+
+    def __init__(self, slot):
+        self.slot, self.count = slot, 0  # slot: -1 for every column (given back so at the end)
+        self.cols, self.pred = np.zeros(_ROWS_FIRST, np.int64), np.zeros(_ROWS_FIRST, np.int64)
+        self.dist, self.shortest = np.full(_ROWS_FIRST, np.inf), np.full(_ROWS_FIRST, np.inf)
+
+    @property
+    def reached(self):
+        """Distances of the columns reached so far (inf once scanned), shape (R,)."""
+        return self.dist[: self.count]
+
+    def reach(self, i, cols, dist):
+        """Row ``i`` reaches columns ``cols`` at distances ``dist`` (shapes (K,)): keep the lower."""
+        new = cols[self.slot[cols] < 0]
+        if len(new):
+            end = self.count + len(new)
+            if end > len(self.cols):
+                grow = max(end, 2 * len(self.cols)) - len(self.cols)
+                ints, floats = np.zeros(grow, np.int64), np.full(grow, np.inf)
+                self.cols, self.pred = (np.concatenate([a, ints]) for a in (self.cols, self.pred))
+                self.dist, self.shortest = (np.concatenate([a, floats]) for a in (self.dist, self.shortest))
+            self.slot[new] = np.arange(self.count, end)
+            self.cols[self.count : end] = new
+            self.count = end
+        at = self.slot[cols]
+        # A scanned column's distance is inf here: never lowered again.
+        better = (dist < self.dist[at]) & np.isinf(self.shortest[at])
+        self.dist[at[better]] = dist[better]
+        self.pred[at[better]] = i
+
+
+def _sparse_augment(duals, cur, free_first):
+    """:meth:`_Duals.augment` on a :class:`_SparseRows` table, walking each row's entries only.
+
+    A row reaches every column left out of its entries at ``fill``: a free column (potential 0,
+    the highest: potentials of columns only fall) at least as near as any taken one, so those
+    entries are one candidate, the first free column, at the least ``dist + fill - u`` of the
+    rows visited. Each step then costs the row's entries and the columns reached so far, not
+    the table's width. ``free_first`` (int): no column before it is free. Returns the next one.
+    """
+    c, u, v, row4col, col4row = duals.c, duals.u, duals.v, duals.row4col, duals.col4row
+    while row4col[free_first] >= 0:
+        free_first += 1
+    walk, visited = _Walk(duals.slot), []
+    i, min_val, fill_best, fill_pred = int(cur), 0.0, np.inf, -1
+    while True:
+        visited.append(i)
+        at = slice(c.start[i], c.start[i + 1])
+        cols = c.cols[at]
+        dist = c.values[at] + min_val
+        dist -= u[i]
+        dist -= v[cols]
+        walk.reach(i, cols, dist)
+        via_fill = c.fill + min_val - u[i]
+        if via_fill < fill_best:
+            fill_best, fill_pred = via_fill, i
+        k = int(walk.reached.argmin()) if walk.count else -1
+        if k < 0 or fill_best < walk.dist[k] or (fill_best == walk.dist[k] and row4col[walk.cols[k]] >= 0):
+            j, min_val, end_pred = free_first, fill_best, fill_pred
+            break
+        j, min_val = int(walk.cols[k]), float(walk.dist[k])
+        walk.shortest[k], walk.dist[k] = min_val, np.inf
+        if row4col[j] < 0:
+            end_pred = int(walk.pred[k])
+            break
+        i = int(row4col[j])
+    scanned = np.isfinite(walk.shortest[: walk.count])
+    u[cur] += min_val
+    others = np.asarray(visited[1:], np.int64)
+    u[others] += min_val - walk.shortest[walk.slot[col4row[others]]]
+    v[walk.cols[: walk.count][scanned]] -= min_val - walk.shortest[: walk.count][scanned]
+    i = end_pred
+    while True:
+        row4col[j] = i
+        col4row[i], j = j, int(col4row[i])
+        if i == cur:
+            duals.slot[walk.cols[: walk.count]] = -1
+            return free_first
+        i = int(walk.pred[walk.slot[j]])
+
+
 def _predecessor(visited, rows, j):
     """The first of the ``visited`` rows (int) whose distance to column ``j`` (``rows``, shape
     (V, C)) is the least: the row a search step reached ``j`` from (a later row at the same
@@ -205,7 +290,7 @@ def _predecessor(visited, rows, j):
     return visited[int(rows[:, j].argmin())]
 
 
-def solve_assignment(cost, duals=False):
+def solve_assignment(cost, duals=False, walk_entries=False):
     """Minimum-cost assignment of rows to columns (rectangular allowed).
 
     Parameters
@@ -214,6 +299,11 @@ def solve_assignment(cost, duals=False):
         Finite costs.
     duals : bool
         Also return the optimal dual potentials.
+    walk_entries : bool
+        For a SparseCosts whose ``fill`` is at least every entry: each search walks the rows'
+        entries only (its steps cost the entries reached, not the table's width: the bounded
+        tables' solves). The same optimal total; between optimal assignments that tie, another
+        may be returned.
 
     Returns
     -------
@@ -260,8 +350,13 @@ def solve_assignment(cost, duals=False):
         none = np.zeros(0, np.int64)
         return (none, none, np.zeros(shape[0]), np.zeros(shape[1])) if duals else (none, none)
     solved = _Duals.row_reduced(c, solved_shape)
-    for cur in np.flatnonzero(solved.col4row < 0):
-        solved.augment(cur)
+    if walk_entries and isinstance(c, _SparseRows):
+        free_first, solved.slot = 0, np.full(solved_shape[1], -1, np.int64)
+        for cur in np.flatnonzero(solved.col4row < 0):
+            free_first = _sparse_augment(solved, cur, free_first)
+    else:
+        for cur in np.flatnonzero(solved.col4row < 0):
+            solved.augment(cur)
     rows = np.arange(solved_shape[0])
     if transposed:
         order = np.argsort(solved.col4row)

@@ -1,9 +1,12 @@
 """The assignment of a cost table, solved on the pairs near each other first and certified by
-the solve's dual potentials, else on every pair that may form (see :mod:`.matching`)."""
+the solve's dual potentials, else on every pair that may form (see :mod:`.matching`); a bounded
+table's (``costs.MATCH_WHOLE_MOST``) on each stroke's bounded list of candidates, widened only
+for the strokes the potentials do not certify (:mod:`.candidates`)."""
 
 import numpy as np
 
 from .assignment import solve_assignment
+from .candidates import CandidateLists
 from .costs import MATCH_MAX_COST
 
 __all__ = ["assign_at", "padded_total"]
@@ -17,6 +20,12 @@ MATCH_NEAR_COST = 0.1
 #: ... and its strokes whose potentials do not certify it get all their pairs priced, while
 #: they stay within this share of the strokes (beyond, the whole table is priced).
 MATCH_NEAR_SHARE = 1 / 16
+
+
+#: A bounded table's solve at one motion is made again, its uncertified strokes' candidates
+#: widened, at most this many times; then it is the optimal one among the candidates (where
+#: strokes crowd each other, as a guessed turn taking the drawing over itself).
+MATCH_WIDENINGS = 2
 
 
 #: ... and where they do not settle it, every pair that may cost less than MATCH_MAX_COST is
@@ -42,6 +51,8 @@ def assign_at(table, motion, beat=None):
     The pairs near each other are tried first (:func:`_assign_near`); where they do not settle
     the motion, the whole table is priced.
     """
+    if table.bounded:
+        return _assign_bounded(table, motion, beat)
     solved = _assign_near(table, motion, beat)
     if solved is not _UNSETTLED:
         return solved
@@ -80,7 +91,7 @@ def _assign_near(table, motion, beat=None):
 
 
 def _settle(table, motion, priced, beat, most):
-    """The solve of the pairs ``priced`` (:class:`_Priced`) at ``motion``, widened until its
+    """The solve of the pairs ``priced`` (:class:`Priced`) at ``motion``, widened until its
     dual potentials certify it (see :func:`_assign_near`): rows, cols; None when no matching
     totals less than ``beat``; ``_UNSETTLED`` when more than ``most`` strokes would need all
     their pairs priced, or when none priced may form while others left out still may."""
@@ -125,6 +136,53 @@ def _assign_every(table, motion, beat=None, near=0):
     if len(rows) > limit:
         return _UNSETTLED
     return _settle(table, motion, table.priced(*motion, MATCH_MAX_COST, (rows, cols)), beat, 0)
+
+
+def _assign_bounded(table, motion, beat=None):
+    """:func:`assign_at` for a bounded table: never laid out whole.
+
+    Each stroke's candidates (:class:`~.candidates.CandidateLists`, from ``MATCH_NEAR_COST``)
+    are priced, those of strokes with none below their floor widened first; then the solve on
+    them is made again, the strokes whose potentials do not certify it widened
+    (:func:`_unsafe`), until it is certified, or its uncertified strokes' lists are as long as
+    they may be (then it is the optimal assignment among the candidates).
+    """
+    lists = CandidateLists(table, motion, MATCH_NEAR_COST)
+    lists.widen_bare(beat)
+    for widening in range(MATCH_WIDENINGS + 1):
+        priced = lists.priced()
+        if beat is not None and priced.least_total() >= beat:
+            return None
+        if not np.any(priced.costs < MATCH_MAX_COST):
+            return np.zeros(0, np.int64), np.zeros(0, np.int64)
+        clipped = priced.table()
+        rows, cols, u, v = solve_assignment(clipped, duals=True, walk_entries=True)
+        unsafe, needed = _unsafe(priced, u, v)
+        # Widening one key's unsafe strokes prices every pair between the two sets: the fewer.
+        sides = sorted((0, 1), key=lambda side: np.count_nonzero(unsafe[side]))
+        if widening == MATCH_WIDENINGS or not (unsafe[0].any() and unsafe[1].any()):
+            break
+        if not any(lists.widen(s, unsafe[s], needed[s]) for s in sides):
+            break
+    keep = clipped.at(rows, cols) < MATCH_MAX_COST
+    return rows[keep], cols[keep]
+
+
+def _unsafe(priced, u, v):
+    """The strokes whose pairs left out ``u``, ``v`` (a solve's potentials of :meth:`~.costs.Priced.table`,
+    shapes (S_a,), (S_b,)) may not certify: masks, shapes (S_a,), (S_b,); and the floors that
+    would make each stroke safe, shapes (S_a,), (S_b,).
+
+    A pair left out costs at least the larger of its strokes' floors. A stroke of A with
+    ``u_i + max v <= floor_i`` (the largest over B's strokes whose floors are below
+    ``MATCH_MAX_COST``: the others' pairs are all priced) is safe: each of its pairs left out
+    holds the certificate; so is a stroke of B the same way. A pair left out between two
+    unsafe strokes may not hold it.
+    """
+    open_a, open_b = priced.floor_a < MATCH_MAX_COST, priced.floor_b < MATCH_MAX_COST
+    top_u, top_v = float(u[open_a].max(initial=-np.inf)), float(v[open_b].max(initial=-np.inf))
+    needed = u + top_v, v + top_u
+    return (open_a & (needed[0] > priced.floor_a), open_b & (needed[1] > priced.floor_b)), needed
 
 
 def padded_total(pair_costs, n_a, n_b):

@@ -14,7 +14,7 @@ from .descriptors import complex_samples, dot_spread
 from .shape_fits import CHUNK, LoopFits, open_shapes, pair_shapes, shared_ends, sq_norms
 from .symmetry import loop_reversals, unoriented
 
-__all__ = ["CostTable"]
+__all__ = ["CostTable", "Priced"]
 
 
 #: Weights of the cost's shape, place and scale terms, and the cost at which a pair is never
@@ -46,8 +46,54 @@ W_TURN = 0.1
 DOT_SHAPE = 0.5
 
 
+#: A table of more pairs than this (two keys of about 256 strokes each) is *bounded*: never laid
+#: out whole (no (S_a, S_b) array), its fits kept pair by pair, its motions solved on each
+#: stroke's bounded list of candidates (:mod:`.candidates`). Up to it, the whole table may be
+#: priced where most pairs may form (the faster there).
+MATCH_WHOLE_MOST = 1 << 16
+
+
+class _SparseFits:
+    """The shape terms fitted so far of a bounded table, pair by pair (sorted pair codes): what
+    a whole table's ``shape`` and ``_unfitted`` arrays say, for the pairs asked.
+
+    Parameters
+    ----------
+    dot_a, dot_b : ndarray of bool, shape (S_a,), (S_b,)
+        The dots of each key (their pairs' shape terms are fixed, never fitted).
+    """
+
+    def __init__(self, dot_a, dot_b):
+        self.dot_a, self.dot_b = dot_a, dot_b
+        self.code, self.value = np.zeros(0, np.int64), np.zeros(0)
+
+    def _found(self, rows, cols):
+        """Where pairs ``(rows[k], cols[k])`` sit among the codes, and whether they are there."""
+        want = np.asarray(rows, np.int64) * len(self.dot_b) + cols
+        at = np.minimum(np.searchsorted(self.code, want), max(len(self.code) - 1, 0))
+        found = self.code[at] == want if len(self.code) else np.zeros(len(want), bool)
+        return at, found
+
+    def unfitted(self, rows, cols):
+        """Whether each pair's shape term is still to fit, shape (K,)."""
+        return ~(self.dot_a[rows] | self.dot_b[cols] | self._found(rows, cols)[1])
+
+    def values(self, rows, cols):
+        """Each pair's shape term (a dot's fixed one; 0 where not fitted), shape (K,)."""
+        at, found = self._found(rows, cols)
+        out = np.where(self.dot_a[rows] != self.dot_b[cols], DOT_SHAPE, 0.0)
+        out[found] = self.value[at[found]]
+        return out
+
+    def store(self, rows, cols, values):
+        """Keep the fitted terms ``values`` (shape (K,)) of pairs not stored yet."""
+        code = np.concatenate([self.code, np.asarray(rows, np.int64) * len(self.dot_b) + cols])
+        self.code, first = np.unique(code, return_index=True)
+        self.value = np.concatenate([self.value, values])[first]
+
+
 @dataclass
-class _Priced:
+class Priced:
     """The pairs priced at one motion of key A, and what those left out cost at least.
 
     Attributes
@@ -129,8 +175,14 @@ class CostTable:
 
     Attributes
     ----------
-    shape : ndarray, shape (S_a, S_b)
-        ``sqrt(e_ij)``, the similarity-free shape difference; 0 where not fitted yet.
+    counts : tuple of int
+        ``(S_a, S_b)``.
+    bounded : bool
+        Whether the table has more than ``MATCH_WHOLE_MOST`` pairs: then it is never laid out
+        whole (``shape`` is None, :meth:`costs` needs pairs) and its fits are kept pair by pair.
+    shape : ndarray, shape (S_a, S_b), or None
+        ``sqrt(e_ij)``, the similarity-free shape difference; 0 where not fitted yet (None for
+        a bounded table).
     whole : bool
         Whether the whole table's open fits are made (then they are the ones read).
     """
@@ -145,6 +197,7 @@ class CostTable:
         self.size = max(key_a.diagonal, key_b.diagonal)  # the drawing's, for the guards
         self._least = least(self.size)
         self.prior_turn = 1.0 + 0j  # the turn motions are charged from (the hints' when given)
+        self.priced_most = 0  # the most pairs priced at one motion (see Matching.priced)
         self._open = key_a.open, key_b.open
         # The open reads centred: how every pair but two loops is fitted.
         self._centred = [
@@ -152,10 +205,16 @@ class CostTable:
         ]
         self._norms = [sq_norms(c) for c in self._centred]
         dot_a, dot_b = self.ra <= 0, self.rb <= 0
-        self.shape = np.zeros((key_a.count, key_b.count))
-        self.shape[dot_a[:, None] != dot_b[None, :]] = DOT_SHAPE
-        # A dot's shape term is fixed; every other pair's is fitted when first needed.
-        self._unfitted = ~(dot_a[:, None] | dot_b[None, :])
+        self.counts = key_a.count, key_b.count
+        self.bounded = key_a.count * key_b.count > MATCH_WHOLE_MOST
+        if self.bounded:
+            # Too many pairs to lay out: the fits are kept pair by pair.
+            self.shape, self._sparse = None, _SparseFits(dot_a, dot_b)
+        else:
+            self.shape = np.zeros((key_a.count, key_b.count))
+            self.shape[dot_a[:, None] != dot_b[None, :]] = DOT_SHAPE
+            # A dot's shape term is fixed; every other pair's is fitted when first needed.
+            self._unfitted = ~(dot_a[:, None] | dot_b[None, :])
         self.whole, self._fits, self._turns = False, None, None
         self._signs = None  # the loops' areas' signs (0 for open strokes), when both keys have loops
         la, lb = np.flatnonzero(key_a.loop), np.flatnonzero(key_b.loop)
@@ -175,14 +234,22 @@ class CostTable:
             self._signs = np.zeros(key_a.count), np.zeros(key_b.count)
             self._signs[0][la], self._signs[1][lb] = sign_a, sign_b
 
+    @property
+    def valid_strokes(self):
+        """Which strokes of each key have points: masks, shapes (S_a,), (S_b,)."""
+        return self._valid
+
     def valid(self, rows, cols):
         """Whether both strokes of pairs ``(rows[k], cols[k])`` have points, shape (K,)."""
         return self._valid[0][rows] & self._valid[1][cols]
 
     def _fit_whole(self):
-        """Fit every open (and mixed) pair at once, by matrix products (once)."""
+        """Fit every open (and mixed) pair at once, by matrix products (once); never for a
+        bounded table."""
         if self.whole:
             return
+        if self.bounded:
+            raise RuntimeError(f"a table of {self.counts[0]} x {self.counts[1]} strokes is never laid out whole")
         self.whole = True
         n_a, n_b = self.shape.shape
         if self._loop[0].all() and self._loop[1].all():
@@ -213,7 +280,7 @@ class CostTable:
     def _fit(self, rows, cols):
         """Fit the pairs ``(rows[k], cols[k])`` (shapes (K,)) not fitted yet: two loops by their
         loop fit, any other pair by its open reads."""
-        todo = self._unfitted[rows, cols]
+        todo = self._unfitted_at(rows, cols)
         if not todo.any():
             return
         rows, cols = rows[todo], cols[todo]
@@ -224,13 +291,24 @@ class CostTable:
         if not loops.all():
             e_f, e_r = self._pair_fits(rows[~loops], cols[~loops])[:2]
             e[~loops] = np.minimum(e_f, e_r)
+        if self.bounded:
+            self._sparse.store(rows, cols, np.sqrt(e))
+            return
         self.shape[rows, cols] = np.sqrt(e)
         self._unfitted[rows, cols] = False
+
+    def _unfitted_at(self, rows, cols):
+        """Whether the shape terms of pairs ``(rows[k], cols[k])`` are still to fit, shape (K,)."""
+        return self._sparse.unfitted(rows, cols) if self.bounded else self._unfitted[rows, cols]
+
+    def _shape_at(self, rows, cols):
+        """The shape terms of pairs ``(rows[k], cols[k])`` as they are (0 where not fitted), shape (K,)."""
+        return self._sparse.values(rows, cols) if self.bounded else self.shape[rows, cols]
 
     def shapes(self, rows, cols):
         """``sqrt(e)`` of pairs ``(rows[k], cols[k])`` (shapes (K,)), fitted where not yet, shape (K,)."""
         self._fit(rows, cols)
-        return self.shape[rows, cols]
+        return self._shape_at(rows, cols)
 
     def unplaced_costs(self, a, rows, cols):
         """Costs of pairs ``(rows[k], cols[k])`` (shapes (K,)) without the place and turn terms,
@@ -286,25 +364,43 @@ class CostTable:
         i, j = box_pairs(*boxes)
         return ia[i], ib[j]
 
+    def turn_term(self, a):
+        """The cost every pair pays for the turn of ``a`` (complex) from the prior turn (float)."""
+        return W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
+
+    def place_terms(self, a, b, rows, cols):
+        """The place terms of pairs ``(rows[k], cols[k])`` (shapes (K,)) with key A moved by
+        ``z -> a z + b`` (complex), shape (K,): each pair's cost is at least its term (the
+        same operations as :meth:`costs`, whose other terms are not negative)."""
+        scale = max(abs(a), tol.TINY)
+        spread = np.add(scale * self.ra[rows], self.rb[cols])
+        np.maximum(spread, self.dot_spread, out=spread)
+        place = np.abs((a * self.ca + b)[rows] - self.cb[cols])
+        place /= spread
+        place *= W_PLACE
+        return place
+
     def priced(self, a, b, level, pairs=None):
         """The pairs that may cost less than ``level`` (at most ``MATCH_MAX_COST``) with key A
-        moved by ``z -> a z + b`` (complex), and their costs (:class:`_Priced`); ``pairs``:
+        moved by ``z -> a z + b`` (complex), and their costs (:class:`Priced`); ``pairs``:
         those pairs, ``(rows, cols)`` as :meth:`near` gives them, when already found."""
         level = min(level, MATCH_MAX_COST)
         rows, cols = self.near(a, b, level) if pairs is None else pairs
         floors = np.full(len(self.ra), level), np.full(len(self.rb), level)
-        return _Priced(rows, cols, self.costs(a, b, rows, cols, exact=False), self.shape.shape, *floors)
+        self.priced_most = max(self.priced_most, len(rows))
+        return Priced(rows, cols, self.costs(a, b, rows, cols, exact=False), self.counts, *floors)
 
     def widened(self, priced, a, b, wide_a, wide_b):
         """``priced`` (at motion ``z -> a z + b``) and every pair of the strokes of masks
         ``wide_a``, ``wide_b`` (shapes (S_a,), (S_b,)) that may cost less than
-        ``MATCH_MAX_COST`` (:class:`_Priced`)."""
+        ``MATCH_MAX_COST`` (:class:`Priced`)."""
         n_b = len(self.rb)
         runs = self.near(a, b, only_a=wide_a), self.near(a, b, only_b=wide_b)
         code = np.concatenate([i * n_b + j for i, j in runs])
         code = np.setdiff1d(code, priced.rows * n_b + priced.cols)
         rows, cols = code // n_b, code % n_b
-        return _Priced(
+        self.priced_most = max(self.priced_most, len(priced.rows) + len(rows))
+        return Priced(
             np.concatenate([priced.rows, rows]),
             np.concatenate([priced.cols, cols]),
             np.concatenate([priced.costs, self.costs(a, b, rows, cols, exact=False)]),
@@ -329,9 +425,10 @@ class CostTable:
             return self._costs(a, b, rows, cols)
         if rows is None:
             self._fit_whole()
+            self.priced_most = self.ra.size * self.rb.size
         c = self._costs(a, b, rows, cols)
         # The pairs whose bound may fall below the limit: fitted, then priced exactly.
-        may = (self._unfitted if rows is None else self._unfitted[rows, cols]) & (c < MATCH_MAX_COST)
+        may = (self._unfitted if rows is None else self._unfitted_at(rows, cols)) & (c < MATCH_MAX_COST)
         if may.any():
             fit = np.nonzero(may) if rows is None else (rows[may], cols[may])
             self._fit(*fit)
@@ -349,7 +446,7 @@ class CostTable:
             (loop_a, loop_b), (valid_a, valid_b) = ((f[0][:, None], f[1][None, :]) for f in (self._loop, self._valid))
         else:
             ra, rb, za, zb = self.ra[rows], self.rb[cols], moved[rows], self.cb[cols]
-            shape = self.shape[rows, cols]
+            shape = self._shape_at(rows, cols)
             (loop_a, loop_b), (valid_a, valid_b) = ((f[0][rows], f[1][cols]) for f in (self._loop, self._valid))
         mixed, valid = loop_a != loop_b, valid_a & valid_b
         # The terms of the module notes, each full-size result worked on in place (the same
@@ -376,7 +473,7 @@ class CostTable:
         # that are not negative as they are.
         np.add(c, MATCH_CYCLIC_PENALTY, out=c, where=mixed)
         if placed:
-            c += W_TURN * abs(np.angle(a * np.conj(self.prior_turn))) / np.pi
+            c += self.turn_term(a)
         np.copyto(c, np.inf, where=~valid)
         return c
 

@@ -41,6 +41,13 @@ a motion, every pair that may cost less than ``MATCH_MAX_COST`` is priced where 
 faster where most pairs may form, and the ones read from then on). Either way the assignment
 is an optimal one of the whole table.
 
+A drawing of thousands of strokes (a table of more than ``costs.MATCH_WHOLE_MOST`` pairs) is
+never priced whole: each stroke gets a bounded list of candidates (:mod:`.candidates`), the
+strokes the potentials do not certify are widened a few times (``MATCH_WIDENINGS``), the
+solve walks the lists' entries only, and a motion whose costs say it cannot beat the best so
+far is not solved. Memory and time then grow with the strokes, not their pairs; the assignment
+is the optimal one among the candidates (the whole table's wherever certified).
+
 Direction
 ---------
 An open stroke of B runs the way in which more of its ends coincide with its partner's (a
@@ -106,6 +113,10 @@ class Matching:
     travelled : list of (int, int)
         The pairs ``(i, j)`` made by the drawing's motion: left over by the assignment (too far
         apart for it), paired because their shapes agree (:mod:`.travelling`).
+    priced : int
+        The most pairs priced at one motion of the search (``S_a * S_b`` where the whole table
+        was): above ``costs.MATCH_WHOLE_MOST`` pairs, at most ``MATCH_CANDIDATES_MOST`` per
+        stroke of each key (:mod:`.candidates`), in practice a few dozen.
     """
 
     pairs: list
@@ -117,6 +128,7 @@ class Matching:
     motion: np.ndarray = field(default_factory=lambda: np.zeros(2))
     rotation: complex = 1.0 + 0j
     travelled: list = field(default_factory=list)
+    priced: int = 0
 
 
 def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
@@ -212,6 +224,7 @@ def match_strokes(strokes_a, strokes_b, closed_a, closed_b, mode="auto", motion=
         matching = _order_or_assignment(key_a, key_b, table, total, rows, cols, motion)
     # (The drawing order, when kept, may not be the pairs travelling made.)
     matching.travelled = sorted(set(travelled) & {(i, j) for i, j, _ in matching.pairs})
+    matching.priced = table.priced_most
     return matching
 
 

@@ -32,6 +32,14 @@ TURN_VOTE_MOVE = 0.1
 MATCH_ROUNDOFF = 1e-6
 
 
+#: A bounded table's step (``costs.MATCH_WHOLE_MOST``) before a guess's last is left out where
+#: its costs say it totals more than this many times the best so far (a guessed turn taking a
+#: drawing of look-alike strokes over itself: 3,200 of them, 42 s instead of 2). A heuristic: a
+#: chain that far behind may still catch up (37 random strokes, made bounded, end at a total
+#: 3 % higher); the whole-table path never leaves a chain out before its last step.
+MATCH_BEHIND = 2.0
+
+
 #: Alternations of (assign strokes, re-fit the keys' overall motion) per starting guess.
 MATCH_MOTION_ITERATIONS = 3
 
@@ -115,8 +123,12 @@ def best_assignment(table, key_a, key_b, motion=None):
             # it), and its costs may say it cannot: then its solve, the costly part where
             # strokes look alike, is left out. (Earlier in a chain it may not be: a chain that
             # starts far behind often ends ahead, e.g. from a turned drawing.)
+            # A bounded table's solves are the costly part at every step, where strokes crowd
+            # each other (a guessed turn taking the drawing over itself): a step whose costs say
+            # it totals more than MATCH_BEHIND times the best so far is left out.
             last = step == MATCH_MOTION_ITERATIONS - 1 and best is not None
-            solved = assign_at(table, motion, best[0] if last else None)
+            beat = best[0] if last else (MATCH_BEHIND * best[0] if table.bounded and best is not None else None)
+            solved = assign_at(table, motion, beat)
             if solved is None:
                 break
             rows, cols = solved

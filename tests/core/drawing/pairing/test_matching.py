@@ -345,7 +345,7 @@ def test_a_guess_s_last_solve_is_skipped_only_where_it_cannot_win(monkeypatch):
     assert m.pairs == sorted((int(p), j, False) for j, p in enumerate(perm))
     solves.clear()
     monkeypatch.setattr(certified, "_least_total", lambda cost: -np.inf)
-    monkeypatch.setattr(costs._Priced, "least_total", lambda priced: -np.inf)
+    monkeypatch.setattr(costs.Priced, "least_total", lambda priced: -np.inf)
     unbounded = match_strokes(a, b, flags, flags)
     assert skipped < len(solves)
     assert (unbounded.pairs, unbounded.costs, unbounded.method) == (m.pairs, m.costs, m.method)

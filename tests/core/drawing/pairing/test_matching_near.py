@@ -57,10 +57,15 @@ def _many_small_keys(seed):
     return (a, closed), (b, np.r_[closed[keep], np.zeros(extra, bool)])
 
 
-def _table(keys):
+def _table(keys, whole=False):
+    """The cost table of two keys; with ``whole``, one that may be laid out whole however many
+    pairs it has (the whole-table path's tests, on drawings above ``MATCH_WHOLE_MOST``)."""
     (sa, ca), (sb, cb) = keys
     key = [descriptors.KeyDescriptors(st, c, "k", "c", descriptors.MATCH_SAMPLES) for st, c in ((sa, ca), (sb, cb))]
-    return costs.CostTable(*key)
+    with pytest.MonkeyPatch.context() as patch:
+        if whole:
+            patch.setattr(costs, "MATCH_WHOLE_MOST", np.inf)
+        return costs.CostTable(*key)
 
 
 @settings(max_examples=40, deadline=None)
@@ -112,6 +117,28 @@ def test_the_near_pairs_match_as_the_whole_table(draw, monkeypatch):
         np.testing.assert_allclose(near.costs, whole.costs, rtol=0, atol=1e-6)
     if draw is _many_small_keys:
         assert np.mean(settled) > 0.5
+
+
+@pytest.mark.parametrize("draw", [_keys, _many_small_keys])
+def test_the_bounded_candidate_lists_match_as_the_whole_table(draw, monkeypatch):
+    # Every table made bounded (issue 41: what a drawing of thousands of strokes takes): each
+    # stroke's candidate lists, widened where the duals do not certify them, pair as the whole
+    # table does, and the drawing order is kept or left alike.
+    # (Chains far behind kept, as the whole-table path keeps them: see MATCH_BEHIND.)
+    monkeypatch.setattr(motion_search, "MATCH_BEHIND", np.inf)
+    for seed in range(12):
+        (sa, ca), (sb, cb) = draw(seed)
+        whole = match_strokes(sa, sb, ca, cb)
+        with monkeypatch.context() as bounded_only:
+            bounded_only.setattr(costs, "MATCH_WHOLE_MOST", 0)
+            bounded = match_strokes(sa, sb, ca, cb)
+        assert bounded.pairs == whole.pairs, seed
+        assert (bounded.unmatched_a, bounded.unmatched_b, bounded.method) == (
+            whole.unmatched_a,
+            whole.unmatched_b,
+            whole.method,
+        )
+        np.testing.assert_allclose(bounded.costs, whole.costs, rtol=0, atol=1e-6)
 
 
 def _hatching_matched_without_the_whole_table(monkeypatch, n, move=(0.0, 0.0)):
@@ -261,7 +288,8 @@ def _moved_hatching(n, seed, far, angle, turn=0.0):
     towards ``angle``, turned by ``turn`` (radians): the table and the motion."""
     a, b, _ = bench_drawings.reordered_hatching(n, seed)
     width = 0.3 * np.ceil(np.sqrt(n))
-    return _table(((a, [False] * n), (b, [False] * n))), (np.exp(1j * turn), far * width * np.exp(1j * angle))
+    table = _table(((a, [False] * n), (b, [False] * n)), whole=True)
+    return table, (np.exp(1j * turn), far * width * np.exp(1j * angle))
 
 
 @settings(max_examples=12, deadline=None)
@@ -308,6 +336,7 @@ def test_where_most_pairs_may_form_they_are_not_listed_before_the_whole_table(mo
         return real(table, a, b, level, only_a, only_b)
 
     monkeypatch.setattr(costs.CostTable, "near", spy)
+    monkeypatch.setattr(costs, "MATCH_WHOLE_MOST", 400 * 400)  # (the whole-table path's own test)
     flags = [False] * 400
     match_strokes(key_a, key_b, flags, flags)
     assert certified.MATCH_NEAR_COST in levels and costs.MATCH_MAX_COST not in levels
