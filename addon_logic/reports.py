@@ -44,6 +44,7 @@ __all__ = [
     "joined_smoothly",
     "not_joined",
     "interval_reports",
+    "no_custom_curve",
     "nothing_to_do",
     "write_failed",
     "summary",
@@ -147,6 +148,15 @@ def chart_does_not_fit(interval_name, problem):
 def kept_chart_ignored(interval_name, text, problem):
     """A chart kept with an interval cannot be read (edited by hand): the interval is timed as without."""
     return f"{interval_name}: the timing chart kept here ('{text}') was ignored ({problem}): type the chart again"
+
+
+def no_custom_curve(scene_name):
+    """The Custom type in a scene where Blender has not made its curve yet."""
+    return (
+        f"scene '{scene_name}' has no Custom curve yet, so the Custom type ran Linear (Blender's new curve): "
+        "run Interpolate Sequence once with Type Custom to make the curve, then shape it there or in this "
+        "add-on's panel"
+    )
 
 
 def method_unavailable(method_label):

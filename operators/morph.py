@@ -184,7 +184,15 @@ def morph_interval(layer, interval, values, method):
     if keys is None:
         return None
     if interval.chart is None:
-        times = ease(interval.fractions, values["easing_type"], values["easing"])
+        times = ease(
+            interval.fractions,
+            values["easing_type"],
+            values["easing"],
+            back=values["back"],
+            amplitude=values["amplitude"],
+            period=values["period"],
+            curve=values.get("custom_curve"),  # the scene's Custom curve, sampled (custom_curve.py)
+        )
     else:  # a chart gives the morph's own fractions: not eased
         times = interval.chart_times
     times = apply_favor(times, values["favor"])

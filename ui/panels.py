@@ -21,7 +21,7 @@ class _InbetweenPanel:
     def draw(self, context):
         layout = self.layout
         settings = context.scene.ballmorph_inbetween
-        draw_options(layout.column(), settings, compact=True)
+        draw_options(layout.column(), settings, compact=True, scene=context.scene)
         row = layout.row(align=True)
         row.prop(settings, "path_preview", icon="CURVE_PATH")
         row.prop(settings, "hint_dots", icon="PINNED")
