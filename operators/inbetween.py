@@ -15,7 +15,7 @@ from functools import partial
 import bpy
 from bpy.app.translations import pgettext_rpt as rpt_
 
-from ..addon_logic import pairing, playhead, reports
+from ..addon_logic import pairing, playhead, reports, warned
 from . import custom_curve, keys, options, service
 
 __all__ = ["BALLMORPH_OT_inbetween"]
@@ -107,7 +107,8 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
         for level, text in result.reports():
             self.report({level}, rpt_(text))
         # The status bar shows the last report: the summary, a warning when anything warned.
-        level, text = reports.summary(result.frames, result.layers_written, result.warnings)
+        named = bool(warned.warned_strokes(result.reports()))
+        level, text = reports.summary(result.frames, result.layers_written, result.warnings, named)
         self.report({level}, rpt_(text))
         self._store_options(context)
         return {"FINISHED"}

@@ -11,6 +11,7 @@ from conftest import MODULE, ROOT, disable_addon, enable_addon
 MENUS = ("DOPESHEET_MT_key", "DOPESHEET_MT_context_menu", "VIEW3D_MT_edit_greasepencil_animation")
 CLASSES = (
     "BALLMORPH_OT_inbetween",
+    "BALLMORPH_OT_select_warned",
     "BALLMORPH_MT_inbetween",
     "BALLMORPH_PT_dopesheet",
     "BALLMORPH_PT_view3d",
