@@ -86,3 +86,31 @@ def test_the_operator_is_registered_and_unregistered_with_the_add_on(addon):
     assert bpy.ops.ballmorph.select_warned.idname() == "BALLMORPH_OT_select_warned"
     assert hasattr(bpy.types, "BALLMORPH_OT_select_warned")
     assert MODULE
+
+
+def _select(drawing, selected):
+    """A stroke selection, as edit mode keeps it."""
+    if ".selection" in drawing.attributes:
+        drawing.attributes.remove(drawing.attributes[".selection"])
+    drawing.attributes.new(".selection", "BOOLEAN", "CURVE")
+    drawing.attributes[".selection"].data.foreach_set("value", np.asarray(selected, bool))
+
+
+def test_with_selected_strokes_only_the_warned_stroke_is_found_by_its_place_in_the_key(addon):
+    """The core sees only the selected strokes (here strokes 2 and 3 of key 1): its stroke 2 is
+    the drawing's stroke 3, and that is the one selected."""
+    obj = gp_data.new_object()
+    layer = obj.data.layers["Ink"]
+    strokes = [gp_data.loop(0.3, centre=(-2, 0)), gp_data.loop(1.0), gp_data.arc(0.3)]
+    gp_data.add_key(layer, 1, strokes, cyclic=[True, True, False])
+    gp_data.add_key(layer, 5, [gp_data.loop(0.3, centre=(-2, 0)), gp_data.loop(1.2)], cyclic=[True, True])
+    _select(gp_data.frame_at(layer, 1).drawing, [False, True, True])
+    _select(gp_data.frame_at(layer, 5).drawing, [False, True])
+    bpy.context.scene.frame_current = 2
+    assert bpy.ops.ballmorph.inbetween(selected_only=True) == {"FINISHED"}
+    assert obj.data["ballmorph_warned_strokes"].to_dict() == {"Ink": [1, 3]}  # key 1, stroke 3
+    assert bpy.ops.ballmorph.select_warned() == {"FINISHED"}
+    first = selection(gp_data.frame_at(layer, 1).drawing)
+    sizes = np.cumsum([0] + [len(s) for s in strokes])
+    assert [bool(first[sizes[k] : sizes[k + 1]].all()) for k in range(3)] == [False, False, True]
+    assert not first[: sizes[2]].any()
