@@ -38,6 +38,7 @@ import argparse
 import contextlib
 import ctypes
 import json
+import math
 import os
 import sys
 import tomllib
@@ -46,7 +47,7 @@ import traceback
 import bpy
 
 from .addon_logic import pairing, report_data, reports
-from .operators import options, service
+from .operators import custom_curve, options, service
 
 __all__ = ["COMMAND", "main", "register", "unregister"]
 
@@ -193,13 +194,26 @@ def _at_least(low):
 
 
 def _between(low, high):
+    """A finite number from ``low`` to ``high`` (None: that side unbounded)."""
+    if low is not None and high is not None:
+        wanted = f"a number from {low:g} to {high:g}"
+    elif low is not None:
+        wanted = f"a number of at least {low:g}"
+    else:
+        wanted = "a number" if high is None else f"a number of at most {high:g}"
+
     def number_between(text):
         try:
             number = float(text)
         except ValueError:
             number = None
-        if number is None or not low <= number <= high:
-            raise argparse.ArgumentTypeError(f"expected a number from {low:g} to {high:g}, got {text!r}")
+        if (
+            number is None
+            or not math.isfinite(number)
+            or (low is not None and number < low)
+            or (high is not None and number > high)
+        ):
+            raise argparse.ArgumentTypeError(f"expected {wanted}, got {text!r}")
         return number
 
     return number_between
@@ -364,6 +378,11 @@ class _Run:
     # -- the work
 
     def _inbetween(self, chosen):
+        # The Custom type reads the curve of the file's scene (Interpolate Sequence's, in its tool
+        # settings), as the operator reads its scene's.
+        values, curve_note = custom_curve.with_custom_curve(self.values, bpy.context.scene)
+        if curve_note and chosen:
+            self.notes.append((reports.INFO, curve_note))
         done = {}  # Grease Pencil data -> the object it was in-betweened with
         for obj in chosen:
             key = obj.data.as_pointer()
@@ -372,7 +391,7 @@ class _Run:
                 continue
             done[key] = obj.name
             _say(f"{obj.name}: in-betweening")
-            result = service.inbetween_object(obj, self.values, pairing.every_pair, _StderrProgress(obj.name))
+            result = service.inbetween_object(obj, values, pairing.every_pair, _StderrProgress(obj.name))
             self.results.append((obj.name, result, None))
 
     def _frames(self):

@@ -44,6 +44,10 @@ __all__ = [
     "joined_smoothly",
     "not_joined",
     "interval_reports",
+    "no_custom_curve",
+    "warned_selected",
+    "warned_missing",
+    "warned_none_left",
     "nothing_to_do",
     "write_failed",
     "summary",
@@ -147,6 +151,15 @@ def chart_does_not_fit(interval_name, problem):
 def kept_chart_ignored(interval_name, text, problem):
     """A chart kept with an interval cannot be read (edited by hand): the interval is timed as without."""
     return f"{interval_name}: the timing chart kept here ('{text}') was ignored ({problem}): type the chart again"
+
+
+def no_custom_curve(scene_name):
+    """The Custom type in a scene where Blender has not made its curve yet."""
+    return (
+        f"scene '{scene_name}' has no Custom curve yet, so the Custom type ran Linear (Blender's new curve): "
+        "run Interpolate Sequence once with Type Custom to make the curve, then shape it there or in this "
+        "add-on's panel"
+    )
 
 
 def method_unavailable(method_label):
@@ -294,7 +307,8 @@ def interval_reports(interval, method_label, messages, found_strays=()):
         The morph that made the frames, as the animator reads it.
     messages : sequence of (level, text)
         The morph's own messages (the core's ERROR ones concern single strokes: the run went on,
-        so they become warnings).
+        so they become warnings); a :class:`.report_data.Report` among them lends its strokes to
+        the report that says it.
     found_strays : sequence of Stray
         The pairs that stray (:func:`strays`), worst first: reported last (:func:`stray_reports`).
 
@@ -324,13 +338,48 @@ def interval_reports(interval, method_label, messages, found_strays=()):
         drawn = f"{name}: frame(s) {frames_text(interval.occupied)} between the keys left untouched"
         reports.append(Report(INFO, drawn, kind="drawn-frames", **about))
     for level in (WARNING, INFO):
-        texts = [text for lvl, text in messages if (lvl == INFO) == (level == INFO)]
-        if texts:
+        chosen = [message for message in messages if (message[0] == INFO) == (level == INFO)]
+        if chosen:
+            texts = [text for _, text in chosen]
             more = len(texts) - MESSAGES_PER_REPORT
             shown = "; ".join(texts[:MESSAGES_PER_REPORT]) + (f"; and {more} more" if more > 0 else "")
-            reports.append(Report(level, f"{name}: {shown}", kind="morph", **about))
+            # the strokes of every message it stands for (a plain (level, text) pair names none)
+            strokes = tuple(dict.fromkeys(ref for message in chosen for ref in getattr(message, "strokes", ())))
+            reports.append(Report(level, f"{name}: {shown}", kind="morph", strokes=strokes, **about))
     keys = (interval.frame_a, interval.frame_b)
     return reports + [report.about(**about) for report in stray_reports(name, found_strays, keys)]
+
+
+def _strokes_text(found):
+    """``{layer: StrokeRefs}`` as the animator reads them: ``"layer 'Ink': key 1 stroke 2, key 9 stroke 1"``."""
+    return "; ".join(
+        f"layer '{layer}': " + ", ".join(f"key {key} stroke {number}" for key, number in refs)
+        for layer, refs in found.items()
+    )
+
+
+def warned_selected(found):
+    """Select Warned Strokes selected ``found`` (``{layer: StrokeRefs}``).
+
+    >>> from .report_data import StrokeRef
+    >>> print(warned_selected({"Ink": (StrokeRef(1, 2), StrokeRef(9, 1))}))  # doctest: +NORMALIZE_WHITESPACE
+    Selected 2 warned stroke(s) in their keys (layer 'Ink': key 1 stroke 2, key 9 stroke 1):
+    go to a key's frame in Edit Mode to see them
+    """
+    count = sum(len(refs) for refs in found.values())
+    return (
+        f"Selected {count} warned stroke(s) in their keys ({_strokes_text(found)}): "
+        "go to a key's frame in Edit Mode to see them"
+    )
+
+
+def warned_missing(missing):
+    """Strokes the last run warned about that are gone (keys edited since)."""
+    return f"Not found (the keys changed since the run): {_strokes_text(missing)}; run Ball-morph In-between again"
+
+
+def warned_none_left():
+    return "None of the strokes the last run warned about is left (the keys changed since): nothing selected"
 
 
 def nothing_to_do(problems):
@@ -342,11 +391,13 @@ def write_failed(exc):
     return f"Writing the in-betweens failed, nothing was changed: {exc}"
 
 
-def summary(frames, layers, warnings):
-    """The run's last report (the one the status bar shows): a warning when anything warned."""
+def summary(frames, layers, warnings, strokes_warned=False):
+    """The run's last report (the one the status bar shows): a warning when anything warned;
+    ``strokes_warned``: some warnings name strokes (Select Warned Strokes selects them)."""
     text = f"{_NAME}: {frames} frame(s) on {layers} layer(s)"
     if warnings:
-        return WARNING, f"{text}, {warnings} warning(s): see the Info editor"
+        select = "; Select Warned Strokes (sidebar) selects their strokes" if strokes_warned else ""
+        return WARNING, f"{text}, {warnings} warning(s): see the Info editor{select}"
     return INFO, text
 
 

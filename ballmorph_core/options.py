@@ -29,8 +29,22 @@ UNMATCHED = ("middle", "hold", "fade", "shrink", "neighbour")
 SAMPLINGS = ("symmetric", "p", "q")
 #: The five ball-morph paths (paper section 4.2).
 PATH_KINDS = ("hat", "linear", "tangent", "circular", "parabolic")
-#: Easing types and modes, as Blender's Grease Pencil interpolation names them.
-EASING_TYPES = ("linear", "sine", "quad", "cubic", "quart", "quint", "expo", "circ", "back", "bounce", "elastic")
+#: Easing types and modes, as Blender's Grease Pencil interpolation names them ('custom': a
+#: curve the caller samples, see drawing/frames/timing.py).
+EASING_TYPES = (
+    "linear",
+    "custom",
+    "sine",
+    "quad",
+    "cubic",
+    "quart",
+    "quint",
+    "expo",
+    "circ",
+    "back",
+    "bounce",
+    "elastic",
+)
 EASING_MODES = ("auto", "ease-in", "ease-out", "ease-in-out")
 #: How in-betweens pass through the inner keys of three or more: joined smoothly (C1, arcs
 #: through the keys) or each interval on its own, with a corner at every key (see drawing/arcs.py).

@@ -10,7 +10,8 @@ frame (``current_frame_only``). ``generated`` remembers which frames the add-on 
 once (with their core values) for the operator, the scene settings, the preferences and the
 command line, and ``plans`` keeps the last run's plans for a redo. ``preview`` keeps the path
 preview's trajectories (drawn by ``ui/path_preview.py``); ``hints`` holds the two hint
-operators (their numbering is ``hint_numbers``). ``pairing``, ``playhead`` and ``reports`` never
+operators (their numbering is ``hint_numbers``); ``select_warned`` selects the strokes the last
+run's warnings name (kept by ``warned``). ``pairing``, ``playhead`` and ``reports`` never
 import bpy: plain CPython tests them (tests/addon).
 """
 
@@ -19,8 +20,9 @@ import bpy
 from .hints import BALLMORPH_OT_hint_add, BALLMORPH_OT_hint_clear
 from .inbetween import BALLMORPH_OT_inbetween
 from .plans import PLANS
+from .select_warned import BALLMORPH_OT_select_warned
 
-classes = (BALLMORPH_OT_inbetween, BALLMORPH_OT_hint_add, BALLMORPH_OT_hint_clear)
+classes = (BALLMORPH_OT_inbetween, BALLMORPH_OT_hint_add, BALLMORPH_OT_hint_clear, BALLMORPH_OT_select_warned)
 
 _register_classes, _unregister_classes = bpy.utils.register_classes_factory(classes)
 

@@ -19,6 +19,7 @@ __all__ = [
     "layer_matrix",
     "read_strokes",
     "selected_points",
+    "select_strokes",
     "write_strokes",
     "fingerprint",
     "Staging",
@@ -152,6 +153,31 @@ def selected_points(drawing):
     attribute.data.foreach_get(_FOREACH_KEY[attribute.data_type], values)
     values = values.astype(bool)
     return np.repeat(values, np.diff(offsets)) if attribute.domain == "CURVE" else values
+
+
+#: Blender's edit-mode selection attributes: the points' (or strokes') and, on Bezier strokes,
+#: their handles'.
+_SELECTION_NAMES = (".selection", ".selection_handle_left", ".selection_handle_right")
+
+
+def select_strokes(drawing, selected):
+    """Make the edit-mode selection of a drawing exactly the strokes ``selected`` (shape (S,) of
+    bool): every point (and handle) of those, nothing else. Only the selection attributes are
+    written, in the domain and type Blender keeps them (``.selection`` on points when the
+    drawing has none yet: no attribute means everything is selected)."""
+    offsets = _offsets(drawing)
+    selected = np.asarray(selected, dtype=bool)
+    if len(selected) == 0:
+        return
+    attributes = drawing.attributes
+    if attributes.get(".selection") is None:
+        attributes.new(".selection", "BOOLEAN", "POINT")
+    for name in _SELECTION_NAMES:
+        attribute = attributes.get(name)
+        if attribute is None or attribute.data_type not in _FOREACH_KEY:
+            continue
+        values = selected if attribute.domain == "CURVE" else np.repeat(selected, np.diff(offsets))
+        attribute.data.foreach_set(_FOREACH_KEY[attribute.data_type], values.astype(_DTYPE[attribute.data_type]))
 
 
 def read_strokes(drawing, matrix=None):

@@ -15,8 +15,8 @@ from functools import partial
 import bpy
 from bpy.app.translations import pgettext_rpt as rpt_
 
-from ..addon_logic import pairing, playhead, reports
-from . import keys, options, service
+from ..addon_logic import pairing, playhead, reports, warned
+from . import custom_curve, keys, options, service
 
 __all__ = ["BALLMORPH_OT_inbetween"]
 
@@ -79,7 +79,7 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
 
     def draw(self, context):
         self.layout.prop(self, "current_frame_only")
-        options.draw_options(self.layout, self, current_frame=self.current_frame_only)
+        options.draw_options(self.layout, self, current_frame=self.current_frame_only, scene=context.scene)
 
     def execute(self, context):
         self._fill_options(context)
@@ -90,6 +90,7 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
         problem = service.check_options(values)
         if problem:
             return self._cancel(problem)
+        values, curve_note = custom_curve.with_custom_curve(values, context.scene)
         frame = context.scene.frame_current
         progress = _WindowProgress(context.window_manager)
         if self.current_frame_only:
@@ -101,10 +102,13 @@ class BALLMORPH_OT_inbetween(bpy.types.Operator):
             return self._cancel(result.error)
         if not result.frames:
             return self._cancel(reports.nothing_to_do([text for _, text in result.reports()]))
+        if curve_note:
+            self.report({"INFO"}, rpt_(curve_note))
         for level, text in result.reports():
             self.report({level}, rpt_(text))
         # The status bar shows the last report: the summary, a warning when anything warned.
-        level, text = reports.summary(result.frames, result.layers_written, result.warnings)
+        named = bool(warned.warned_strokes(result.reports()))
+        level, text = reports.summary(result.frames, result.layers_written, result.warnings, named)
         self.report({level}, rpt_(text))
         self._store_options(context)
         return {"FINISHED"}

@@ -7,11 +7,12 @@ Nothing is written here: the service (:mod:`.service`) computes every interval f
 only when all of them are ready (see :mod:`.writer`).
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..addon_logic import reports
+from ..addon_logic.report_data import Report, StrokeRef
 from ..ballmorph_core import StrokeSet, apply_favor, ease, length_deviation
 from . import grease_pencil
 from .plans import PLANS
@@ -68,13 +69,15 @@ def _to_layer_space(strokes, matrix_inverse):
 
 
 def _selection(key_a, key_b, messages):
-    """Strokes to morph in each key and the first key's strokes to hold, for 'selected only'."""
+    """Strokes to morph in each key, the first key's strokes to hold, for 'selected only', and the
+    drawing's index of each stroke morphed in each key (None: all of them, in order)."""
     if not key_a.selected.any() or not key_b.selected.any():
         which = "first" if not key_a.selected.any() else "second"
         messages.append((reports.INFO, f"no stroke is selected in the {which} key: all strokes were in-betweened"))
-        return key_a, key_b, None
+        return key_a, key_b, None, (None, None)
     held = key_a.subset(np.flatnonzero(~key_a.selected))
-    return key_a.subset(np.flatnonzero(key_a.selected)), key_b.subset(np.flatnonzero(key_b.selected)), held
+    chosen = (np.flatnonzero(key_a.selected), np.flatnonzero(key_b.selected))
+    return key_a.subset(chosen[0]), key_b.subset(chosen[1]), held, chosen
 
 
 @dataclass
@@ -91,6 +94,9 @@ class IntervalKeys:
     to_layer : ndarray, shape (4, 4), or None
         Morph space -> layer space (None: the layer has no transform).
     messages : list of (level, text)
+    chosen : (ndarray or None, ndarray or None)
+        Per key, the drawing's index of each stroke the core receives ('selected only'); None:
+        every stroke, in order.
     """
 
     key_a: StrokeSet
@@ -98,6 +104,14 @@ class IntervalKeys:
     held: object = None
     to_layer: object = None
     messages: list = field(default_factory=list)
+    chosen: tuple = (None, None)
+
+    def stroke_ref(self, interval, key, index):
+        """The StrokeRef (key frame, number from 1 in the drawing) of the core's stroke ``index``
+        of key ``key`` (0 the first, 1 the second)."""
+        chosen = self.chosen[key]
+        frame = (interval.frame_a, interval.frame_b)[key]
+        return StrokeRef.of_index(frame, index if chosen is None else int(chosen[index]))
 
 
 def read_keys(layer, interval, values):
@@ -137,10 +151,10 @@ def read_keys(layer, interval, values):
         if bad.any():
             strokes = np.unique(np.searchsorted(key.offsets, np.flatnonzero(bad), side="right") - 1)
             raise ValueError(reports.invalid_coordinates(number, strokes.tolist()))
-    messages, held = [], None
+    messages, held, chosen = [], None, (None, None)
     if values["selected_only"]:
-        key_a, key_b, held = _selection(key_a, key_b, messages)
-    return IntervalKeys(key_a, key_b, held, to_layer, messages)
+        key_a, key_b, held, chosen = _selection(key_a, key_b, messages)
+    return IntervalKeys(key_a, key_b, held, to_layer, messages, chosen)
 
 
 def plan_options(values, method):
@@ -184,7 +198,15 @@ def morph_interval(layer, interval, values, method):
     if keys is None:
         return None
     if interval.chart is None:
-        times = ease(interval.fractions, values["easing_type"], values["easing"])
+        times = ease(
+            interval.fractions,
+            values["easing_type"],
+            values["easing"],
+            back=values["back"],
+            amplitude=values["amplitude"],
+            period=values["period"],
+            curve=values.get("custom_curve"),  # the scene's Custom curve, sampled (custom_curve.py)
+        )
     else:  # a chart gives the morph's own fractions: not eased
         times = interval.chart_times
     times = apply_favor(times, values["favor"])
@@ -193,7 +215,11 @@ def morph_interval(layer, interval, values, method):
     plan = PLANS.plan(keys.key_a, keys.key_b, **plan_options(values, method))
     item = Morphed(layer, interval, [], list(keys.messages), method, plan=plan, keys=keys, times=times)
     result = _evaluate(item)
-    item.messages.extend((message.level, message.text) for message in result.messages)
+    # Each message with the strokes it is about, in the drawing (for select_warned and the JSON).
+    item.messages.extend(
+        Report(m.level, m.text, strokes=tuple(keys.stroke_ref(interval, key, index) for key, index in m.strokes))
+        for m in result.messages
+    )
     return item
 
 
@@ -203,11 +229,21 @@ def _evaluate(item, correction=None):
     keys, times = item.keys, item.times
     result = item.plan.evaluate(times, correction)
     deviation = length_deviation(keys.key_a, keys.key_b, result, times, PLANS.key_lengths(item.plan))
-    item.strays = reports.strays(result.pairs, item.method, deviation, times, item.interval.targets)
+    found = reports.strays(result.pairs, item.method, deviation, times, item.interval.targets)
+    item.strays = [_in_drawing(stray, keys) for stray in found]
     held = keys.held
     frames = [StrokeSet.concatenate([held, frame]) if held is not None else frame for frame in result.frames]
     item.frames = [_to_layer_space(frame, keys.to_layer) for frame in frames]
     return result
+
+
+def _in_drawing(stray, keys):
+    """``stray`` with the drawing's stroke indices ('selected only' morphs a subset)."""
+    indices = tuple(
+        index if index is None or chosen is None else int(chosen[index])
+        for index, chosen in zip(stray.indices, keys.chosen)
+    )
+    return replace(stray, indices=indices)
 
 
 def corrected(item, correction):

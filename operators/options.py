@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import bpy
 
 from ..ballmorph_core import METHODS as CORE_METHODS
+from ..ballmorph_core.drawing.frames.timing import AMPLITUDE, BACK, PERIOD
 
 __all__ = [
     "OPTIONS",
@@ -37,7 +38,9 @@ class Item:
     """One enum item: Blender's id, the lowercase value it stands for, what the animator reads.
 
     ``research``: a comparison morph from the paper, offered in the sidebar's Morph list but
-    not in the menus' quick list.
+    not in the menus' quick list. ``number``: the number Blender stores for the item (scenes and
+    preferences keep it), when it is not the item's place in the list: an item added in the
+    middle of a list keeps the numbers of those after it, so saved settings keep their meaning.
     """
 
     id: str
@@ -46,6 +49,7 @@ class Item:
     description: str
     icon: str = "NONE"
     research: bool = False
+    number: int = None
 
 
 _METHODS = (
@@ -100,6 +104,16 @@ _METHODS = (
 
 _EASING_TYPES = (
     Item("LINEAR", "linear", "Linear", "Straight-line interpolation between A and B (no easing)", "IPO_LINEAR"),
+    # Second, as in Interpolate Sequence's list, but numbered after the types that came before it.
+    Item(
+        "CUSTOM",
+        "custom",
+        "Custom",
+        "Custom interpolation defined using a curve map: the curve Interpolate Sequence's Custom type uses "
+        "(the scene's tool settings)",
+        "IPO_BEZIER",
+        number=11,
+    ),
     Item(
         "SINE",
         "sine",
@@ -142,8 +156,10 @@ class Option:
     """One option: its kind ('ENUM', 'INT', 'FLOAT', 'BOOLEAN', 'STRING'), label, description and default.
 
     ``default`` is a value (for an enum: an item's lowercase value, not its Blender id);
-    ``items`` are the enum's :class:`Item`s; ``min`` and ``max`` bound a number (``max`` None:
-    unbounded), ``soft_max`` is where an integer's slider stops.
+    ``items`` are the enum's :class:`Item`s; ``min`` and ``max`` bound a number (None:
+    unbounded), ``soft_max`` is where an integer's slider stops; a float shows ``precision``
+    digits, moves by ``step`` hundredths and has Blender's ``subtype``. ``types``: the values of
+    the Type option (``easing_type``) that use this option (empty: every run uses it).
     """
 
     name: str
@@ -155,6 +171,10 @@ class Option:
     min: float = 0
     max: float = None
     soft_max: int = 0
+    precision: int = 2
+    step: int = 10
+    subtype: str = "FACTOR"
+    types: tuple = ()
 
     @property
     def values(self):
@@ -179,8 +199,15 @@ class Option:
     def raw(self, value):
         """A value as Blender stores it in an ID property (the item number for an enum)."""
         if self.kind == "ENUM":
-            return self.items.index(self.item(value))
+            return self.number(self.item(value))
         return value
+
+    def number(self, item):
+        """The number Blender stores for an enum item: its own, else its place among the items
+        without one."""
+        if item.number is not None:
+            return item.number
+        return [other for other in self.items if other.number is None].index(item)
 
 
 OPTIONS = (
@@ -220,6 +247,44 @@ OPTIONS = (
         _EASING_TYPES,
     ),
     Option("easing", "ENUM", "Easing", "Which ends of the motion the type's easing affects", "ease-in", _EASING_MODES),
+    # Interpolate Sequence's own settings of its Back and Elastic types: names, labels, defaults
+    # and ranges as Blender 4.5 and 5.0 define them (the core's timing.BACK, AMPLITUDE, PERIOD).
+    Option(
+        "back",
+        "FLOAT",
+        "Back",
+        "Amount of overshoot for 'back' easing",
+        BACK,
+        min=0.0,
+        precision=3,
+        step=1,
+        subtype="NONE",
+        types=("back",),
+    ),
+    Option(
+        "amplitude",
+        "FLOAT",
+        "Amplitude",
+        "Amount to boost elastic bounces for 'elastic' easing",
+        AMPLITUDE,
+        min=0.0,
+        precision=3,
+        step=1,
+        subtype="NONE",
+        types=("elastic",),
+    ),
+    Option(
+        "period",
+        "FLOAT",
+        "Period",
+        "Time between bounces for elastic easing",
+        PERIOD,
+        min=None,
+        precision=3,
+        step=1,
+        subtype="NONE",
+        types=("elastic",),
+    ),
     Option(
         "favor",
         "FLOAT",
@@ -357,7 +422,7 @@ def method_available(value):
 
 def _enum_items(option):
     """Blender enum items with explicit numbers (needed by get/set callbacks)."""
-    return [(item.id, item.label, item.description, item.icon, number) for number, item in enumerate(option.items)]
+    return [(item.id, item.label, item.description, item.icon, option.number(item)) for item in option.items]
 
 
 def property_annotations(flags=None, getter=None, setter=None):
@@ -390,18 +455,33 @@ _PROPERTIES = {
     "ENUM": lambda option, kwargs: bpy.props.EnumProperty(items=_enum_items(option), **kwargs),
     "INT": lambda option, kwargs: bpy.props.IntProperty(min=option.min, soft_max=option.soft_max, **kwargs),
     "FLOAT": lambda option, kwargs: bpy.props.FloatProperty(
-        min=option.min, max=option.max, step=10, precision=2, subtype="FACTOR", **kwargs
+        **_bounds(option), step=option.step, precision=option.precision, subtype=option.subtype, **kwargs
     ),
     "BOOLEAN": lambda option, kwargs: bpy.props.BoolProperty(**kwargs),
     "STRING": lambda option, kwargs: bpy.props.StringProperty(**kwargs),
 }
 
 
-def draw_options(layout, data, compact=False, current_frame=False):
+def _bounds(option):
+    """A float's ``min`` and ``max`` for Blender (unbounded sides left out: Blender's own limits)."""
+    return {name: bound for name, bound in (("min", option.min), ("max", option.max)) if bound is not None}
+
+
+def used_by_type(option, easing_type):
+    """Whether a run with Type ``easing_type`` (a Blender id or value) uses ``option`` (its settings
+    Back, Amplitude and Period belong to one type each, as in Interpolate Sequence's panel)."""
+    if not option.types:
+        return True
+    return _BY_NAME["easing_type"].value(easing_type) in option.types
+
+
+def draw_options(layout, data, compact=False, current_frame=False, scene=None):
     """Draw the options of ``data`` (operator, scene settings or preferences).
 
     ``current_frame``: the run writes one in-between on the current frame, so the frame count
-    and the timing chart do not apply (drawn inactive).
+    and the timing chart do not apply (drawn inactive). A type's own settings are drawn only
+    with that type, as Interpolate Sequence draws them: Back with Back, Amplitude and Period
+    with Elastic, and, with ``scene``, the scene's Custom curve with Custom.
     """
     layout.use_property_split = True
     layout.use_property_decorate = False
@@ -418,9 +498,14 @@ def draw_options(layout, data, compact=False, current_frame=False):
     sub = col.column()
     sub.active = not charted
     sub.prop(data, "easing_type")
-    sub = sub.column()
-    sub.active = data.easing_type != "LINEAR"
-    sub.prop(data, "easing")
+    if data.easing_type == "CUSTOM" and scene is not None:
+        _draw_custom_curve(sub, scene)
+    settings = sub.column()
+    settings.active = data.easing_type not in ("LINEAR", "CUSTOM")
+    settings.prop(data, "easing")
+    for name in ("back", "amplitude", "period"):
+        if used_by_type(_BY_NAME[name], data.easing_type):
+            settings.prop(data, name)
     col.prop(data, "favor", slider=True)
     col.prop(data, "key_motion")
     col = layout.column()
@@ -432,3 +517,16 @@ def draw_options(layout, data, compact=False, current_frame=False):
     col.prop(data, "carrier")
     col.prop(data, "matching")
     col.prop(data, "unmatched")
+
+
+def _draw_custom_curve(layout, scene):
+    """The scene's Custom curve (Interpolate Sequence's), or why there is none yet."""
+    holder = scene.tool_settings.gpencil_interpolate
+    if holder.interpolation_curve is not None:
+        layout.template_curve_mapping(
+            holder, "interpolation_curve", brush=True, use_negative_slope=True
+        )  # as Blender draws it
+        return
+    col = layout.column(align=True)
+    col.label(text="No Custom curve in this scene yet: runs are Linear", icon="INFO")
+    col.label(text="Interpolate Sequence (Type Custom) makes and shows it")

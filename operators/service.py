@@ -13,7 +13,7 @@ layers:
    are then joined smoothly at the keys they share (:func:`ballmorph_core.chain_corrections`),
    except at keys typed Extreme, and should that fail they keep their own in-betweens;
 3. writes all frames at once, all or nothing (:mod:`.writer`), and keeps each written
-   interval's timing chart with it;
+   interval's timing chart with it, and the strokes the run's warnings name (:mod:`.warned`);
 4. returns what happened per layer (:class:`ObjectResult`): the reports the operator passes to
    ``self.report`` and the command line prints, and the intervals written.
 
@@ -23,7 +23,7 @@ reports itself, so both callers say the same things.
 
 from dataclasses import dataclass, field
 
-from ..addon_logic import charts, pairing, playhead, reports
+from ..addon_logic import charts, pairing, playhead, reports, warned
 from ..addon_logic.report_data import Report
 from ..ballmorph_core import (
     FALLBACK_METHOD,
@@ -219,6 +219,14 @@ def inbetween_object(obj, values, rule, progress=None, only_frame=None):
         except Exception as exc:  # the writer restored the layers; say why nothing changed
             result.error = reports.write_failed(exc)
             return result
+    _keep_outcomes(data, outcomes)
+    if morphed:  # the strokes its warnings name, for Select Warned Strokes (warned.py: why kept there)
+        warned.keep(data, result.reports())
+    return result
+
+
+def _keep_outcomes(data, outcomes):
+    """Each interval's reports in its layer's result; a written one's chart kept on ``data``."""
     for layer_result, interval, item, problem in outcomes:
         about = {"layer": interval.layer, "frames": (interval.frame_a, interval.frame_b)}
         if item is None:
@@ -229,7 +237,6 @@ def inbetween_object(obj, values, rule, progress=None, only_frame=None):
         label = options.label("method", item.method)
         found = reports.interval_reports(interval, label, item.messages, item.strays)
         layer_result.reports.extend(report.about(**about) for report in found)
-    return result
 
 
 def _compute(work, values, progress, corners):

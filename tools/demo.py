@@ -5,9 +5,11 @@ Run by ``make demo`` (tools/demo.sh) with bpy (Blender as a Python module), head
 1. enables the add-on from this checkout (a development extension repository),
 2. builds one Grease Pencil object per shot, with hand-made keys on its layer "Ink":
    - "Apple to pear": an apple outline and stem morphing into a pear (loops, frames 1-13),
-   - "Bend" (twice): a stroke whose ends stay put while it bends from an arch into a dip
-     (strokes sharing endpoints, frames 1-9), once with the circular ball-morph and once with
-     linear interpolation (what Blender's own Interpolate does) for comparison,
+   - "Bend" (twice): a stroke whose ends stay put while its hump leans over from left to right
+     (strokes sharing endpoints and crossing in the middle, frames 1-9), once with the circular
+     ball-morph and once with linear interpolation (what Blender's own Interpolate does) for
+     comparison: the ball-morph swings it over about the crossing, top held flat, where linear
+     interpolation rounds it into a dome above it (tools/shots.py says by how much),
    - "Squash and stretch": a ball falling (round, stretched, squashed on the floor: three
      selected keys, frames 1, 7, 9; the contact at 7 typed Extreme, so the fall keeps its corner
      there) with a gravity ease-in,
@@ -36,7 +38,7 @@ import matplotlib.pyplot as plt
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # The shots' drawings live with the test fixtures: the golden test draws the same keys.
 sys.path.insert(0, os.path.join(ROOT, "tests", "fixtures"))
-from shots import apple, bend_arch, bend_down, ellipse, floor, head_turn_keys, pear, stem  # noqa: E402
+from shots import apple, ellipse, floor, head_turn_keys, lean_left, lean_right, pear, stem  # noqa: E402
 
 OUT = os.path.join(ROOT, "out")
 ADDON_ID = "ballmorph_inbetween"
@@ -144,8 +146,8 @@ def build_scene():
         ("Bend (linear interpolation)", 6.4, "LINEAR_INTERPOLATION"),
     ):
         obj = new_shot(name, x, [ink])
-        add_key(obj, 1, [bend_arch()], [False], [0], [0.04])
-        add_key(obj, 9, [bend_down()], [False], [0], [0.04])
+        add_key(obj, 1, [lean_left()], [False], [0], [0.04])
+        add_key(obj, 9, [lean_right()], [False], [0], [0.04])
         shots.append((obj, 2, {"method": method}))
 
     obj = new_shot("Squash and stretch", 10.4, [blue, ink])

@@ -2,8 +2,10 @@
 
 import bpy
 
+from ..addon_logic import warned
 from ..operators.inbetween import BALLMORPH_OT_inbetween
 from ..operators.options import draw_options
+from ..operators.select_warned import BALLMORPH_OT_select_warned
 
 __all__ = ["BALLMORPH_PT_dopesheet", "BALLMORPH_PT_view3d"]
 
@@ -21,7 +23,7 @@ class _InbetweenPanel:
     def draw(self, context):
         layout = self.layout
         settings = context.scene.ballmorph_inbetween
-        draw_options(layout.column(), settings, compact=True)
+        draw_options(layout.column(), settings, compact=True, scene=context.scene)
         row = layout.row(align=True)
         row.prop(settings, "path_preview", icon="CURVE_PATH")
         row.prop(settings, "hint_dots", icon="PINNED")
@@ -29,6 +31,8 @@ class _InbetweenPanel:
         row.operator("ballmorph.hint_add", text="Add Hint", icon="PINNED")
         row.operator("ballmorph.hint_clear", text="Clear Hints", icon="UNPINNED")
         layout.operator(BALLMORPH_OT_inbetween.bl_idname, text="In-between", icon="IPO_EASE_IN_OUT")
+        if warned.PROPERTY in context.active_object.data:  # the last run warned about strokes
+            layout.operator(BALLMORPH_OT_select_warned.bl_idname, icon="RESTRICT_SELECT_OFF")
 
 
 class _MoreOptionsPanel:

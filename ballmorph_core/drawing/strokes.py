@@ -194,10 +194,16 @@ class StrokeSet:
 
 @dataclass
 class Message:
-    """Something the animator should know. ``level`` is INFO, WARNING or ERROR."""
+    """Something the animator should know. ``level`` is INFO, WARNING or ERROR.
+
+    ``strokes``: the strokes it is about, as ``(key, index)`` pairs (key 0 the first key, 1 the
+    second; indices from 0, as in the data), so a caller can show them (the add-on selects
+    them); empty when it is about no stroke in particular.
+    """
 
     level: str
     text: str
+    strokes: tuple = ()
 
 
 def as_written(index):

@@ -22,6 +22,7 @@ MODULES = (
     "addon_logic.charts",
     "addon_logic.id_keys",
     "addon_logic.hint_numbers",
+    "addon_logic.warned",
 )
 
 

@@ -179,3 +179,36 @@ def marks(obj):
     """The add-on's record of the frames it wrote (a plain dict; {} when there is none)."""
     record = obj.data.get("ballmorph_inbetween")
     return record.to_dict() if record is not None else {}
+
+
+def ensure_interpolate_curve(points=None):
+    """The scene's Interpolate curve (tool settings), made as Blender makes it: by running
+    Interpolate Sequence once (on a throwaway object, removed after); with ``points``
+    (``[(x, y), ...]``) it is set to that polyline (vector handles)."""
+    settings = bpy.context.scene.tool_settings.gpencil_interpolate
+    if settings.interpolation_curve is None:
+        active = bpy.context.view_layer.objects.active
+        frame = bpy.context.scene.frame_current
+        scratch = new_object("Scratch")
+        layer = scratch.data.layers["Ink"]
+        add_key(layer, 1, [loop(1.0)], cyclic=[True])
+        add_key(layer, 3, [loop(2.0)], cyclic=[True])
+        bpy.context.scene.frame_current = 2
+        assert bpy.ops.grease_pencil.interpolate_sequence() == {"FINISHED"}
+        data = scratch.data
+        bpy.data.objects.remove(scratch)
+        collection().remove(data)
+        bpy.context.view_layer.objects.active = active
+        bpy.context.scene.frame_current = frame
+    mapping = settings.interpolation_curve
+    if points is not None:
+        curve = mapping.curves[0]
+        while len(curve.points) > 2:
+            curve.points.remove(curve.points[1])
+        curve.points[0].location, curve.points[-1].location = points[0], points[-1]
+        for x, y in points[1:-1]:
+            curve.points.new(x, y)
+        for point in curve.points:
+            point.handle_type = "VECTOR"
+        mapping.update()
+    return mapping

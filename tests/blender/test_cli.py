@@ -15,6 +15,7 @@ import sys
 
 import bpy
 import gp_data
+import numpy as np
 import pytest
 from conftest import MODULE, ROOT, disable_addon, enable_addon
 
@@ -253,6 +254,9 @@ def test_options_from_the_operators_table(saved, tmp_path, capfd):
         "timing_chart": "",
         "easing_type": "quad",
         "easing": "ease-in-out",
+        "back": 1.702,
+        "amplitude": 0.15,
+        "period": 0.15,
         "favor": 0.0,
         "layers": "all",
         "selected_only": False,
@@ -266,6 +270,32 @@ def test_options_from_the_operators_table(saved, tmp_path, capfd):
     for flag in ("--method", "--frame-count", "--layers", "--selected-only", "--carrier", "--easing-type"):
         assert flag in help_text[1]
     assert "--favor X" in help_text[1] and "--timing-chart TEXT" in help_text[1]
+
+
+def test_the_custom_type_reads_the_curve_of_the_files_scene(addon, tmp_path, capfd):
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    gp_data.ensure_interpolate_curve([(0.0, 0.0), (0.5, 0.8), (1.0, 1.0)])
+    obj = gp_data.new_object()
+    gp_data.add_key(obj.data.layers["Ink"], 1, [gp_data.loop(1.0)], cyclic=[True])
+    gp_data.add_key(obj.data.layers["Ink"], 3, [gp_data.loop(2.0)], cyclic=[True])
+    path = tmp_path / "custom.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    out = tmp_path / "o.blend"
+    code, summary, _ = run_json(capfd, path, "--output", out, "--easing-type", "custom", "--carrier", "none")
+    assert code == 0 and summary["options"]["easing_type"] == "custom"
+    bpy.ops.wm.open_mainfile(filepath=str(out))
+    layer = bpy.data.objects["Drawing"].data.layers["Ink"]
+    positions = gp_data.read_strokes(gp_data.frame_at(layer, 2).drawing).positions
+    assert np.mean(np.hypot(positions[:, 0], positions[:, 2])) == pytest.approx(1.8, abs=1e-3)  # the curve's 0.8
+
+
+@pytest.mark.parametrize(
+    ("argv", "said"),
+    [(["--back", "-1"], "expected a number of at least 0"), (["--period", "nan"], "expected a number, got 'nan'")],
+)
+def test_the_types_settings_are_checked_on_the_command_line(saved, capfd, argv, said):
+    code, _, err = run(capfd, saved, *argv)
+    assert code == 2 and said in err
 
 
 def test_favor_and_a_timing_chart_and_the_chart_kept_for_the_next_run(saved, tmp_path, capfd):

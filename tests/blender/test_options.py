@@ -32,7 +32,7 @@ def test_the_core_takes_every_value_of_the_table(addon):
     assert core.FALLBACK_METHOD in options.option("method").values
     for kind in options.option("easing_type").values:
         for mode in options.option("easing").values:
-            eased = core.ease([0.0, 0.5, 1.0], kind, mode)
+            eased = core.ease([0.0, 0.5, 1.0], kind, mode, curve=[0.0, 1.0])
             assert eased[[0, -1]].tolist() == pytest.approx([0.0, 1.0])
     key_a = core.StrokeSet.from_strokes([gp_data.arc(0.3)])
     key_b = core.StrokeSet.from_strokes([gp_data.arc(-0.3), gp_data.loop(0.2)], cyclic=[False, True])
@@ -52,6 +52,9 @@ def test_values_of_reads_any_holder_of_the_options(addon):
         "timing_chart": "",
         "easing_type": "linear",
         "easing": "ease-in-out",
+        "back": pytest.approx(1.702),
+        "amplitude": pytest.approx(0.15),
+        "period": pytest.approx(0.15),
         "favor": 0.0,
         "layers": "all",
         "selected_only": False,
@@ -83,9 +86,9 @@ def test_the_operator_passes_the_core_values_from_the_table(shot, addon, monkeyp
     eased, planned = [], []
     real_ease, real_plan = morph.ease, plans.plan_inbetween
 
-    def spy_ease(x, kind, mode):
+    def spy_ease(x, kind, mode, **settings):
         eased.append((kind, mode))
-        return real_ease(x, kind, mode)
+        return real_ease(x, kind, mode, **settings)
 
     def spy_plan(key_a, key_b, **kwargs):
         planned.append(kwargs)
@@ -97,3 +100,47 @@ def test_the_operator_passes_the_core_values_from_the_table(shot, addon, monkeyp
     method, kind, mode, carrier, matching, unmatched = core
     assert eased == [(kind, mode)]
     assert planned == [{"method": method, "carrier": carrier, "matching": matching, "unmatched": unmatched}]
+
+
+@pytest.mark.parametrize(
+    ("given", "settings"),
+    [
+        ({"easing_type": "BACK", "back": 2.5}, {"back": 2.5}),
+        ({"easing_type": "ELASTIC", "amplitude": 1.5, "period": 0.4}, {"amplitude": 1.5, "period": 0.4}),
+        ({"easing_type": "ELASTIC"}, {"amplitude": 0.15, "period": 0.15}),  # Interpolate Sequence's defaults
+    ],
+)
+def test_the_types_settings_reach_the_easing(shot, addon, monkeypatch, given, settings):
+    morph = addon_module(addon, "operators.morph")
+    seen, real_ease = [], morph.ease
+
+    def spy_ease(x, kind, mode, **kwargs):
+        seen.append(kwargs)
+        return real_ease(x, kind, mode, **kwargs)
+
+    monkeypatch.setattr(morph, "ease", spy_ease)
+    assert bpy.ops.ballmorph.inbetween(frame_count=1, **given) == {"FINISHED"}
+    assert {name: seen[0][name] for name in settings} == pytest.approx(settings)
+    assert seen[0]["curve"] is None  # only the Custom type samples the scene's curve
+
+
+def test_saved_type_numbers_keep_their_meaning(addon):
+    """Custom came second in the Type list, as in Interpolate Sequence, but scenes and preferences
+    store the item's number: the types before it keep theirs."""
+    options = addon_module(addon, "operators.options")
+    numbers = {
+        item.identifier: item.value
+        for item in bpy.ops.ballmorph.inbetween.get_rna_type().properties["easing_type"].enum_items
+    }
+    assert (numbers["LINEAR"], numbers["SINE"], numbers["QUAD"], numbers["ELASTIC"], numbers["CUSTOM"]) == (
+        0,
+        1,
+        2,
+        10,
+        11,
+    )
+    settings = bpy.context.scene.ballmorph_inbetween
+    settings.easing_type = "QUAD"
+    assert settings["easing_type"] == 2 == options.option("easing_type").raw("quad")
+    settings.easing_type = "CUSTOM"
+    assert settings["easing_type"] == 11 == options.option("easing_type").raw("custom")

@@ -11,6 +11,7 @@ from conftest import MODULE, ROOT, disable_addon, enable_addon
 MENUS = ("DOPESHEET_MT_key", "DOPESHEET_MT_context_menu", "VIEW3D_MT_edit_greasepencil_animation")
 CLASSES = (
     "BALLMORPH_OT_inbetween",
+    "BALLMORPH_OT_select_warned",
     "BALLMORPH_MT_inbetween",
     "BALLMORPH_PT_dopesheet",
     "BALLMORPH_PT_view3d",
@@ -64,10 +65,16 @@ def test_operator_options(addon):
         "LAPLACE_BLENDING",
         "HEAT_PROPAGATION",
     ]
-    # Blender's own Interpolate Sequence easing names (all but its CUSTOM curve)
+    # Blender's own Interpolate Sequence easing names, its CUSTOM curve included, in its order
     interpolate = bpy.ops.grease_pencil.interpolate_sequence.get_rna_type().properties
-    assert enum["easing_type"] == [i.identifier for i in interpolate["type"].enum_items if i.identifier != "CUSTOM"]
+    assert enum["easing_type"] == [i.identifier for i in interpolate["type"].enum_items]
     assert enum["easing"] == [i.identifier for i in interpolate["easing"].enum_items]
+    # ... and its Back, Amplitude and Period settings: names, labels, defaults, ranges, display
+    for name in ("back", "amplitude", "period"):
+        ours, blenders = properties[name], interpolate[name]
+        for attribute in ("name", "description", "hard_min", "hard_max", "soft_min", "soft_max", "precision"):
+            assert getattr(ours, attribute) == getattr(blenders, attribute), (name, attribute)
+        assert (ours.default, ours.step, ours.subtype) == (blenders.default, blenders.step, blenders.subtype), name
     # ... and its labels: Type (Linear, Sine, ...) and Easing (Ease In, ...)
     labels = (properties["easing_type"].name, properties["easing"].name)
     assert labels == (interpolate["type"].name, interpolate["easing"].name) == ("Type", "Easing")

@@ -5,6 +5,8 @@ import gp_data
 import numpy as np
 import pytest
 
+import ballmorph_core as bm
+
 
 def run(capfd, **options):
     """Run the operator; return its result and everything it reported."""
@@ -202,3 +204,45 @@ def test_favor_and_the_chart_are_properties_of_the_operator_scene_and_preference
     assert (settings.favor, settings.timing_chart) == (-0.25, "0.5")  # the scene reads the defaults
     settings.timing_chart = "0.2 0.4"
     assert (settings.timing_chart, preferences.timing_chart) == ("0.2 0.4", "0.5")
+
+
+# -- Interpolate's Custom curve and Back / Elastic settings ------------------------------------------
+
+
+def test_the_custom_type_writes_each_in_between_at_the_scenes_interpolate_curve(addon, capfd):
+    # The curve Interpolate Sequence's Custom type reads: up to 0.8 at the middle, then slowly to 1.
+    gp_data.ensure_interpolate_curve([(0.0, 0.0), (0.5, 0.8), (1.0, 1.0)])
+    obj = circles(5)
+    result, text = run(capfd, easing_type="CUSTOM", easing="EASE_IN_OUT", **CIRCLES)  # Easing: not used
+    assert result == {"FINISHED"}
+    assert breakdowns(obj) == [2, 3, 4]
+    # fractions 1/4, 1/2, 3/4 -> the curve's 0.4, 0.8, 0.9 (radius 1 + t)
+    assert [radius(obj, n) for n in (2, 3, 4)] == pytest.approx([1.4, 1.8, 1.9], abs=1e-3)
+    assert "no Custom curve" not in text
+
+
+def test_the_custom_type_in_a_scene_without_a_curve_runs_linear_and_says_so(addon, capfd):
+    assert bpy.context.scene.tool_settings.gpencil_interpolate.interpolation_curve is None
+    obj = circles(5)
+    result, text = run(capfd, easing_type="CUSTOM", **CIRCLES)
+    assert result == {"FINISHED"}
+    assert [radius(obj, n) for n in (2, 3, 4)] == pytest.approx([1.25, 1.5, 1.75], abs=1e-3)
+    assert "has no Custom curve yet, so the Custom type ran Linear" in text
+
+
+@pytest.mark.parametrize(
+    ("options", "settings"),
+    [
+        ({"easing_type": "BACK", "easing": "EASE_IN_OUT", "back": 0.0}, {"back": 0.0}),
+        ({"easing_type": "BACK", "easing": "AUTO", "back": 2.5}, {"back": 2.5}),
+        (
+            {"easing_type": "ELASTIC", "easing": "EASE_OUT", "amplitude": 1.2, "period": 0.5},
+            {"amplitude": 1.2, "period": 0.5},
+        ),
+    ],
+)
+def test_back_and_elastic_settings_time_the_in_betweens(addon, options, settings):
+    obj = circles(5)
+    assert bpy.ops.ballmorph.inbetween(**options, **CIRCLES) == {"FINISHED"}
+    times = bm.ease([0.25, 0.5, 0.75], options["easing_type"], options["easing"], **settings)
+    assert [radius(obj, n) for n in (2, 3, 4)] == pytest.approx(1 + np.clip(times, 0, 1), abs=1e-3)

@@ -52,6 +52,12 @@ class Layout:
         assert name in data.bl_rna.properties, f"{type(data).__name__} has no property {name!r}"
         self.log.append(("prop", name))
 
+    def template_curve_mapping(self, data, name, **kwargs):
+        assert data.bl_rna.properties[name].fixed_type.identifier == "CurveMapping", name
+        expected = bpy.types.UILayout.bl_rna.functions["template_curve_mapping"].parameters
+        assert set(kwargs) <= set(expected.keys()), kwargs
+        self.log.append(("curve", name))
+
     def operator(self, idname, icon="NONE", **kwargs):
         self._icon(icon)
         category, name = idname.split(".")
@@ -146,7 +152,37 @@ def test_redo_panel_and_preferences_draw_every_option(ui):
     ):
         log = []
         options.draw_options(Layout(log), data)
-        assert [name for _, name in log] == list(options.OPTION_NAMES)
+        # a type's own settings only with that type (Type is Linear by default)
+        type_settings = ("back", "amplitude", "period")
+        assert [name for _, name in log] == [name for name in options.OPTION_NAMES if name not in type_settings]
+
+
+@pytest.mark.parametrize(
+    ("easing_type", "shown"),
+    [("LINEAR", []), ("QUAD", []), ("BACK", ["back"]), ("ELASTIC", ["amplitude", "period"]), ("CUSTOM", [])],
+)
+def test_a_types_own_settings_are_drawn_only_with_that_type(ui, easing_type, shown):
+    options = __import__(f"{MODULE}.operators.options", fromlist=["OPTION_NAMES"])
+    settings = bpy.context.scene.ballmorph_inbetween
+    settings.easing_type = easing_type
+    log = []
+    options.draw_options(Layout(log), settings, scene=bpy.context.scene)
+    drawn = [name for kind, name in log if kind == "prop"]
+    assert [name for name in drawn if name in ("back", "amplitude", "period")] == shown
+    assert "easing" in drawn
+    if easing_type == "CUSTOM":  # no curve in a new scene: the panel says how to get one
+        assert bpy.context.scene.tool_settings.gpencil_interpolate.interpolation_curve is None
+        assert any(kind == "label" and "No Custom curve" in text for kind, text in log)
+
+
+def test_the_custom_type_draws_the_scenes_interpolate_curve(ui):
+    options = __import__(f"{MODULE}.operators.options", fromlist=["OPTION_NAMES"])
+    gp_data.ensure_interpolate_curve()
+    settings = bpy.context.scene.ballmorph_inbetween
+    settings.easing_type = "CUSTOM"
+    log = []
+    options.draw_options(Layout(log), settings, scene=bpy.context.scene)
+    assert ("curve", "interpolation_curve") in log
 
 
 def test_hint_dots_follow_the_overlays_and_their_toggle_and_scale_with_the_ui(ui):

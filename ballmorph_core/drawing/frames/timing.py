@@ -3,10 +3,12 @@
 Three ways to time an interval, applied in this order:
 
 - easing (:func:`ease`) maps each frame's fraction of the interval to a morph time. The types
-  and modes match Blender's Grease Pencil interpolation (types 'linear', 'sine', 'quad',
-  'cubic', 'quart', 'quint', 'expo', 'circ', 'back', 'bounce', 'elastic'; modes 'ease-in',
-  'ease-out', 'ease-in-out', 'auto'; Blender's ids such as 'EASE_IN' are accepted too), using
-  Robert Penner's equations as Blender does;
+  and modes match Blender's Grease Pencil interpolation (types 'linear', 'custom', 'sine',
+  'quad', 'cubic', 'quart', 'quint', 'expo', 'circ', 'back', 'bounce', 'elastic'; modes
+  'ease-in', 'ease-out', 'ease-in-out', 'auto'; Blender's ids such as 'EASE_IN' are accepted
+  too), using Robert Penner's equations as Blender does (``BLI_easing``), with Interpolate
+  Sequence's Back, Amplitude and Period settings; 'custom' reads a curve the caller samples
+  (the add-on: Blender's own Custom curve, so the core never sees Blender);
 - or a timing chart (:func:`parse_timing_chart`) gives the morph times outright, one in-between
   per fraction, on frames spread evenly between the keys (:func:`frame_times`), not eased;
 - then favoring (:func:`apply_favor`) pulls every time toward one key.
@@ -19,7 +21,7 @@ import numpy as np
 from ...errors import InvalidCurveError
 from ...options import EASING_MODES, EASING_TYPES, check_option
 
-__all__ = ["ease", "frame_times", "apply_favor", "parse_timing_chart", "FAVOR_ODDS"]
+__all__ = ["ease", "frame_times", "apply_favor", "parse_timing_chart", "FAVOR_ODDS", "BACK", "AMPLITUDE", "PERIOD"]
 
 #: Favor 1 multiplies the odds t / (1 - t) of every morph time by this (favor -1 divides them):
 #: the middle in-between moves to 3/4 (or 1/4) of the way, the animator's "favor" mark.
@@ -29,6 +31,14 @@ _CHART_SEPARATORS = re.compile(r"[\s,]+")
 
 # 'auto' follows Blender: ease in for the "dynamic" types, ease out for back/bounce/elastic.
 _AUTO_OUT = ("back", "bounce", "elastic")
+
+#: Blender's Interpolate Sequence defaults for its Back, Amplitude and Period settings
+#: (``bpy.ops.grease_pencil.interpolate_sequence``: back 1.702, amplitude 0.15, period 0.15, on
+#: Blender 4.5 and 5.0). Robert Penner's fixed constants are back 1.70158 and, for elastic,
+#: amplitude 1 and period 0.3.
+BACK = 1.702
+AMPLITUDE = 0.15
+PERIOD = 0.15
 
 
 def _bounce_out(x):
@@ -40,7 +50,29 @@ def _bounce_out(x):
     )
 
 
-def _ease_in(kind, x):
+def _elastic_in(x, amplitude, period):
+    """Blender's ``BLI_easing_elastic_ease_in`` (begin 0, change 1, duration 1), vectorised.
+
+    An amplitude below 1 (the change) keeps the curve's phase and scales its swings by the
+    amplitude, blended back to full size in the last quarter period before the key (Blender's
+    ``elastic_blend``); an amplitude above 1 shifts the phase so the swing starts at that size.
+    """
+    t = x - 1.0
+    if amplitude > 1.0:
+        s, f = period / (2 * np.pi) * np.arcsin(1.0 / amplitude), amplitude
+    else:
+        s, f = period / 4, 1.0
+        if amplitude < 1.0:  # elastic_blend: the swings scaled, back to 1 near the key
+            reach = np.abs(s)
+            near = np.minimum(np.abs(t) / reach, 1.0) if reach > 0 else np.ones_like(t)
+            f = amplitude * near + (1.0 - near)
+    # Written so that amplitude 1, period 0.3 give Penner's 2^(10x - 10) sin((10x - 10.75) 2 pi / 3)
+    # bit for bit.
+    wave = -f * 2.0 ** (10 * x - 10) * np.sin((x * 10 - (10 + 10 * s)) * (2 * np.pi / (10 * period)))
+    return np.where((x <= 0) | (x >= 1), x, wave)
+
+
+def _ease_in(kind, x, back, amplitude, period):
     if kind == "sine":
         return 1 - np.cos(x * np.pi / 2)
     if kind in ("quad", "cubic", "quart", "quint"):
@@ -50,18 +82,37 @@ def _ease_in(kind, x):
     if kind == "circ":
         return 1 - np.sqrt(np.clip(1 - x * x, 0, 1))
     if kind == "back":
-        c1 = 1.70158
-        return (c1 + 1) * x**3 - c1 * x**2
+        return (back + 1) * x**3 - back * x**2
     if kind == "bounce":
         return 1 - _bounce_out(1 - x)
     if kind == "elastic":
-        c4 = 2 * np.pi / 3
-        return np.where((x <= 0) | (x >= 1), x, -(2.0 ** (10 * x - 10)) * np.sin((x * 10 - 10.75) * c4))
+        return _elastic_in(x, amplitude, period)
     return x
 
 
-def ease(x, kind="linear", mode="auto"):
-    """Map frame fractions to morph times.
+def _checked_curve(curve):
+    table = np.asarray(curve, dtype=np.float64) if curve is not None else None
+    if table is None or table.ndim != 1 or len(table) < 2 or not np.all(np.isfinite(table)):
+        raise InvalidCurveError(
+            "curve: the 'custom' type needs the curve's values at evenly spaced fractions from 0 to 1 "
+            f"(at least two finite numbers), got {curve!r}"
+        )
+    return table
+
+
+def _number(name, value, low=-np.inf):
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = np.nan
+    if not (np.isfinite(number) and number >= low):
+        bound = "" if low == -np.inf else f" of at least {low:g}"
+        raise InvalidCurveError(f"{name} must be a finite number{bound}, got {value!r}")
+    return number
+
+
+def ease(x, kind="linear", mode="auto", *, back=BACK, amplitude=AMPLITUDE, period=PERIOD, curve=None):
+    """Map frame fractions to morph times, as Blender's Interpolate Sequence does.
 
     Parameters
     ----------
@@ -70,12 +121,22 @@ def ease(x, kind="linear", mode="auto"):
     kind : str
         One of :data:`EASING_TYPES`.
     mode : str
-        One of :data:`EASING_MODES`.
+        One of :data:`EASING_MODES` (not used by 'linear' and 'custom').
+    back : float, optional
+        The overshoot of 'back' (Blender's Back, at least 0; 0 makes 'back' a cubic). Ease in
+        and out uses 1.525 times it, as Blender does.
+    amplitude, period : float, optional
+        The 'elastic' settings (Blender's Amplitude, at least 0, and Period). Below 1 the
+        amplitude scales the swings; a period of 0 means Blender's own (0.3, 0.45 in and out).
+    curve : array_like, optional
+        For 'custom': the curve's values at ``T`` evenly spaced fractions from 0 to 1 (Blender's
+        Custom curve sampled by the caller), read by linear interpolation.
 
     Returns
     -------
     ndarray
-        Same shape as ``x``; 0 maps to 0 and 1 to 1 (BACK and ELASTIC may overshoot between).
+        Same shape as ``x``; 0 maps to 0 and 1 to 1 (BACK and ELASTIC may overshoot between;
+        'custom' maps them where its curve does).
 
     Examples
     --------
@@ -83,19 +144,35 @@ def ease(x, kind="linear", mode="auto"):
     [0.0, 0.25, 1.0]
     >>> ease([0.25], "quad", "ease-in-out").tolist()
     [0.125]
+    >>> ease([0.5], "back", "ease-in", back=0.0).tolist()  # no overshoot: a cubic
+    [0.125]
+    >>> ease([0.25, 0.5], "custom", curve=[0.0, 0.8, 1.0]).tolist()
+    [0.4, 0.8]
     """
     kind = check_option("kind", kind, EASING_TYPES)
     mode = check_option("mode", mode, EASING_MODES)
+    back = _number("back", back, low=0.0)
+    amplitude = _number("amplitude", amplitude, low=0.0)
+    period = _number("period", period)
     x = np.clip(np.asarray(x, dtype=np.float64), 0.0, 1.0)
     if kind == "linear":
         return x
+    if kind == "custom":
+        table = _checked_curve(curve)
+        return np.interp(x, np.linspace(0.0, 1.0, len(table)), table)
     if mode == "auto":
         mode = "ease-out" if kind in _AUTO_OUT else "ease-in"
+    if mode == "ease-in-out":
+        back *= 1.525  # Blender's BLI_easing_back_ease_in_out (Penner's)
+        period = period or 0.45
+    else:
+        period = period or 0.3
+    settings = (back, amplitude, period)
     if mode == "ease-in":
-        return _ease_in(kind, x)
+        return _ease_in(kind, x, *settings)
     if mode == "ease-out":
-        return 1 - _ease_in(kind, 1 - x)
-    return np.where(x < 0.5, _ease_in(kind, 2 * x) / 2, 1 - _ease_in(kind, 2 - 2 * x) / 2)
+        return 1 - _ease_in(kind, 1 - x, *settings)
+    return np.where(x < 0.5, _ease_in(kind, 2 * x, *settings) / 2, 1 - _ease_in(kind, 2 - 2 * x, *settings) / 2)
 
 
 def frame_times(frame_a, frame_b, count=None):

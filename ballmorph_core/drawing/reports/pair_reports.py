@@ -40,10 +40,12 @@ def pair_report(a, b, flipped, used, notes, travelled=False):
         notes = ["the second key's stroke runs the other way: flipped", *notes]
     first = used.morphs[0] if used.morphs else ""
     fell_back = first in (FALLBACK_METHOD, ALIGNED_METHOD) or first == STRAIGHT_POINT_MOTION
+    strokes = ((0, a.index), (1, b.index))
     messages = [
         Message(
             "WARNING" if fell_back and note is notes[-1] else "INFO",
             f"stroke {as_written(a.index)} -> {as_written(b.index)}: {note}",
+            strokes,
         )
         for note in notes
     ]
@@ -64,4 +66,5 @@ def unmatched_report(index, from_a, unmatched):
     what = UNMATCHED_WORDS[unmatched][0 if from_a else 1]
     outcome = PairOutcome.HOLD if unmatched == "hold" else (PairOutcome.DISAPPEAR if from_a else PairOutcome.APPEAR)
     report = PairReport(index if from_a else None, None if from_a else index, outcome.value, outcome=outcome)
-    return report, Message("WARNING", f"stroke {as_written(index)} of the {key} key has no partner: {what}")
+    text = f"stroke {as_written(index)} of the {key} key has no partner: {what}"
+    return report, Message("WARNING", text, ((0 if from_a else 1, index),))

@@ -19,6 +19,7 @@ def test_a_pair_that_fell_back_warns_once_on_its_last_note():
     assert report.method == "linear-interpolation on a similarity carrier"
     assert [m.level for m in messages] == ["INFO", "INFO", "WARNING"]
     assert messages[0].text == "stroke 3 -> 6: the second key's stroke runs the other way: flipped"
+    assert all(m.strokes == ((0, 2), (1, 5)) for m in messages)  # the pair, in both keys (indices from 0)
 
 
 def test_a_ball_morphed_pair_only_informs():
@@ -38,6 +39,7 @@ def test_a_stroke_without_a_partner_says_what_it_does(from_a, unmatched, outcome
     report, message = unmatched_report(3, from_a, unmatched)
     assert report.outcome == outcome and (report.stroke_a is None) != from_a
     assert (message.level, message.text) == ("WARNING", words)
+    assert message.strokes == ((0 if from_a else 1, 3),)  # the stroke it is about, for the add-on to select
 
 
 def test_a_piece_of_a_line_names_its_line():
