@@ -57,6 +57,12 @@ POSITION = 0.1
 #: spacing (along the warp) are merged.
 KNOT_GAP = 0.85
 
+#: Cells of warp tables made at a time (pairs are warped in groups within it): 32 MiB of costs.
+TABLE_CELLS = 1 << 22
+
+#: Cells of a table costed at a time (its temporaries stay in the cache): 512 KiB of costs.
+BLOCK_CELLS = 1 << 16
+
 #: Edges per curve of the coarse warps that choose a loop's start among all of them: the fine
 #: warps then try the starts within one coarse cell of the best.
 COARSE_SAMPLES = 32
@@ -138,93 +144,98 @@ def _edges(rg, k, closed):
     return d / np.maximum(n, tol.TINY), (pts + nxt) / 2
 
 
+def _diagonal(d, k):
+    """The rows ``lo .. hi`` of anti-diagonal ``d`` of a ``k x k`` table: its cells (i, d - i) on the table."""
+    return max(0, d - k + 1), min(d, k - 1)
+
+
 def _sweep(cost_of, shape, k, stretch):
     """Least total cost of monotone warps through ``k x k`` cells from (0, 0) to (k-1, k-1).
 
-    ``cost_of(d)`` gives the cells of anti-diagonal ``d`` (cells (i, d - i)), shape
-    ``shape + (k,)`` indexed by i (inf where the cell is off the table). A diagonal step counts
-    its cell twice (a diagonal walk costs what two single steps cost); a single step pays
+    ``cost_of(d, lo, hi)`` gives the cells (i, d - i) of anti-diagonal ``d``, i from ``lo`` to
+    ``hi`` (those on the table), shape ``shape + (hi - lo + 1,)``. A diagonal step counts its
+    cell twice (a diagonal walk costs what two single steps cost); a single step pays
     ``stretch`` more. Returns the totals at the far corner, shape ``shape``.
 
-    A single step's cheaper source is taken before its cost is added: rounding is monotone, so
-    ``min(a, b) + c + stretch`` is ``min(a + c + stretch, b + c + stretch)`` bit for bit, and
-    every diagonal writes into the buffer it replaces (a few numpy calls a diagonal: their
-    count, not the cells, is the cost of a small batch).
+    Only the cells on the table are swept (half the square of cells an anti-diagonal of the
+    square spans), and a single step's cheaper source is taken before its cost is added:
+    rounding is monotone, so ``min(a, b) + c + stretch`` is ``min(a + c + stretch, b + c +
+    stretch)`` bit for bit. A few numpy calls a diagonal: their count, not the cells, is the
+    cost of a small batch.
     """
-    before = np.full(shape + (k + 1,), np.inf)  # anti-diagonal d - 2, index i + 1
-    last = before.copy()  # anti-diagonal d - 1
-    before[..., 0] = 0.0  # the corner before the start
-    both = np.empty(shape + (k,))
-    along = np.empty(shape + (k,))
+    # Anti-diagonals d - 2 and d - 1, cell i at index i + 1 (index 0: before the table, inf
+    # but at the corner before the start). Cells off the table are never written: inf.
+    before = np.full(shape + (k + 1,), np.inf)
+    last = before.copy()
+    before[..., 0] = 0.0
     for d in range(2 * k - 1):
-        c = cost_of(d)
-        np.multiply(c, 2.0, out=both)
-        both += before[..., :-1]
-        np.minimum(last[..., :-1], last[..., 1:], out=along)
+        lo, hi = _diagonal(d, k)
+        c = cost_of(d, lo, hi)
+        both = c * 2.0
+        both += before[..., lo : hi + 1]
+        along = np.minimum(last[..., lo : hi + 1], last[..., lo + 1 : hi + 2])
         along += c
         along += stretch
         before, last = last, before
-        np.minimum(both, along, out=last[..., 1:])
-        last[..., 0] = np.inf
+        np.minimum(both, along, out=last[..., lo + 1 : hi + 2])
+        if d == 0:
+            last[..., 0] = np.inf
     return last[..., k]
 
 
 def _recorded_sweep(cost_of, count, k, stretch):
-    """:func:`_sweep` of ``count`` warps (``cost_of`` shape (count, 1, k)) that also records the steps taken into
-    every cell (0 both, 1 along P, 2 along Q; the first of these that is least), shape
-    (2k - 1, count, k): the totals (count,) and the steps."""
-    inf = np.full((count, k + 1), np.inf)
-    before, last = inf.copy(), inf.copy()
+    """:func:`_sweep` of ``count`` warps (``cost_of`` shape (count, 1, n)) that also records the
+    steps taken into every cell (0 both, 1 along P, 2 along Q; the first of these that is
+    least), shape (2k - 1, count, k) (cells off the table left 0): the totals (count,) and the
+    steps."""
+    before = np.full((count, k + 1), np.inf)
+    last = before.copy()
     before[:, 0] = 0.0
     steps = np.zeros((2 * k - 1, count, k), dtype=np.int8)
     for d in range(2 * k - 1):
-        c = cost_of(d)[:, 0]  # one start a warp
-        both = before[:, :-1] + 2.0 * c
-        along_p = last[:, :-1] + c + stretch
-        along_q = last[:, 1:] + c + stretch
+        lo, hi = _diagonal(d, k)
+        c = cost_of(d, lo, hi)[:, 0]
+        both = before[:, lo : hi + 1] + 2.0 * c
+        along_p = last[:, lo : hi + 1] + c + stretch
+        along_q = last[:, lo + 1 : hi + 2] + c + stretch
         low = np.minimum(np.minimum(both, along_p), along_q)
-        steps[d] = np.where(both == low, 0, np.where(along_p == low, 1, 2))
+        steps[d, :, lo : hi + 1] = np.where(both == low, 0, np.where(along_p == low, 1, 2))
         before, last = last, before
-        last[:, 1:] = low
-        last[:, 0] = np.inf
+        last[:, lo + 1 : hi + 2] = low
+        if d == 0:
+            last[:, 0] = np.inf
     return last[:, k], steps
 
 
-def _diagonal_cells(k):
-    """For every anti-diagonal d: its column index j = d - i per row i, and whether it is on the table."""
-    i = np.arange(k)
-    j = np.arange(2 * k - 1)[:, None] - i[None, :]
-    return j, (j >= 0) & (j < k)
-
-
-def _cell_costs(tp, tq, mp, mq, size, position):
-    """Cost of every cell of every pair, shape (B, k, m): tangent mismatch plus position.
+def _cell_costs(p, q, size, position, out=None):
+    """Cost of cells: tangent mismatch plus position, broadcast (into ``out`` if given).
 
     Parameters
     ----------
-    tp, mp : ndarray, shape (B, k, 2)
-        P's edges' unit directions and midpoints.
-    tq, mq : ndarray, shape (B, m, 2)
-        Q's, in the order of the table's columns.
+    p, q : tuple of 4 ndarray
+        Direction (x, y) and midpoint (x, y) of the cells' edges of P and of Q, arrays
+        broadcasting to the cells' shape (leading axis B, one per pair).
     size : ndarray, shape (B,)
     position : float
+    out : ndarray, optional
+        Of the cells' shape.
 
-    Written coordinate by coordinate (no (B, k, m, 2) temporaries), with the very operations of
-    ``1 - einsum('bid,bjd->bij', tp, tq) + position * sum((mp_i - mq_j)^2) / size^2``: the same
-    costs bit for bit, five times faster.
+    The very operations of ``1 - einsum('bid,bjd->bij', tp, tq) + position * sum((mp_i -
+    mq_j)^2, axis=-1) / size^2``, coordinate by coordinate: the same costs bit for bit, without
+    temporaries of two coordinates a cell.
     """
-    out = tp[:, :, None, 0] * tq[:, None, :, 0]
-    out += tp[:, :, None, 1] * tq[:, None, :, 1]
+    out = np.multiply(p[0], q[0], out=out)
+    out += p[1] * q[1]
     np.subtract(1.0, out, out=out)
     if position <= 0.0:
         return out
-    gap = mp[:, :, None, 0] - mq[:, None, :, 0]
-    dy = mp[:, :, None, 1] - mq[:, None, :, 1]
+    gap = p[2] - q[2]
+    dy = p[3] - q[3]
     np.square(gap, out=gap)
     np.square(dy, out=dy)
     gap += dy
     gap *= position
-    gap /= np.square(size)[:, None, None]
+    gap /= np.square(size).reshape((-1,) + (1,) * (gap.ndim - 1))
     out += gap
     return out
 
@@ -321,34 +332,51 @@ def _pair_edges(rp, rq, k, loop):
     return tp, mp, tq, mq, np.maximum(size, tol.TINY)
 
 
-def _window_costs(edges, first, count, position):
-    """``cost_of(d)`` for :func:`_sweep` of ``count`` starts a pair, consecutive from ``first``
-    (B,) on: the cells of anti-diagonal d, shape (B, count, k).
+def _groups(edges, first, count):
+    """The pairs in groups whose tables (:func:`_diagonal_costs`) hold at most ``TABLE_CELLS``
+    cells: (edges, first) of each group."""
+    b_count, k = edges[0].shape[:2]
+    size = max(1, TABLE_CELLS // ((2 * k + count - 2) * k))
+    for g in range(0, b_count, size):
+        yield tuple(a[g : g + size] for a in edges), first[g : g + size]
 
-    One table a pair, of its P's ``k`` edges against Q's ``k + count - 1`` edges from ``first``
-    on (cyclically): the warp from start ``first + s`` reads its cell (i, j) in column ``s + j``,
-    so anti-diagonal d of every start is a strided view of the tables (row stride one column
-    less than a row: no gather per diagonal); cells off the warp's table are read from a
-    neighbouring row and then made inf.
+
+def _diagonal_costs(edges, first, count, position):
+    """``cost_of(d, lo, hi)`` for :func:`_sweep` of ``count`` starts a pair, consecutive from
+    ``first`` (B,) on: the cells (i, d - i) of every start's table, i from lo to hi, shape
+    (B, count, hi - lo + 1).
+
+    One table a pair laid out by anti-diagonals: row ``e`` holds P's edge i against Q's edge
+    ``first + e - i`` (cyclically), the cell (i, d - i) of the warp from start ``first + s``
+    in row ``d + s``; so every start's anti-diagonal d is a contiguous slice of the table (no
+    gather per diagonal), and the table is made in one go (Q's edges read as a view running
+    backwards along i).
     """
     tp, mp, tq, mq, size = edges
     b_count, k = tp.shape[:2]
-    width = k + count - 1
-    cols = ((first[:, None] + np.arange(width)) % k)[:, :, None]
-    tq, mq = np.take_along_axis(tq, cols, axis=1), np.take_along_axis(mq, cols, axis=1)
-    table = _cell_costs(tp, tq, mp, mq, size, position)
-    item = table.itemsize
-    view = np.lib.stride_tricks.as_strided(
-        table,
-        shape=(b_count, count, 2 * k - 1, k),
-        strides=(k * width * item, item, item, (width - 1) * item),
-        writeable=False,
-    )
-    _, valid = _diagonal_cells(k)
-    off = np.where(valid, 0.0, np.inf)
+    rows = 2 * k + count - 2
+    # Q's edges backwards from first + rows - 1: row e, column i reads edge rows - 1 - e + i
+    # of these (the inner loops run forwards along i).
+    span = rows + k - 1
+    at = (first[:, None] + (rows - 1) - np.arange(span)) % k
 
-    def cost_of(d):
-        return view[:, :, d, :] + off[d]
+    def skewed(a):
+        laid = np.take_along_axis(a, at, axis=1)  # (B, span), contiguous
+        step = laid.itemsize
+        return np.lib.stride_tricks.as_strided(
+            laid[:, rows - 1 :], shape=(b_count, rows, k), strides=(span * step, -step, step), writeable=False
+        )
+
+    q = tuple(skewed(a[:, :, x]) for a in (tq, mq) for x in (0, 1))
+    p = tuple(np.ascontiguousarray(a[:, :, x])[:, None, :] for a in (tp, mp) for x in (0, 1))
+    table = np.empty((b_count, rows, k))
+    # A few rows at a time: the temporaries stay in the cache.
+    step = max(1, BLOCK_CELLS // (b_count * k))
+    for e in range(0, rows, step):
+        _cell_costs(p, tuple(a[:, e : e + step] for a in q), size, position, out=table[:, e : e + step])
+
+    def cost_of(d, lo, hi):
+        return table[:, d : d + count, lo : hi + 1]
 
     return cost_of
 
@@ -357,19 +385,23 @@ def _best_starts(edges, first, count, stretch, position):
     """Of ``count`` candidate starts from ``first`` (B,) on, each loop pair's least costly, shape
     (B,) (the first of equals)."""
     k = edges[0].shape[1]
-    totals = _sweep(_window_costs(edges, first, count, position), (len(first), count), k, stretch)
-    return (first + np.argmin(totals, axis=1)) % k
+    best = []
+    for group, start in _groups(edges, first, count):
+        totals = _sweep(_diagonal_costs(group, start, count, position), (len(start), count), k, stretch)
+        best.append((start + np.argmin(totals, axis=1)) % k)
+    return np.concatenate(best)
 
 
 def _best_warps(rp, rq, k, first, count, stretch, position, loop):
     """The warps from the best of ``count`` candidate starts from ``first`` (B,) on, list of TangentWarp."""
     edges = _pair_edges(rp, rq, k, loop)
     best = _best_starts(edges, first, count, stretch, position) if count > 1 else first
-    totals, steps = _recorded_sweep(_window_costs(edges, best, 1, position), len(best), k, stretch)
     out = []
-    for b in range(len(best)):
-        i_path, j_path = _trace(steps[:, b], k)
-        out.append(_warp_of(i_path, j_path, k, best[b] / k if loop else 0.0, totals[b], loop))
+    for group, start in _groups(edges, best, 1):
+        totals, steps = _recorded_sweep(_diagonal_costs(group, start, 1, position), len(start), k, stretch)
+        for b in range(len(start)):
+            i_path, j_path = _trace(steps[:, b], k)
+            out.append(_warp_of(i_path, j_path, k, start[b] / k if loop else 0.0, totals[b], loop))
     return out
 
 
