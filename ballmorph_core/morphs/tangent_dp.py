@@ -369,11 +369,18 @@ def _diagonal_costs(edges, first, count, position):
 
     q = tuple(skewed(a[:, :, x]) for a in (tq, mq) for x in (0, 1))
     p = tuple(np.ascontiguousarray(a[:, :, x])[:, None, :] for a in (tp, mp) for x in (0, 1))
+
+    def p_of(lo, hi):
+        return tuple(a[:, :, lo:hi] for a in p)
+
     table = np.empty((b_count, rows, k))
-    # A few rows at a time: the temporaries stay in the cache.
+    # A few rows at a time (the temporaries stay in the cache), of each only the cells some
+    # start's warp reads: row e's cells i from e - (k + count - 2) to e (the rest is never read).
     step = max(1, BLOCK_CELLS // (b_count * k))
     for e in range(0, rows, step):
-        _cell_costs(p, tuple(a[:, e : e + step] for a in q), size, position, out=table[:, e : e + step])
+        lo, hi = max(0, e - (k + count - 2)), min(k, e + step)
+        cells = (slice(None), slice(e, e + step), slice(lo, hi))
+        _cell_costs(p_of(lo, hi), tuple(a[cells] for a in q), size, position, out=table[cells])
 
     def cost_of(d, lo, hi):
         return table[:, d : d + count, lo : hi + 1]
