@@ -4,6 +4,7 @@ Runs inside bpy (Blender as a Python module, headless)::
 
     $(tools/bootstrap.sh 5.0.1) tools/benchmark.py [--quick] [--sizes 100x200x9,...]
                                                    [--kinds loops,open,jagged,deforming]
+                                                   [--cases deforming:400x500x23,loops:100x200x9,...]
                                                    [--methods CIRCULAR_BALL,...] [--write docs/benchmark.md]
 
 For every drawing of the grid strokes {10, 100, 400} x points per stroke {50, 200, 500} x
@@ -1013,6 +1014,8 @@ def method_notes(cases):
 
 
 def parse_sizes(text):
+    if text.lower() == "none":
+        return []
     sizes = []
     for item in text.split(","):
         parts = item.lower().split("x")
@@ -1020,6 +1023,19 @@ def parse_sizes(text):
             raise argparse.ArgumentTypeError(f"size {item!r}: expected STROKESxPOINTSxINBETWEENS, e.g. 100x200x9")
         sizes.append(tuple(int(p) for p in parts))
     return sizes
+
+
+def parse_cases(text):
+    """``KIND:SIZE,...`` -> {kind: [size, ...]} (kinds in the order first named)."""
+    cases = {}
+    for item in text.split(","):
+        kind, _, size = item.partition(":")
+        if kind not in KINDS or not size:
+            raise argparse.ArgumentTypeError(
+                f"case {item!r}: expected KIND:STROKESxPOINTSxINBETWEENS, KIND one of {KINDS}"
+            )
+        cases.setdefault(kind, []).extend(parse_sizes(size))
+    return cases
 
 
 def _default_memory_sizes(sizes):
@@ -1046,10 +1062,17 @@ def _parser():
         "--quick", action="store_true", help=f"only {', '.join('x'.join(map(str, s)) for s in QUICK_SIZES)}"
     )
     parser.add_argument("--sizes", type=parse_sizes, help="comma-separated STROKESxPOINTSxINBETWEENS")
+    parser.add_argument(
+        "--cases",
+        type=parse_cases,
+        help="comma-separated KIND:STROKESxPOINTSxINBETWEENS, e.g. deforming:400x500x23 (for --kinds and --sizes)",
+    )
     parser.add_argument("--kinds", default=",".join(KINDS), help=f"any of {', '.join(KINDS)} (comma-separated)")
     parser.add_argument("--methods", default=",".join(METHODS), help="operator method ids, comma-separated")
     parser.add_argument(
-        "--memory-sizes", type=parse_sizes, help="drawings to probe memory on (default: the largest and the goal sizes)"
+        "--memory-sizes",
+        type=parse_sizes,
+        help="drawings to probe memory on (default: the largest and the goal sizes; 'none')",
     )
     parser.add_argument(
         "--no-ballmap", action="store_true", help="skip the ball-map and matching scaling and the scribble tables"
@@ -1110,7 +1133,7 @@ def main(argv=None):
     for kind in kinds:
         if kind not in KINDS:
             parser.error(f"--kinds: {kind!r} is not one of {', '.join(KINDS)}")
-    sizes = {kind: _chosen_sizes(args, kind) for kind in kinds}
+    sizes = args.cases or {kind: _chosen_sizes(args, kind) for kind in kinds}
     every = [size for kind_sizes in sizes.values() for size in kind_sizes]
     memory_sizes = args.memory_sizes if args.memory_sizes is not None else _default_memory_sizes(every)
     info = machine()
