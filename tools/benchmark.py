@@ -391,11 +391,11 @@ class StageClock:
             if self.depth[stage]:
                 return function(*args, **kwargs)
             self.depth[stage] += 1
-            start = time.perf_counter()
+            start = CLOCKS[_clock]()
             try:
                 result = function(*args, **kwargs)
             finally:
-                self.total[stage] += time.perf_counter() - start
+                self.total[stage] += CLOCKS[_clock]() - start
                 self.depth[stage] -= 1
             if stage == "core" and type(result).__name__ == "InbetweenResult":
                 self.results.append(result)
@@ -440,9 +440,9 @@ def stage_times(run, clean, runs, method):
             clean()
             gc.collect()
             clock.reset()
-            start = time.perf_counter()
+            start = CLOCKS[_clock]()
             run()
-            total = time.perf_counter() - start
+            total = CLOCKS[_clock]() - start
             row = {stage: clock.total[stage] if clock.found[stage] else None for stage in STAGES}
             row["operator"] = total
             pairs = [p for result in clock.results for p in getattr(result, "pairs", [])]
@@ -980,6 +980,9 @@ def method_notes(cases):
   strokes drawn twice over the same line with a tremor (0.01 of noise at every point, key B moved
   by (0.01, 0.005)): the drawings cross again and again, so each pair is cut into lenses and many
   lenses take the fallback step (composite ball-morph, else aligned interpolation).
+- **Loops changing shape where they lie** (issue 38, at the goal sizes): key A is the loops'
+  drawing's, each loop of key B key A's stretched 1.25x along an axis of its own about its
+  centre, overlapping and crossing it.
 - **Same process, identical copies.** Each drawing is built twice (the same arrays written
   twice), one object per operator, each in Edit Mode in the factory screen's 3D viewport:
   `grease_pencil.interpolate_sequence` only runs there (poll: 3D viewport, Grease Pencil paint
@@ -987,10 +990,11 @@ def method_notes(cases):
   ball-morph method with every other option at its default (similarity carrier, automatic
   matching, linear easing), called with `EXEC_DEFAULT`. Blender's reports are printed to the
   console in background mode; they go wherever stdout goes.
-- **Runs.** `time.perf_counter()` around the operator call. Before every run the frames between
-  the keys are removed (and the add-on's record of them), so every run starts from the same
-  drawing, as a redo from F9 does (Blender undoes the previous run before running it again; in
-  background mode undo is off for both operators, so its cost is in neither number). Our
+- **Runs.** `time.perf_counter()` (with `--clock cpu`: `time.process_time()`) around the
+  operator call. Before every run the frames between the keys are removed (and the add-on's
+  record of them), so every run starts from the same drawing, as a redo from F9 does (Blender
+  undoes the previous run before running it again; in background mode undo is off for both
+  operators, so its cost is in neither number). Our
   operator's kept plans (operators/plans.py) are dropped before each run, so these runs are
   cold; the *redo* column keeps them and changes the easing every run (Sine In-Out, Quad Out):
   the times change, the keys do not, as when an option is dragged in the F9 panel. Re-running
