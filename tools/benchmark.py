@@ -4,6 +4,7 @@ Runs inside bpy (Blender as a Python module, headless)::
 
     $(tools/bootstrap.sh 5.0.1) tools/benchmark.py [--quick] [--sizes 100x200x9,...]
                                                    [--kinds loops,open,jagged,deforming]
+                                                   [--cases deforming:400x500x23,loops:100x200x9,...]
                                                    [--methods CIRCULAR_BALL,...] [--write docs/benchmark.md]
 
 For every drawing of the grid strokes {10, 100, 400} x points per stroke {50, 200, 500} x
@@ -310,6 +311,17 @@ class Timing:
         return statistics.median(self.seconds)
 
 
+# What the runs are timed by (--clock): the wall clock, or this process's CPU time (every thread
+# of it), which a machine busy with other work inflates far less.
+CLOCKS = {"wall": time.perf_counter, "cpu": time.process_time}
+CLOCK_TEXT = {
+    "wall": "wall (`time.perf_counter`)",
+    "cpu": "CPU time of the process, every thread of it (`time.process_time`, `--clock cpu`): the"
+    " machine was busy with other work, which stretches wall times far more",
+}
+_clock = "wall"
+
+
 def measure(run, clean, check, prime=False):
     """Time ``run()`` several times, calling ``clean()`` before each (see the repeat constants).
 
@@ -321,9 +333,9 @@ def measure(run, clean, check, prime=False):
     while True:
         clean()
         gc.collect()
-        start = time.perf_counter()
+        start = CLOCKS[_clock]()
         result = run()
-        seconds = time.perf_counter() - start
+        seconds = CLOCKS[_clock]() - start
         check(result)
         if first and (prime or seconds < WARM_UP):
             first = False
@@ -383,11 +395,11 @@ class StageClock:
             if self.depth[stage]:
                 return function(*args, **kwargs)
             self.depth[stage] += 1
-            start = time.perf_counter()
+            start = CLOCKS[_clock]()
             try:
                 result = function(*args, **kwargs)
             finally:
-                self.total[stage] += time.perf_counter() - start
+                self.total[stage] += CLOCKS[_clock]() - start
                 self.depth[stage] -= 1
             if stage == "core" and type(result).__name__ == "InbetweenResult":
                 self.results.append(result)
@@ -432,9 +444,9 @@ def stage_times(run, clean, runs, method):
             clean()
             gc.collect()
             clock.reset()
-            start = time.perf_counter()
+            start = CLOCKS[_clock]()
             run()
-            total = time.perf_counter() - start
+            total = CLOCKS[_clock]() - start
             row = {stage: clock.total[stage] if clock.found[stage] else None for stage in STAGES}
             row["operator"] = total
             pairs = [p for result in clock.results for p in getattr(result, "pairs", [])]
@@ -907,6 +919,7 @@ def report(
         f"- Date: {info['date']}; code: commit {info['commit']}",
         f"- Whole run: {wall / 60:.1f} min",
         "- Threads: one. The add-on starts no worker threads, so its default is that single thread.",
+        f"- Clock: {CLOCK_TEXT[_clock]}",
         "",
         "## Goals (issue 14)",
         "",
@@ -1029,6 +1042,9 @@ def method_notes(cases):
   strokes drawn twice over the same line with a tremor (0.01 of noise at every point, key B moved
   by (0.01, 0.005)): the drawings cross again and again, so each pair is cut into lenses and many
   lenses take the fallback step (composite ball-morph, else aligned interpolation).
+- **Loops changing shape where they lie** (issue 38, at the goal sizes): key A is the loops'
+  drawing's, each loop of key B key A's stretched 1.25x along an axis of its own about its
+  centre, overlapping and crossing it.
 - **Same process, identical copies.** Each drawing is built twice (the same arrays written
   twice), one object per operator, each in Edit Mode in the factory screen's 3D viewport:
   `grease_pencil.interpolate_sequence` only runs there (poll: 3D viewport, Grease Pencil paint
@@ -1036,10 +1052,11 @@ def method_notes(cases):
   ball-morph method with every other option at its default (similarity carrier, automatic
   matching, linear easing), called with `EXEC_DEFAULT`. Blender's reports are printed to the
   console in background mode; they go wherever stdout goes.
-- **Runs.** `time.perf_counter()` around the operator call. Before every run the frames between
-  the keys are removed (and the add-on's record of them), so every run starts from the same
-  drawing, as a redo from F9 does (Blender undoes the previous run before running it again; in
-  background mode undo is off for both operators, so its cost is in neither number). Our
+- **Runs.** `time.perf_counter()` (with `--clock cpu`: `time.process_time()`) around the
+  operator call. Before every run the frames between the keys are removed (and the add-on's
+  record of them), so every run starts from the same drawing, as a redo from F9 does (Blender
+  undoes the previous run before running it again; in background mode undo is off for both
+  operators, so its cost is in neither number). Our
   operator's kept plans (operators/plans.py) are dropped before each run, so these runs are
   cold; the *redo* column keeps them and changes the easing every run (Sine In-Out, Quad Out):
   the times change, the keys do not, as when an option is dragged in the F9 panel. Re-running
@@ -1075,6 +1092,8 @@ def method_notes(cases):
 
 
 def parse_sizes(text):
+    if text.lower() == "none":
+        return []
     sizes = []
     for item in text.split(","):
         parts = item.lower().split("x")
@@ -1082,6 +1101,19 @@ def parse_sizes(text):
             raise argparse.ArgumentTypeError(f"size {item!r}: expected STROKESxPOINTSxINBETWEENS, e.g. 100x200x9")
         sizes.append(tuple(int(p) for p in parts))
     return sizes
+
+
+def parse_cases(text):
+    """``KIND:SIZE,...`` -> {kind: [size, ...]} (kinds in the order first named)."""
+    cases = {}
+    for item in text.split(","):
+        kind, _, size = item.partition(":")
+        if kind not in KINDS or not size:
+            raise argparse.ArgumentTypeError(
+                f"case {item!r}: expected KIND:STROKESxPOINTSxINBETWEENS, KIND one of {KINDS}"
+            )
+        cases.setdefault(kind, []).extend(parse_sizes(size))
+    return cases
 
 
 def _default_memory_sizes(sizes):
@@ -1108,14 +1140,22 @@ def _parser():
         "--quick", action="store_true", help=f"only {', '.join('x'.join(map(str, s)) for s in QUICK_SIZES)}"
     )
     parser.add_argument("--sizes", type=parse_sizes, help="comma-separated STROKESxPOINTSxINBETWEENS")
+    parser.add_argument(
+        "--cases",
+        type=parse_cases,
+        help="comma-separated KIND:STROKESxPOINTSxINBETWEENS, e.g. deforming:400x500x23 (for --kinds and --sizes)",
+    )
     parser.add_argument("--kinds", default=",".join(KINDS), help=f"any of {', '.join(KINDS)} (comma-separated)")
     parser.add_argument("--methods", default=",".join(METHODS), help="operator method ids, comma-separated")
     parser.add_argument(
-        "--memory-sizes", type=parse_sizes, help="drawings to probe memory on (default: the largest and the goal sizes)"
+        "--memory-sizes",
+        type=parse_sizes,
+        help="drawings to probe memory on (default: the largest and the goal sizes; 'none')",
     )
     parser.add_argument(
         "--no-ballmap", action="store_true", help="skip the ball-map and matching scaling and the scribble tables"
     )
+    parser.add_argument("--clock", choices=sorted(CLOCKS), default="wall", help="what times the runs (default: wall)")
     parser.add_argument("--write", metavar="PATH", help="write the markdown report there (else print it)")
     parser.add_argument("--probe", nargs=3, metavar=("KIND", "SIZE", "OP"), help=argparse.SUPPRESS)
     return parser
@@ -1158,10 +1198,11 @@ def _run_cases(sizes, methods, started):
 
 
 def main(argv=None):
-    global _console
+    global _console, _clock
     argv = sys.argv[1:] if argv is None else argv
     parser = _parser()
     args = parser.parse_args(argv)
+    _clock = args.clock
     _console = _quiet_stdout()
     if args.probe:  # a child of memory_of()
         kind, size, op = args.probe
@@ -1172,7 +1213,7 @@ def main(argv=None):
     for kind in kinds:
         if kind not in KINDS:
             parser.error(f"--kinds: {kind!r} is not one of {', '.join(KINDS)}")
-    sizes = {kind: _chosen_sizes(args, kind) for kind in kinds}
+    sizes = args.cases or {kind: _chosen_sizes(args, kind) for kind in kinds}
     every = [size for kind_sizes in sizes.values() for size in kind_sizes]
     memory_sizes = args.memory_sizes if args.memory_sizes is not None else _default_memory_sizes(every)
     info = machine()

@@ -57,6 +57,12 @@ POSITION = 0.1
 #: spacing (along the warp) are merged.
 KNOT_GAP = 0.85
 
+#: Cells of warp tables made at a time (pairs are warped in groups within it): 32 MiB of costs.
+TABLE_CELLS = 1 << 22
+
+#: Cells of a table costed at a time (its temporaries stay in the cache): 512 KiB of costs.
+BLOCK_CELLS = 1 << 16
+
 #: Edges per curve of the coarse warps that choose a loop's start among all of them: the fine
 #: warps then try the starts within one coarse cell of the best.
 COARSE_SAMPLES = 32
@@ -138,47 +144,100 @@ def _edges(rg, k, closed):
     return d / np.maximum(n, tol.TINY), (pts + nxt) / 2
 
 
-def _sweep(cost_of, shape, k, stretch, record):
+def _diagonal(d, k):
+    """The rows ``lo .. hi`` of anti-diagonal ``d`` of a ``k x k`` table: its cells (i, d - i) on the table."""
+    return max(0, d - k + 1), min(d, k - 1)
+
+
+def _sweep(cost_of, shape, k, stretch):
     """Least total cost of monotone warps through ``k x k`` cells from (0, 0) to (k-1, k-1).
 
-    ``cost_of(d)`` gives the cells of anti-diagonal ``d`` (cells (i, d - i)), shape
-    ``shape + (k,)`` indexed by i (inf where the cell is off the table). A diagonal step counts
-    its cell twice (a diagonal walk costs what two single steps cost); a single step pays
-    ``stretch`` more. Returns the totals at the far corner (``shape``) and, with ``record``,
-    the steps taken into every cell (0 both, 1 along P, 2 along Q), shape (2k - 1,) + shape + (k,).
+    ``cost_of(d, lo, hi)`` gives the cells (i, d - i) of anti-diagonal ``d``, i from ``lo`` to
+    ``hi`` (those on the table), shape ``shape + (hi - lo + 1,)``. A diagonal step counts its
+    cell twice (a diagonal walk costs what two single steps cost); a single step pays
+    ``stretch`` more. Returns the totals at the far corner, shape ``shape``.
+
+    Only the cells on the table are swept (half the square of cells an anti-diagonal of the
+    square spans), and a single step's cheaper source is taken before its cost is added:
+    rounding is monotone, so ``min(a, b) + c + stretch`` is ``min(a + c + stretch, b + c +
+    stretch)`` bit for bit. A few numpy calls a diagonal: their count, not the cells, is the
+    cost of a small batch.
     """
-    inf = np.full(shape + (k + 1,), np.inf)
-    before, last = inf.copy(), inf.copy()  # anti-diagonals d - 2 and d - 1, index i + 1
-    before[..., 0] = 0.0  # the corner before the start
-    steps = np.zeros((2 * k - 1,) + shape + (k,), dtype=np.int8) if record else None
+    # Anti-diagonals d - 2 and d - 1, cell i at index i + 1 (index 0: before the table, inf
+    # but at the corner before the start). Cells off the table are never written: inf.
+    before = np.full(shape + (k + 1,), np.inf)
+    last = before.copy()
+    before[..., 0] = 0.0
     for d in range(2 * k - 1):
-        c = cost_of(d)
-        both = before[..., :-1] + 2.0 * c
-        along_p = last[..., :-1] + c + stretch
-        along_q = last[..., 1:] + c + stretch
-        low = np.minimum(np.minimum(both, along_p), along_q)
-        if record:
-            steps[d] = np.where(both == low, 0, np.where(along_p == low, 1, 2))
+        lo, hi = _diagonal(d, k)
+        c = cost_of(d, lo, hi)
+        both = c * 2.0
+        both += before[..., lo : hi + 1]
+        along = np.minimum(last[..., lo : hi + 1], last[..., lo + 1 : hi + 2])
+        along += c
+        along += stretch
         before, last = last, before
-        last[..., 1:] = low
-        last[..., 0] = np.inf
-    return last[..., k], steps
+        np.minimum(both, along, out=last[..., lo + 1 : hi + 2])
+        if d == 0:
+            last[..., 0] = np.inf
+    return last[..., k]
 
 
-def _diagonal_cells(k):
-    """For every anti-diagonal d: its column index j = d - i per row i, and whether it is on the table."""
-    i = np.arange(k)
-    j = np.arange(2 * k - 1)[:, None] - i[None, :]
-    return j, (j >= 0) & (j < k)
+def _recorded_sweep(cost_of, count, k, stretch):
+    """:func:`_sweep` of ``count`` warps (``cost_of`` shape (count, 1, n)) that also records the
+    steps taken into every cell (0 both, 1 along P, 2 along Q; the first of these that is
+    least), shape (2k - 1, count, k) (cells off the table left 0): the totals (count,) and the
+    steps."""
+    before = np.full((count, k + 1), np.inf)
+    last = before.copy()
+    before[:, 0] = 0.0
+    steps = np.zeros((2 * k - 1, count, k), dtype=np.int8)
+    for d in range(2 * k - 1):
+        lo, hi = _diagonal(d, k)
+        c = cost_of(d, lo, hi)[:, 0]
+        both = before[:, lo : hi + 1] + 2.0 * c
+        along_p = last[:, lo : hi + 1] + c + stretch
+        along_q = last[:, lo + 1 : hi + 2] + c + stretch
+        low = np.minimum(np.minimum(both, along_p), along_q)
+        steps[d, :, lo : hi + 1] = np.where(both == low, 0, np.where(along_p == low, 1, 2))
+        before, last = last, before
+        last[:, lo + 1 : hi + 2] = low
+        if d == 0:
+            last[:, 0] = np.inf
+    return last[:, k], steps
 
 
-def _cell_costs(tp, tq, mp, mq, size, position):
-    """Cost of every cell of every pair, shape (B, k, k): tangent mismatch plus position."""
-    mismatch = 1.0 - np.einsum("bid,bjd->bij", tp, tq)
+def _cell_costs(p, q, size, position, out=None):
+    """Cost of cells: tangent mismatch plus position, broadcast (into ``out`` if given).
+
+    Parameters
+    ----------
+    p, q : tuple of 4 ndarray
+        Direction (x, y) and midpoint (x, y) of the cells' edges of P and of Q, arrays
+        broadcasting to the cells' shape (leading axis B, one per pair).
+    size : ndarray, shape (B,)
+    position : float
+    out : ndarray, optional
+        Of the cells' shape.
+
+    The very operations of ``1 - einsum('bid,bjd->bij', tp, tq) + position * sum((mp_i -
+    mq_j)^2, axis=-1) / size^2``, coordinate by coordinate: the same costs bit for bit, without
+    temporaries of two coordinates a cell.
+    """
+    out = np.multiply(p[0], q[0], out=out)
+    out += p[1] * q[1]
+    np.subtract(1.0, out, out=out)
     if position <= 0.0:
-        return mismatch
-    gap = np.sum(np.square(mp[:, :, None, :] - mq[:, None, :, :]), axis=3)
-    return mismatch + position * gap / np.square(size)[:, None, None]
+        return out
+    gap = p[2] - q[2]
+    dy = p[3] - q[3]
+    np.square(gap, out=gap)
+    np.square(dy, out=dy)
+    gap += dy
+    gap *= position
+    gap /= np.square(size).reshape((-1,) + (1,) * (gap.ndim - 1))
+    out += gap
+    return out
 
 
 def tangent_warps(ps, qs, closed, samples=None, stretch=STRETCH, position=POSITION):
@@ -240,89 +299,116 @@ def _warps(rp, rq, loop, k, stretch, position):
     """
     b_count = len(rp)
     if not loop:
-        return _best_warps(rp, rq, k, np.zeros((b_count, 1), dtype=np.int64), stretch, position, loop)
+        return _best_warps(rp, rq, k, np.zeros(b_count, dtype=np.int64), 1, stretch, position, loop)
     level = min(k, MIN_SAMPLES)
-    starts = _start_candidates(rp, rq, level, stretch, position)
+    first, count = _start_candidates(rp, rq, level, stretch, position)
     if level < k:
-        best = _best_starts(_tables(rp, rq, level, True, position), starts, stretch)
-        starts = (np.rint(best * (k / level)).astype(np.int64) % k)[:, None]
-    return _best_warps(rp, rq, k, starts, stretch, position, loop)
+        best = _best_starts(_pair_edges(rp, rq, level, True), first, count, stretch, position)
+        first, count = np.rint(best * (k / level)).astype(np.int64) % k, 1
+    return _best_warps(rp, rq, k, first, count, stretch, position, loop)
 
 
 def _start_candidates(rp, rq, k, stretch, position):
-    """The starts worth a warp on tables of ``k`` edges, shape (B, S): every one of a small
-    table, else those within a coarse cell of the best start on ``COARSE_SAMPLES`` edges."""
+    """The starts worth a warp on tables of ``k`` edges: ``count`` consecutive ones from
+    ``first`` (B,) on, every one of a small table, else those within a coarse cell of the best
+    start on ``COARSE_SAMPLES`` edges."""
     b_count = len(rp)
     if k <= COARSE_SAMPLES:
-        return np.tile(np.arange(k), (b_count, 1))
-    every = np.tile(np.arange(COARSE_SAMPLES), (b_count, 1))
-    coarse = _best_starts(_tables(rp, rq, COARSE_SAMPLES, True, position), every, stretch)
+        return np.zeros(b_count, dtype=np.int64), k
+    edges = _pair_edges(rp, rq, COARSE_SAMPLES, True)
+    coarse = _best_starts(edges, np.zeros(b_count, dtype=np.int64), COARSE_SAMPLES, stretch, position)
     ratio = k / COARSE_SAMPLES
     reach = int(np.ceil(ratio))
-    return (np.rint(coarse * ratio).astype(np.int64)[:, None] + np.arange(-reach, reach + 1)) % k
+    return (np.rint(coarse * ratio).astype(np.int64) - reach) % k, 2 * reach + 1
 
 
-def _tables(rp, rq, k, loop, position):
-    """Every pair's cell costs (B, k, k) (see :func:`_cell_costs`)."""
+def _pair_edges(rp, rq, k, loop):
+    """Both curves' edges on ``k`` of them (:func:`_edges`) and each pair's RMS size: (tp, mp,
+    tq, mq, size), shapes (B, k, 2) and (B,)."""
     tp, mp = _edges(rp, k, loop)
     tq, mq = _edges(rq, k, loop)
     both = np.concatenate([mp, mq], axis=1)
     size = np.sqrt(np.mean(np.sum(np.square(both - both.mean(axis=1, keepdims=True)), axis=2), axis=1))
-    return _cell_costs(tp, tq, mp, mq, np.maximum(size, tol.TINY), position)
+    return tp, mp, tq, mq, np.maximum(size, tol.TINY)
 
 
-def _costs(full, shift):
-    """``cost_of(d)`` for :func:`_sweep`: the cells of anti-diagonal d of every pair's table
-    ``full`` (B, k, k), Q's edges counted from each row's ``shift`` (B, S)."""
-    b_count, k = len(full), full.shape[1]
-    j, valid = _diagonal_cells(k)
-    flat = full.reshape(-1)
-    # Flat indices, one np.take per diagonal (far cheaper than a three-array fancy index);
-    # cells off the table take any cell's cost and then inf.
-    rows = (np.arange(b_count)[:, None, None] * k + np.arange(k)[None, None, :]) * k
-    shift = shift[..., None]
-    off = np.where(valid, 0.0, np.inf)
+def _groups(edges, first, count):
+    """The pairs in groups whose tables (:func:`_diagonal_costs`) hold at most ``TABLE_CELLS``
+    cells: (edges, first) of each group."""
+    b_count, k = edges[0].shape[:2]
+    size = max(1, TABLE_CELLS // ((2 * k + count - 2) * k))
+    for g in range(0, b_count, size):
+        yield tuple(a[g : g + size] for a in edges), first[g : g + size]
 
-    def cost_of(d):
-        return np.take(flat, rows + (shift + j[d]) % k) + off[d]
+
+def _diagonal_costs(edges, first, count, position):
+    """``cost_of(d, lo, hi)`` for :func:`_sweep` of ``count`` starts a pair, consecutive from
+    ``first`` (B,) on: the cells (i, d - i) of every start's table, i from lo to hi, shape
+    (B, count, hi - lo + 1).
+
+    One table a pair laid out by anti-diagonals: row ``e`` holds P's edge i against Q's edge
+    ``first + e - i`` (cyclically), the cell (i, d - i) of the warp from start ``first + s``
+    in row ``d + s``; so every start's anti-diagonal d is a contiguous slice of the table (no
+    gather per diagonal), and the table is made in one go (Q's edges read as a view running
+    backwards along i).
+    """
+    tp, mp, tq, mq, size = edges
+    b_count, k = tp.shape[:2]
+    rows = 2 * k + count - 2
+    # Q's edges backwards from first + rows - 1: row e, column i reads edge rows - 1 - e + i
+    # of these (the inner loops run forwards along i).
+    span = rows + k - 1
+    at = (first[:, None] + (rows - 1) - np.arange(span)) % k
+
+    def skewed(a):
+        laid = np.take_along_axis(a, at, axis=1)  # (B, span), contiguous
+        step = laid.itemsize
+        return np.lib.stride_tricks.as_strided(
+            laid[:, rows - 1 :], shape=(b_count, rows, k), strides=(span * step, -step, step), writeable=False
+        )
+
+    q = tuple(skewed(a[:, :, x]) for a in (tq, mq) for x in (0, 1))
+    p = tuple(np.ascontiguousarray(a[:, :, x])[:, None, :] for a in (tp, mp) for x in (0, 1))
+
+    def p_of(lo, hi):
+        return tuple(a[:, :, lo:hi] for a in p)
+
+    table = np.empty((b_count, rows, k))
+    # A few rows at a time (the temporaries stay in the cache), of each only the cells some
+    # start's warp reads: row e's cells i from e - (k + count - 2) to e (the rest is never read).
+    step = max(1, BLOCK_CELLS // (b_count * k))
+    for e in range(0, rows, step):
+        lo, hi = max(0, e - (k + count - 2)), min(k, e + step)
+        cells = (slice(None), slice(e, e + step), slice(lo, hi))
+        _cell_costs(p_of(lo, hi), tuple(a[cells] for a in q), size, position, out=table[cells])
+
+    def cost_of(d, lo, hi):
+        return table[:, d : d + count, lo : hi + 1]
 
     return cost_of
 
 
-def _rolled_costs(full, shift):
-    """:func:`_costs` for one start per pair (shape (B,)), without a gather per diagonal:
-    every table rolled to its start once, then anti-diagonal d of a (k, k) table is the
-    strided slice ``flat[d : d + (k - 1) k : k - 1]`` of its rows laid end to end (a view)."""
-    b_count, k = len(full), full.shape[1]
-    cols = (np.arange(k)[None, :] + shift[:, None]) % k
-    rolled = np.take_along_axis(full, np.broadcast_to(cols[:, None, :], full.shape), axis=2)
-    flat = np.concatenate([rolled.reshape(b_count, k * k), np.zeros((b_count, k))], axis=1)[:, None, :]
-    _, valid = _diagonal_cells(k)
-    off = np.where(valid, 0.0, np.inf)
-
-    def cost_of(d):
-        return flat[..., d : d + (k - 1) * k : k - 1] + off[d]
-
-    return cost_of
+def _best_starts(edges, first, count, stretch, position):
+    """Of ``count`` candidate starts from ``first`` (B,) on, each loop pair's least costly, shape
+    (B,) (the first of equals)."""
+    k = edges[0].shape[1]
+    best = []
+    for group, start in _groups(edges, first, count):
+        totals = _sweep(_diagonal_costs(group, start, count, position), (len(start), count), k, stretch)
+        best.append((start + np.argmin(totals, axis=1)) % k)
+    return np.concatenate(best)
 
 
-def _best_starts(full, starts, stretch):
-    """Of the candidate ``starts`` (B, S) on the loop pairs' tables ``full`` (B, k, k), each
-    pair's least costly, shape (B,)."""
-    totals, _ = _sweep(_costs(full, starts), starts.shape, full.shape[1], stretch, record=False)
-    return starts[np.arange(len(starts)), np.argmin(totals, axis=1)]
-
-
-def _best_warps(rp, rq, k, starts, stretch, position, loop):
-    """The warps from the best of the candidate ``starts`` (B, S), list of TangentWarp."""
-    b_count = len(starts)
-    full = _tables(rp, rq, k, loop, position)
-    best = _best_starts(full, starts, stretch) if starts.shape[1] > 1 else starts[:, 0]
-    totals, steps = _sweep(_rolled_costs(full, best), (b_count, 1), k, stretch, record=True)
+def _best_warps(rp, rq, k, first, count, stretch, position, loop):
+    """The warps from the best of ``count`` candidate starts from ``first`` (B,) on, list of TangentWarp."""
+    edges = _pair_edges(rp, rq, k, loop)
+    best = _best_starts(edges, first, count, stretch, position) if count > 1 else first
     out = []
-    for b in range(b_count):
-        i_path, j_path = _trace(steps[:, b, 0], k)
-        out.append(_warp_of(i_path, j_path, k, best[b] / k if loop else 0.0, totals[b, 0], loop))
+    for group, start in _groups(edges, best, 1):
+        totals, steps = _recorded_sweep(_diagonal_costs(group, start, 1, position), len(start), k, stretch)
+        for b in range(len(start)):
+            i_path, j_path = _trace(steps[:, b], k)
+            out.append(_warp_of(i_path, j_path, k, start[b] / k if loop else 0.0, totals[b], loop))
     return out
 
 
