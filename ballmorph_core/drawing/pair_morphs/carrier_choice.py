@@ -137,11 +137,13 @@ def shape_changes(P, Q, fits, ask):
     """
     kept = np.full(len(P), np.nan)
     rows = np.flatnonzero(ask)
-    # Pairs asked only when neither key crosses itself (a curl, a figure eight): such a pair
-    # keeps its carrier and the fallback that says so.
-    if len(rows):
-        curves = [c for k in rows for c in (P.curve(k), Q.curve(k))]
-        rows = rows[simple_curves(curves, np.repeat(P.closed[rows], 2)).reshape(-1, 2).all(axis=1)]
+    # Open strokes asked only when neither crosses itself: such a pair keeps its carrier and
+    # the fallback that says so.
+    strokes = rows[~P.closed[rows]]
+    if len(strokes):
+        curves = [c for k in strokes for c in (P.curve(k), Q.curve(k))]
+        tangled = ~simple_curves(curves, np.zeros(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)
+        rows = np.setdiff1d(rows, strokes[tangled])
     # The cheap screen first: a fit that removes most of the samples' own distance explains
     # the change (the closest-point ratio is then below SHAPE_CHANGE too).
     if len(rows):
