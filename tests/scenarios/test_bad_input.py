@@ -794,15 +794,20 @@ def test_cyclic_stroke_with_two_points_moves_straight_with_a_warning():
 
 
 @pytest.mark.parametrize(
-    "a,b,cyclic",
-    [(curl(0.3), curl(0.2) * [1.0, 1.3], False), (figure_eight(1.0), figure_eight(0.6), True)],
+    "a,b,cyclic,method",
+    [
+        (curl(0.3), curl(0.2) * [1.0, 1.3], False, "aligned-interpolation"),
+        # A loop crossing itself that changes shape where it lies slides through its crossing
+        # like any such loop (issue 38; a variable font's overlapping contours): no fallback.
+        (figure_eight(1.0), figure_eight(0.6), True, "tangent-aligned"),
+    ],
     ids=["curl-stroke", "figure-eight"],
 )
-def test_self_intersecting_strokes_fall_back_with_a_warning(a, b, cyclic):
+def test_self_intersecting_strokes_fall_back_with_a_warning(a, b, cyclic, method):
     result = inbetween(key(a, cyclic=[cyclic]), key(b, cyclic=[cyclic]), TIMES)
     assert all_finite(result)
-    assert "aligned-interpolation" in result.pairs[0].method
-    assert warnings_about(result, 0, 0)
+    assert method in result.pairs[0].method
+    assert bool(warnings_about(result, 0, 0)) == (method == "aligned-interpolation")
     # The end frames are the keys, resampled on the spline through their points.
     assert distance_to_polyline(stroke_xy(result.frames[0], 0), a, cyclic).max() < 2e-3
     assert distance_to_polyline(stroke_xy(result.frames[-1], 0), b, cyclic).max() < 2e-3

@@ -38,6 +38,14 @@ class ChainMaps:
     lengths: np.ndarray
     reports: list
 
+    def keeping(self, keep):
+        """The maps of the chains ``keep`` (shape (H,) of bool) marks, numbered as
+        :meth:`.crossings.Chains.keeping` numbers them (a ChainMaps)."""
+        renumber = np.cumsum(keep) - 1
+        samples = self.samples.take(keep[self.samples.chain])
+        samples.chain = renumber[samples.chain]
+        return ChainMaps(samples, self.lengths[keep], [r for r, k in zip(self.reports, keep) if k])
+
 
 def map_chains(chains, spacing, eps):
     """Step 9: the ball-maps of every chain but the static overlaps, in batches of whole pairs."""

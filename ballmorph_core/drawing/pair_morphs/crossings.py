@@ -249,6 +249,12 @@ class Chains:
     def __len__(self):
         return len(self.pair)
 
+    def keeping(self, keep):
+        """The chains ``keep`` (shape (H,) of bool) marks, in their order (a Chains)."""
+        rows = np.flatnonzero(keep)
+        setups = [self.setups[k] for k in rows]
+        return Chains(self.pair[rows], setups, self.range_p[rows], self.range_q[rows], self.static[rows])
+
 
 def _boundaries(R, Q, events, lensed):
     """The events of the lensed pairs, plus every stroke's start and end (sorted), as Events."""

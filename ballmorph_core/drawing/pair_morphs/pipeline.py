@@ -264,11 +264,17 @@ def _ball_route(pairs, index, kind, carrier, spacing, drawing=None, rides=None):
     # Nested loops as drawn with carrier 'none': the paper's ball-morph, asked for.
     in_place = similar_in_place(P, Q, (routes.route == Route.WHOLE) & ~motions.moving & closed & (carrier != "none"))
     routes = _Routes(np.where(deforming | in_place, Route.TANGENT, routes.route), routes.reason)
-    segments, direct_notes = _direct_routes(ends, index, routes, (Rc, Qc, closed, warps), h)
     lensed = routes.route == Route.LENSES
     whole = np.flatnonzero((routes.route == Route.WHOLE) | (routes.route == Route.CARRIER))
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
+    off_ball, why = _loops_off_the_ball(chains, maps, closed)
+    if off_ball.any():
+        routes = _Routes(np.where(off_ball, Route.TANGENT, routes.route), routes.reason)
+        lensed &= ~off_ball
+        keep = ~off_ball[chains.pair]
+        chains, maps = chains.keeping(keep), maps.keeping(keep)
+    segments, direct_notes = _direct_routes(ends, index, routes, (Rc, Qc, closed, warps), h, why)
     fell_back = _fall_back(chains, maps, events, index, kind, h, ends)
     ball = ball_rows(chains, maps, index, fell_back.good, ends)
     segments += fell_back.segments + _overhangs(index, R, Q, ends, h)
@@ -284,11 +290,41 @@ def _ball_route(pairs, index, kind, carrier, spacing, drawing=None, rides=None):
     )
 
 
-def _direct_routes(ends, index, routes, curves, h):
+#: What the report says of a pair of loops no ball-map follows (see :func:`_loops_off_the_ball`).
+OFF_THE_BALL = "tangent-aligned correspondence used, straight paths"
+
+
+def _loops_off_the_ball(chains, maps, closed):
+    """Pairs of loops some chain of which no ball-map follows (not b-compatible), shape (C,) of
+    bool, and what their reports say (dict: pair in the batch -> note): they take the
+    tangent-aligned route (TANGENT) instead of the composite ball-morph.
+
+    A pair of loops the ball-map cannot follow differs in shape where the disks must bridge: an
+    outline grown bolder across its own corners (a 'B' whose Thin stem corner lies on the Black
+    outline's edge), an 's' whose terminals swell. The composite ball-morph bridges the failing
+    stretch with disks that chamfer corners and raise bumps (Karla's 'B', 'D', 's': 13-16/1000
+    em off the designer's in-between, whose own straight blend is 0.2); the tangent-aligned
+    correspondence matches the parts that run the same way, corners to corners (1.7-2.8).
+    Open strokes keep the fallback: their ends settle first (:mod:`.ends`), and a failing lens
+    of theirs is a local event.
+    """
+    failing = np.array([r is not None and bool(r.violations) for r in maps.reports], dtype=bool) & ~chains.static
+    off = np.zeros(len(closed), dtype=bool)
+    off[chains.pair[failing]] = True
+    off &= closed
+    why = {}
+    for k in np.flatnonzero(failing & off[chains.pair]):
+        why.setdefault(int(chains.pair[k]), f"loops {maps.reports[k].describe()}; {OFF_THE_BALL}")
+    return off, why
+
+
+def _direct_routes(ends, index, routes, curves, h, said=None):
     """The segments and notes of the pairs of ``routes`` (_Routes) whose morphs take the whole
     common parts directly, no ball-map of theirs asked: LINEAR and ALIGNED (each with the note
     that says why), TANGENT and NEAR. ``curves`` are the batch's common parts R and Q (Ragged),
-    its loops' flags and the warps already made (pair -> TangentWarp).
+    its loops' flags and the warps already made (pair -> TangentWarp); ``said`` the notes of
+    TANGENT pairs that are not changing shape where they lie (pair -> note, see
+    :func:`_loops_off_the_ball`).
 
     Returns
     -------
@@ -314,7 +350,7 @@ def _direct_routes(ends, index, routes, curves, h):
         # warped together (a squash's warps made by :func:`register`).
         pairs = [(R.curve(c), Q.curve(c), bool(closed[c])) for c in tangent]
         morphs = tangent_morphs(pairs, [warps.get(int(c)) for c in tangent])
-        notes += [PairNote(int(index[c]), DEFORMING_NOTE) for c in tangent]
+        notes += [PairNote(int(index[c]), (said or {}).get(int(c), DEFORMING_NOTE)) for c in tangent]
         segments += placed(ends, index, tangent, morphs, np.zeros(len(tangent)), ranges[tangent])
     near = np.flatnonzero(routes.route == Route.NEAR)
     if len(near):

@@ -4,7 +4,10 @@ import numpy as np
 import pytest
 from shapes import circle, distance_to_polyline
 
+from ballmorph_core.drawing.pair_morphs.deforming import DEFORMING_NOTE, similar_in_place
 from ballmorph_core.drawing.pair_morphs.pipeline import PairMorph
+from ballmorph_core.drawing.strokes import Route
+from ballmorph_core.geometry.ragged import Ragged
 
 #: An in-between within this fraction of the pair's size of the designer's (vertex-wise) blend.
 BOLDER_TOLERANCE = 0.015
@@ -58,15 +61,27 @@ def test_a_counter_shrinking_inside_its_thin_self_is_tangent_aligned():
     assert np.allclose(radii, [0.40 + 0.01, 0.5 * (0.65 + 0.42)], atol=0.01), f"mid box half-sizes {radii}"
 
 
-def test_dissimilar_nested_loops_keep_the_ball_morph():
-    # A notched disk inside a pear (the paper's configuration 1): no similarity explains it.
+def test_dissimilar_nested_loops_are_not_taken_for_a_shape_changing_in_place():
+    # A notched disk inside a pear (the paper's configuration 1): no similarity explains it, so
+    # the in-place screen leaves it to the ball-morph; the notch is where no ball-map follows
+    # them, and only that sends the pair to the tangent-aligned correspondence, saying so.
     t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
     notch = 1.0 - 0.6 * np.maximum(0, 1 - np.abs(np.angle(np.exp(1j * (t - 0.3)))) / 0.12)
     r = 1.6 + 0.25 * np.cos(t - np.pi / 2) + 0.1 * np.cos(2 * t)
-    morph = PairMorph(
-        notch[:, None] * np.c_[np.cos(t), np.sin(t)], np.c_[0.9 * r * np.cos(t), 1.2 * r * np.sin(t)], True
-    )
-    assert "tangent-aligned" not in morph.used.morphs, (morph.used, morph.notes)
+    P, Q = notch[:, None] * np.c_[np.cos(t), np.sin(t)], np.c_[0.9 * r * np.cos(t), 1.2 * r * np.sin(t)]
+    both = Ragged.from_list([P], [True]), Ragged.from_list([Q], [True])
+    assert not similar_in_place(*both, np.array([True]))[0]
+    morph = PairMorph(P, Q, True)
+    assert morph.used.route == Route.TANGENT and any("not b-compatible" in n for n in morph.notes), morph.notes
+    assert not any(n == DEFORMING_NOTE for n in morph.notes), morph.notes
+
+
+def test_nested_loops_the_ball_map_follows_keep_the_ball_morph():
+    # A disk inside a larger three-lobed blob, both smooth: b-compatible, the paper's ball-morph.
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    r = 2.0 + 0.4 * np.cos(3 * t)
+    morph = PairMorph(circle(1.0, 300), np.c_[r * np.cos(t), r * np.sin(t)], True)
+    assert morph.used.morphs == ("circular-ball",) and morph.used.route == Route.WHOLE, (morph.used, morph.notes)
 
 
 @pytest.mark.parametrize("shift", [0.6, 1.5])
