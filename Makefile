@@ -1,7 +1,7 @@
 # Two commands matter: `make demo` (the main job) and `make test` (everything CI runs).
 # Both bootstrap their own cached Python 3.11 + bpy environments (tools/bootstrap.sh).
 
-.PHONY: demo test lint build core-demo evaluate bench fuzz scenes realdata
+.PHONY: demo test lint build core-demo evaluate bench fuzz scenes realdata realdata-heldout
 
 demo:
 	tools/demo.sh
@@ -60,3 +60,15 @@ realdata:
 		{ apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y $$missing; }; \
 	fi
 	INTER_FONT_DIR="$(INTER_FONT_DIR)" $$(tools/bootstrap.sh 5.0.1) tools/realdata.py --write docs/realdata.md
+
+# The same benchmark on families held back (tools/realdata.py HELD_OUT_FAMILIES: other designers,
+# never used to choose a rule or a constant); writes docs/realdata-heldout.md.
+HELDOUT_PACKAGES = fonts-firacode fonts-lato fonts-open-sans fonts-quicksand fonts-roboto-unhinted fonts-yrsa-rasa fonts-karla fonts-cantarell
+realdata-heldout:
+	@for p in $(HELDOUT_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ] && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+		echo "realdata: installing$$missing (the held-out fonts)"; \
+		DEBIAN_FRONTEND=noninteractive apt-get install -y $$missing || \
+		{ apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y $$missing; }; \
+	fi
+	$$(tools/bootstrap.sh 5.0.1) tools/realdata.py --held-out --write docs/realdata-heldout.md

@@ -217,6 +217,13 @@ def test_command_line_arguments():
     assert exc.value.code == 0
 
 
+def test_held_out_families_run_only_when_asked():
+    held = tuple(f for f, *_ in rd.HELD_OUT_FAMILIES)
+    assert rd.parse_args([]).families is None and rd.parse_args(["--held-out"]).families == held
+    assert not set(held) & ({f for f, *_ in rd.STATIC_FAMILIES} | {f for f, _ in rd.FAMILIES})
+    assert rd.family_list("Karla,Inter") == ("Karla", "Inter")  # a held-out family can be named
+
+
 def test_missing_font_says_how_to_install(tmp_path):
     with pytest.raises(SystemExit, match="apt-get install fonts-inter-variable"):
         rd.find_fonts(str(tmp_path))
