@@ -13,7 +13,6 @@ import numpy as np
 from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
 from ..geometry.polyline import MAX_COORDINATE, reversed_fractions
-from ..geometry.similarity import Similarity
 from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
 from .frames.attributes import Extras, FrameValues, Held, Recycled, assemble_frames
 from .frames.layout import PairFrames
@@ -285,7 +284,7 @@ class InbetweenPlan:
         self.held += [Held(kb, int(live_b[j]), False) for j in pairing.unmatched_b]
         if pairing.method != "index" or self.held:
             self.messages.append(Message("INFO", f"strokes paired by {pairing.method}: {pairing.reason}"))
-        drawing = Similarity(pairing.rotation, complex(*pairing.motion))
+        drawing = pairing.drawing
         matched = [(int(live_a[i]), int(live_b[j]), flip) for i, j, flip in pairing.pairs]
         self.travelled = {(int(live_a[i]), int(live_b[j])) for i, j in pairing.travelled}
         for i, j in sorted(self.travelled):

@@ -60,7 +60,7 @@ def test_a_stroke_drawn_twice_in_place_against_a_far_stroke_neither_overflows_no
         result = bm.inbetween(_key(strokes_a), _key(strokes_b), [0.0, 0.5, 1.0])
     # Key A's centroids do not spread: the turn guess scales by the keys' sizes, and no motion
     # is a ratio of round-off (it was 1e305 before: OverflowError).
-    assert abs(m.rotation) < 1e6, f"the matching's motion scales by {abs(m.rotation):.3g}"
+    assert abs(m.drawing.a) < 1e6, f"the matching's motion scales by {abs(m.drawing.a):.3g}"
     paired = {(p.stroke_a, p.stroke_b): p.travelled for p in result.pairs if None not in (p.stroke_a, p.stroke_b)}
     # The copy pairs the stroke moved; the duplicate, left over in a key of equal counts, pairs
     # the far stroke by the drawing's motion (issue 39: one left in each key always pairs).

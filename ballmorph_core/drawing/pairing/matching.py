@@ -69,6 +69,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...geometry.similarity import Similarity
 from ...options import MATCHINGS, check_option
 from ..strokes import as_written
 from .certified import padded_total
@@ -106,10 +107,8 @@ class Matching:
     costs : list of float
         The cost of each pair (see the module notes); ``inf`` for a pair involving a stroke
         with no points.
-    motion : ndarray, shape (2,)
-        The translation of the keys' overall motion (key B is about key A moved by it).
-    rotation : complex
-        Its turn and scale: key B is about ``rotation * z + motion`` of key A (complex ``z``).
+    drawing : Similarity
+        The keys' overall motion: key B is about ``drawing(key A)``.
     travelled : list of (int, int)
         The pairs ``(i, j)`` made by the drawing's motion: left over by the assignment (too far
         apart for it), paired because their shapes agree (:mod:`.travelling`).
@@ -125,8 +124,7 @@ class Matching:
     method: str
     reason: str
     costs: list = field(default_factory=list)
-    motion: np.ndarray = field(default_factory=lambda: np.zeros(2))
-    rotation: complex = 1.0 + 0j
+    drawing: Similarity = field(default_factory=Similarity)
     travelled: list = field(default_factory=list)
     priced: int = 0
 
@@ -143,8 +141,7 @@ def _matching(key_a, key_b, table, rows, cols, motion, method, reason):
         method=method,
         reason=reason,
         costs=[float(c) for c in costs],
-        motion=np.array([motion[1].real, motion[1].imag]),
-        rotation=complex(motion[0]),
+        drawing=Similarity(complex(motion[0]), complex(motion[1])),
     )
 
 

@@ -10,7 +10,6 @@ import ballmorph_core as bm
 from ballmorph_core.drawing.pairing.groups import ride_groups
 from ballmorph_core.drawing.pairing.matching import match_strokes
 from ballmorph_core.geometry.ragged import Ragged
-from ballmorph_core.geometry.similarity import Similarity
 
 #: Strokes of scenes.car_wheel: the body (0-2), the rim, the hub, eight spokes, the valve.
 RIM, HUB, SPOKES, VALVE = 3, 4, range(5, 13), 13
@@ -21,7 +20,7 @@ REACH, SIZE = 0.92, 2.0
 def _matched(a, b, cyclic):
     A, B = Ragged.from_list(a, cyclic), Ragged.from_list(b, cyclic)
     m = match_strokes(A, B, A.closed, B.closed)
-    return A, B, [(i, j, f) for i, j, f in m.pairs], Similarity(m.rotation, complex(*m.motion))
+    return A, B, [(i, j, f) for i, j, f in m.pairs], m.drawing
 
 
 @pytest.mark.parametrize("turn", [-30.0, -60.0, -90.0])

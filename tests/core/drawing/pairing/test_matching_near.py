@@ -227,7 +227,7 @@ def test_the_drawing_order_guess_is_tried_where_the_order_accounts_for_the_motio
     tried = _tried_turns(monkeypatch)
     m = match_strokes(sa, sb, ca, ca)
     assert m.pairs == [(i, i, False) for i in range(len(sa))]
-    assert np.angle(m.rotation) == pytest.approx(turn, abs=1e-6)
+    assert m.drawing.turn == pytest.approx(turn, abs=1e-6)
     assert any(abs(np.angle(a) - turn) < 1e-6 for a in tried)
     table = _table(((sa, ca), (sb, ca)))
     index = np.arange(len(sa))
