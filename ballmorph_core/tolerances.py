@@ -7,6 +7,8 @@ results do not depend on the drawing's units. Tolerances that are relative to th
 spacing ``h`` say so.
 """
 
+import math
+
 #: Two points closer than this (times scale) are the same point (duplicates, shared endpoints
 #: after float round-off, contact of touching curves).
 COINCIDENT = 1e-9
@@ -52,3 +54,14 @@ SHAPES_AGREE = 0.25
 #: the keys' ends and consecutive in-betweens do not cross there. Far above ``SHARED_ENDPOINT``
 #: (exact sharing, round-off), far below a stroke's own length.
 NEAR_SHARED_END = 5e-3
+
+#: Two turns agree within this (radians, 10 degrees): a pair turning within it of the drawing
+#: (or of its group) turns with it; a drawing or group turning less does not count as turning.
+#: Shared by the stroke pairing (:mod:`ballmorph_core.drawing.pairing.groups`) and the
+#: registration's carriers (:mod:`ballmorph_core.drawing.pair_morphs.riding`).
+TURN_AGREE = math.radians(10.0)
+
+#: A fitted stretch (the ratio of an affine fit's singular values, or a drawing's scale) beyond
+#: ``1 / MAX_STRETCH .. MAX_STRETCH`` is degenerate: an affine fit is not kept, and a drawing's
+#: motion at such a scale (its centroids coincide) says nothing of its turn.
+MAX_STRETCH = 4.0

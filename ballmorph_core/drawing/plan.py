@@ -10,12 +10,11 @@ documented morph and is reported; nothing is dropped silently. :func:`inbetween`
 
 import numpy as np
 
-from ..errors import InvalidCurveError
 from ..geometry.plane import fit_plane
-from ..geometry.polyline import MAX_COORDINATE, reversed_fractions
-from ..options import CARRIERS, MATCHINGS, UNMATCHED, check_option, check_positive
+from ..geometry.polyline import reversed_fractions
 from .frames.attributes import Extras, FrameValues, Held, Recycled, assemble_frames
 from .frames.layout import PairFrames
+from .keys.checked import check_inputs, check_times
 from .keys.hints import END_HINT, HINT, Pieces, common_hints, hinted_fit, key_hints, pair_hints
 from .keys.projected import KeyStroke, ProjectedKey, StrokePair
 from .pair_morphs.fallbacks import STRAIGHT_POINT_MOTION, point_motion
@@ -24,7 +23,7 @@ from .pairing.groups import ride_groups
 from .pairing.matching import match_strokes, pair_direction
 from .pairing.redrawn import Joined, cut_frame, join_pieces, joined_stroke
 from .reports.pair_reports import pair_report, piece_report, unmatched_report
-from .strokes import InbetweenResult, Message, PairMorphs, Route, StrokeSet, as_written
+from .strokes import InbetweenResult, Message, PairMorphs, Route, as_written
 
 __all__ = ["InbetweenPlan", "inbetween", "plan_inbetween"]
 
@@ -54,7 +53,7 @@ def inbetween(key_a, key_b, times, *options, **named):
     -------
     InbetweenResult
     """
-    times = _check_times(times)  # before the expensive part
+    times = check_times(times)  # before the expensive part
     return plan_inbetween(key_a, key_b, *options, **named).evaluate(times)
 
 
@@ -105,7 +104,7 @@ def plan_inbetween(
     :meth:`~InbetweenPlan.evaluate` only moves samples along their paths, which is what lets the
     operator's redo (another frame count or easing) skip the expensive part.
     """
-    return InbetweenPlan(key_a, key_b, *_check_inputs(key_a, key_b, method, carrier, matching, unmatched, spacing))
+    return InbetweenPlan(key_a, key_b, *check_inputs(key_a, key_b, method, carrier, matching, unmatched, spacing))
 
 
 class InbetweenPlan:
@@ -307,7 +306,7 @@ class InbetweenPlan:
 
         The samples the in-betweens are made of, the same at every time, before any pair not
         finite somewhere is moved point by point (for :mod:`.arcs`, which joins intervals)."""
-        times = _check_times(times)
+        times = check_times(times)
         frames = self.pieces.merge(self.pairs.frames(times))[0].frames
         if len(times) == 0:
             return np.zeros((0, frames.shape[1], 3))
@@ -421,7 +420,7 @@ class InbetweenPlan:
         -------
         InbetweenResult
         """
-        times = _check_times(times)
+        times = check_times(times)
         result = InbetweenResult(frames=[], messages=list(self.messages))
         self._recycled.begin()
         # A few times at once: one chunk's samples are staged, not every frame's (their 3D
@@ -533,58 +532,6 @@ def _finite(parts, strokes, times):
     return PairFrames(
         np.concatenate(frames, axis=1), offsets, np.concatenate(u_a), np.concatenate(u_b), closed, used, notes
     )
-
-
-def _check_inputs(key_a, key_b, method, carrier, matching, unmatched, spacing):
-    """The options in the core's spelling (and the keys checked), or a clear error."""
-    from ..morphs import METHODS  # local: the registry is complete once the package is imported
-
-    options = (
-        check_option("method", method, METHODS),
-        check_option("carrier", carrier, CARRIERS),
-        check_option("matching", matching, MATCHINGS),
-        check_option("unmatched", unmatched, UNMATCHED),
-        None if spacing is None else check_positive("spacing", spacing),
-    )
-    for name, key in (("key_a", key_a), ("key_b", key_b)):
-        _check_key(name, key)
-    return options
-
-
-def _check_times(times):
-    """Times as a float array clamped to [0, 1] (a morph has nothing before or after its keys)."""
-    try:
-        times = np.asarray(times, dtype=np.float64).reshape(-1)
-    except (TypeError, ValueError):
-        raise InvalidCurveError(f"times: must be numbers in [0, 1], got {times!r}") from None
-    if not np.all(np.isfinite(times)):
-        raise InvalidCurveError("times: must be finite numbers in [0, 1]")
-    return np.clip(times, 0.0, 1.0)
-
-
-def _check_key(name, key):
-    """Reject what cannot be a drawing, naming the key, the attribute and the strokes."""
-    if not isinstance(key, StrokeSet):
-        raise InvalidCurveError(f"{name}: expected a StrokeSet, got {type(key).__name__}")
-    for attr, values in (
-        ("positions", key.positions),
-        ("radius", key.radius),
-        ("opacity", key.opacity),
-        ("vertex_color", key.vertex_color),
-    ):
-        if values.size and not np.all(np.isfinite(values)):
-            points = np.flatnonzero(~np.all(np.isfinite(values.reshape(len(values), -1)), axis=1))
-            bad = [as_written(k) for k in np.unique(np.searchsorted(key.offsets, points, "right") - 1)[:10]]
-            what = "coordinates" if attr == "positions" else attr
-            raise InvalidCurveError(f"{name}: stroke(s) {bad} have NaN or infinite {what}: redraw or delete them")
-    huge = np.flatnonzero(np.abs(key.positions).max(axis=1, initial=0.0) > MAX_COORDINATE)
-    if len(huge):
-        bad = [as_written(k) for k in np.unique(np.searchsorted(key.offsets, huge, "right") - 1)[:10]]
-        largest = float(np.abs(key.positions).max())
-        raise InvalidCurveError(
-            f"{name}: stroke(s) {bad} have coordinates up to {largest:.3g}, beyond the {MAX_COORDINATE:g} "
-            "the geometry can square and multiply: scale the drawing down"
-        )
 
 
 def _planarity_messages(pts, plane):

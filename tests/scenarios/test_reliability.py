@@ -9,7 +9,7 @@ from golden_cases import FIELDS, TIMES, cases, path
 
 import ballmorph_core as bm
 from ballmorph_core.drawing.pairing.matching import match_strokes
-from ballmorph_core.drawing.plan import StrokeSet
+from ballmorph_core.drawing.strokes import StrokeSet
 from ballmorph_core.geometry.guards import least, ratio
 from ballmorph_core.geometry.polyline import MAX_COORDINATE
 

@@ -7,7 +7,7 @@ Ball-morph methods::
 
 1. *prepare* (:mod:`.curves`): validate each pair's curves; strokes with fewer than two
    distinct points move straight, point by point (riding their group's turn, or the drawing's
-   when it turns and some stroke shows it: :class:`.registration.Rides`; the DOT route); a
+   when it turns and some stroke shows it: :class:`.riding.Rides`; the DOT route); a
    loop paired with an open stroke is morphed as two open strokes.
 2. *own points* (:mod:`.point_routes`, :mod:`.exact_fit`): pairs whose points match one for
    one under a similarity keep them (OWN_POINTS).
@@ -81,7 +81,8 @@ from .fallbacks import (
 )
 from .pair_plans import PairNote, PairPlans, Planned, whole_segment
 from .point_routes import dot_route, guarded, own_points_route, polyline_route
-from .registration import Motions, Rides, identity_residual
+from .registration import Motions, identity_residual
+from .riding import Rides
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
 

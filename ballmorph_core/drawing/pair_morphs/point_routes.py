@@ -2,7 +2,7 @@
 for one under a similarity (:mod:`.exact_fit`) and polylines with as many corners
 (:mod:`.polylines`), each on its carrier, each returning what it planned (:class:`.Planned`) and
 guarded so that a failure sends its pairs on; and dots, moved straight or riding on their
-group's or the drawing's turn (:class:`.registration.Rides`)."""
+group's or the drawing's turn (:class:`.riding.Rides`)."""
 
 import numpy as np
 

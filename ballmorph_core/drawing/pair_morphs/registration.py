@@ -36,6 +36,7 @@ from ...geometry.polyline import signed_area
 from ...geometry.procrustes import cyclic_correlation, similarity_fits
 from ...geometry.ragged import Ragged
 from ...geometry.similarity import Similarity, as_complex, from_complex
+from .riding import Rides
 from .sliding import slide
 
 __all__ = [
@@ -46,9 +47,7 @@ __all__ = [
     "identity_residual",
     "Motions",
     "motions",
-    "orientation_free",
     "riding_fits",
-    "Rides",
     "endpoint_similarity",
     "fit_similarity",
 ]
@@ -66,20 +65,8 @@ EQUAL_TURNS = 1e-3
 NEARLY_CLOSED = 0.25
 
 #: The affine fit of a loop replaces the similarity when its residual is below this fraction of
-#: the similarity's, and its stretch ratio within ``1 / MAX_STRETCH .. MAX_STRETCH``.
+#: the similarity's, and its stretch ratio within ``1 / tol.MAX_STRETCH .. tol.MAX_STRETCH``.
 AFFINE_GAIN = 0.5
-MAX_STRETCH = 4.0
-
-#: A pair turns with the drawing when their turns agree within this (radians); a drawing
-#: turning less does not count as turning.
-TURN_AGREE = np.radians(10.0)
-
-#: A loop has no orientation of its own (a circle, a hand-drawn round dot, a regular polygon of
-#: many sides) when turned by any angle it still fits itself within this normalised residual
-#: (``1 - |<p, p_s>|^2 / |p|^4`` over every cyclic shift ``s``): a 9-gon or a circle with a 2%
-#: wobble (about 7e-4) has none, an ellipse 1.1 x 1 (6e-3), a hexagon (8e-3) or a square
-#: (0.05) has one. Such a loop takes the drawing's turn (see :func:`motions`).
-NO_ORIENTATION = 2e-3
 
 #: The fixed point of a registration is the carrier's pivot when it lies within this many sizes
 #: (bounding-box diagonal of the pair) of the stroke's centroid; beyond twice that, the
@@ -257,7 +244,7 @@ def _affine_loops(P, Q, index, res_sim, xp, xq):
     fitted = as_complex(np.einsum("lij,lkj->lki", A, from_complex(xp)) + b[:, None])
     residual = shifted_distance(fitted, xq)
     sv = np.linalg.svd(A, compute_uv=False)
-    moderate = (sv[:, 0] <= MAX_STRETCH * np.maximum(sv[:, 1], tol.TINY)) & (np.linalg.det(A) > 0)
+    moderate = (sv[:, 0] <= tol.MAX_STRETCH * np.maximum(sv[:, 1], tol.TINY)) & (np.linalg.det(A) > 0)
     return ok & moderate & (residual < AFFINE_GAIN * res_sim), A, b, residual
 
 
@@ -436,10 +423,10 @@ class Motions:
 def _reach_scales(P, fits, scale, drawing):
     """The size each pair's pivot reach is measured in, shape (C,): the pair's own, or the
     drawing's for pairs turning with a drawing that turns."""
-    if drawing is None or abs(drawing.turn) <= TURN_AGREE or not len(P):
+    if drawing is None or abs(drawing.turn) <= tol.TURN_AGREE or not len(P):
         return scale
     theta, _ = _polar(fits.A)
-    agree = np.abs(np.angle(np.exp(1j * (theta - drawing.turn)))) <= TURN_AGREE
+    agree = np.abs(np.angle(np.exp(1j * (theta - drawing.turn)))) <= tol.TURN_AGREE
     size = float(np.linalg.norm(P.pts.max(axis=0) - P.pts.min(axis=0)))
     return np.where(agree, np.maximum(scale, size), scale)
 
@@ -462,118 +449,6 @@ def _pivots(P, fits, scale):
     far = np.linalg.norm(fixed - centre, axis=1) / np.maximum(scale, tol.TINY)
     w = np.where(safe, np.clip(2.0 - far / PIVOT_REACH, 0.0, 1.0), 0.0)
     return centre + w[:, None] * (fixed - centre)
-
-
-def orientation_free(P, k=FIT_SAMPLES):
-    """Which loops of ``P`` (Ragged) have no orientation of their own (see ``NO_ORIENTATION``):
-    shape (C,), False for open strokes."""
-    free = np.zeros(len(P), bool)
-    loops = np.flatnonzero(P.closed)
-    if not len(loops):
-        return free
-    x = _samples(P, loops, k)
-    x = x - x.mean(axis=1, keepdims=True)
-    norm = np.maximum(np.sum(np.abs(x) ** 2, axis=1), tol.TINY)
-    spectrum = np.fft.fft(x, axis=1)
-    # Autocorrelation over every shift: |<x, x_s>| is largest (norm) at s = 0.
-    corr = np.abs(np.fft.ifft(np.abs(spectrum) ** 2, axis=1))
-    worst = 1.0 - (corr.min(axis=1) / norm) ** 2
-    free[loops] = worst <= NO_ORIENTATION
-    return free
-
-
-def _turning(drawing):
-    """Whether the drawing's motion (a Similarity or None) turns: by more than ``TURN_AGREE``
-    (less does not count as turning), at a scale within ``1 / MAX_STRETCH .. MAX_STRETCH``
-    (beyond, the matching's fit is degenerate: its centroids coincide, its turn is noise)."""
-    return drawing is not None and abs(drawing.turn) > TURN_AGREE and 1 / MAX_STRETCH <= drawing.scale <= MAX_STRETCH
-
-
-@dataclass
-class Rides:
-    """What the pairs of a batch ride on: the motion a pair with no orientation of its own (a
-    circle, a dot) takes instead of its own fit's turn, and the group a pair belongs to (see
-    :mod:`..pairing.groups`).
-
-    Attributes
-    ----------
-    a : ndarray of complex, shape (C,)
-        The turn and scale a rider takes (``z -> a z + b``, its centroid onto its partner's):
-        its group's, else the drawing's where the drawing turns (:func:`_turning`) and some
-        stroke of it has an orientation (shows the turn); NaN where the pair keeps its own fit.
-    group : ndarray of complex, shape (C,)
-        The turn and scale of the group the pair belongs to (NaN: none).
-    pivot : ndarray, shape (C, 2)
-        The group's pivot in key A: pairs turning with their group turn about it (NaN: none).
-    witnessed : bool
-        Whether some stroke of the drawing has an orientation of its own (shows its turn).
-    """
-
-    a: np.ndarray
-    group: np.ndarray
-    pivot: np.ndarray
-    witnessed: bool = True
-
-    @classmethod
-    def none(cls, n):
-        return cls(np.full(n, np.nan, complex), np.full(n, np.nan, complex), np.full((n, 2), np.nan))
-
-    @classmethod
-    def of_drawing(cls, P, drawing):
-        """The loops of ``P`` (Ragged) with no orientation of their own riding the drawing's
-        turn, where it turns (no group; nothing checks that some stroke shows the turn)."""
-        rides = cls.none(len(P))
-        if _turning(drawing) and len(P):
-            rides.a[orientation_free(P)] = drawing.a
-        return rides
-
-    @classmethod
-    def of_pairs(cls, pairs, ready, dots, drawing):
-        """Every pair's ride (Rides over ``pairs``, a list of PairCurves): the ready loops with
-        no orientation of their own (:func:`orientation_free`, asked once) and the ``dots``
-        ride their group's motion (``PairCurves.group``) where it turns, else the drawing's
-        where it turns and some ready stroke is open or oriented: circles and dots alone fit
-        any turn (two dots fit a similarity exactly), so nothing shows the drawing turning."""
-        rides = cls.none(len(pairs))
-        loops = [c for c in ready if pairs[c].closed]
-        riders = list(dots)
-        witnessed = len(loops) < len(ready)
-        if loops:
-            free = orientation_free(Ragged.from_list([pairs[c].P for c in loops], np.ones(len(loops), bool)))
-            riders += [c for c, f in zip(loops, free) if f]
-            witnessed |= not free.all()
-        for c in riders:
-            group = pairs[c].group
-            if group is not None:
-                if abs(group.motion.turn) > TURN_AGREE:
-                    rides.a[c] = _on_arc(pairs[c], group)
-            elif witnessed and _turning(drawing):
-                rides.a[c] = drawing.a
-        for c, pair in enumerate(pairs):
-            if pair.group is not None:
-                rides.group[c], rides.pivot[c] = pair.group.motion.a, pair.group.pivot
-        rides.witnessed = bool(witnessed)
-        return rides
-
-    def take(self, rows):
-        """The rides of some pairs (Rides)."""
-        return Rides(self.a[rows], self.group[rows], self.pivot[rows], self.witnessed)
-
-
-def _on_arc(pair, group):
-    """The turn and scale a rider takes from its group (GroupMotion): the group's, its turn made
-    the rider's own about the group's pivot where the two agree within ``TURN_AGREE`` (a valve
-    drawn a little off where the wheel took it still keeps its distance from the hub)."""
-    curves = (pair.xy_a, pair.xy_b) if pair.P is None else (pair.P, pair.Q)
-    ca, cb = (Ragged.from_list([xy], [pair.P is not None and pair.closed]).centroids()[0] for xy in curves)
-    pivot = complex(*group.pivot)
-    za, zb = complex(*ca) - pivot, complex(*cb) - (group.motion.a * pivot + group.motion.b)
-    if abs(za) <= tol.ROUNDOFF * (abs(pivot) + 1.0) or abs(zb) <= 0.0:
-        return group.motion.a
-    off = np.angle(zb / za / np.exp(1j * group.motion.turn))
-    if abs(off) > TURN_AGREE:
-        return group.motion.a
-    return group.motion.scale * np.exp(1j * (group.motion.turn + off))
 
 
 def _drawing_turns(P, fits, moving, rides):
@@ -634,20 +509,20 @@ def motions(P, fits, kind, scale, moving, drawing=None, turned=None, rides=None)
         Pairs that get a carrier (the others: the identity).
     drawing : Similarity, optional
         The keys' overall motion: a pair turning with it may turn about a farther pivot, and a
-        loop with no orientation of its own turns as it does (:func:`orientation_free`).
+        loop with no orientation of its own turns as it does (:mod:`.riding`).
     turned : ndarray of bool, shape (C,), optional
         Pairs whose turn is given (hinted: the animator said where a point goes): they keep
         it, oriented or not.
     rides : Rides, optional
         What each pair rides (default: :meth:`Rides.of_drawing`). Pairs turning with their
-        group (within ``TURN_AGREE``) turn about its pivot.
+        group (within ``tol.TURN_AGREE``) turn about its pivot.
     """
     rides = Rides.of_drawing(P, drawing) if rides is None else rides
     fits = _drawing_turns(P, fits, moving if turned is None else moving & ~turned, rides)
     theta, stretch = _polar(fits.A)
     pivot = _pivots(P, fits, _reach_scales(P, fits, scale, drawing))
     grouped = ~np.isnan(rides.group)
-    grouped &= np.abs(np.angle(np.exp(1j * theta) * np.conj(np.where(grouped, rides.group, 1.0)))) <= TURN_AGREE
+    grouped &= np.abs(np.angle(np.exp(1j * theta) * np.conj(np.where(grouped, rides.group, 1.0)))) <= tol.TURN_AGREE
     pivot[grouped] = rides.pivot[grouped]
     A, b = fits.A.copy(), fits.b.copy()
     if kind == "rigid":

@@ -21,7 +21,7 @@ off the wheel's turn; only the shorter spoke says which step is right):
 A group whose oriented strokes all lie where the drawing's motion takes them (within ``STILL``
 of the loop's size) moves with the drawing: it is not searched. A group is kept when the
 correlation explains the group (``GROUP_FIT``) and its turn differs from the drawing's by more
-than ``registration.TURN_AGREE`` (otherwise the drawing's motion already is the group's:
+than ``tolerances.TURN_AGREE`` (otherwise the drawing's motion already is the group's:
 drawings whose groups turn as they do keep their frames). Where the group's open strokes are
 paired a symmetry step off its motion, they are paired again under it (the assignment of least
 distance once the group's motion is applied, kept when it at least halves the pairs'
@@ -38,9 +38,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ... import tolerances as tol
+from ...geometry.orientation import orientation_free
 from ...geometry.similarity import Similarity, as_complex
 from ...geometry.spatial import box_pairs
-from ..pair_morphs.registration import TURN_AGREE, orientation_free
 from .assignment import solve_assignment
 
 __all__ = ["GroupMotion", "Groups", "ride_groups", "GROUP_FIT", "EQUAL_PEAKS", "REPAIRED"]
@@ -226,7 +226,7 @@ def _group(out, rg_a, rg_b, pairs, q, riders, drawing, fixed):
         return
     shown = [complex(*(cb[r] - pivot_b)) / complex(*(ca[r] - pivot_a)) for r in riders if np.any(ca[r] != pivot_a)]
     turn = _peak_turn(corr, best, np.angle(np.mean([z / abs(z) for z in shown])) if shown else 0.0)
-    if abs(np.angle(np.exp(1j * (turn - drawing.turn)))) <= TURN_AGREE:
+    if abs(np.angle(np.exp(1j * (turn - drawing.turn)))) <= tol.TURN_AGREE:
         return
     a = scale * np.exp(1j * turn)
     motion = Similarity(complex(a), complex(*pivot_b) - a * complex(*pivot_a))

@@ -12,7 +12,7 @@ from ballmorph_core.drawing.pair_morphs.fallbacks import point_motion
 from ballmorph_core.drawing.pair_morphs.pair_plans import PairNote, PairPlans, Planned, whole_segment
 from ballmorph_core.drawing.pair_morphs.pipeline import plan_pairs
 from ballmorph_core.drawing.pair_morphs.point_routes import guarded, own_points_route
-from ballmorph_core.drawing.pair_morphs.registration import Rides
+from ballmorph_core.drawing.pair_morphs.riding import Rides
 from ballmorph_core.drawing.strokes import Route
 
 

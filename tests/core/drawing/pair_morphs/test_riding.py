@@ -6,7 +6,7 @@ import pytest
 import scenes
 
 import ballmorph_core as bm
-from ballmorph_core.drawing.pair_morphs.registration import orientation_free
+from ballmorph_core.geometry.orientation import orientation_free
 from ballmorph_core.geometry.ragged import Ragged
 
 
