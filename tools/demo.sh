@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job (README's `make demo`): the add-on in-betweens five shot-like Grease Pencil
+# The main job (README's `make demo`): the add-on in-betweens four shot-like Grease Pencil
 # cases inside Blender 5.0 (headless) and writes out/demo.blend and out/demo.png; Blender renders
 # every frame of out/demo.blend with Workbench into out/demo.gif; then the picture of the path
 # preview drawn from the same shots, out/path_preview.png, the correspondence hints on a real

@@ -2,7 +2,7 @@
 
 Run by ``make demo`` (tools/demo.sh) after tools/demo.py has written out/demo.blend, with bpy
 (Blender as a Python module), headless. It opens the file, sets the stage in memory (the file
-is not saved again): an orthographic camera framing the five shots side by side, a white
+is not saved again): an orthographic camera framing the four shots side by side, a white
 world, the Workbench engine with flat lighting, a frame counter, and under each shot its name
 and what the frame is for that shot (key, in-between, or hold after its last key). Then it
 renders every frame of the scene to out/demo_frames/frame_NNNN.png and assembles them into
