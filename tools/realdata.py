@@ -1349,7 +1349,7 @@ def report(summaries, results, args, wall, load):
     options = ", ".join(f"{k}={v!r}" for k, v in core_options(args).items()) or "default options"
     glyphs = "".join(dict.fromkeys(r.char for r in results))
     lines = [
-        "# Real-data benchmark: glyph outlines of five designs (issues 11, 38)",
+        "# Real-data benchmark: glyph outlines against the designers' own instances (issues 11, 38)",
         "",
         f"`{command_line(args)}` on {date}, core at commit {git_commit()} (its last change);"
         f" `bm.inbetween` with {options}.",
