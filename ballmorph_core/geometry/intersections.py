@@ -14,7 +14,7 @@ import numpy as np
 
 from .. import tolerances as tol
 from .polyline import edges, scale_of
-from .ragged import Ragged, group_argmin
+from .ragged import Ragged, budget_slices, group_argmin
 from .spatial import PAIR_BUDGET, box_overlap, box_pair_chunks
 
 __all__ = [
@@ -34,6 +34,9 @@ _PARALLEL_SINE = 1e-3
 #: Consecutive edges of a curve the grid boxes together: its work goes by boxes, and the edges
 #: of two overlapping runs are few to test against each other.
 _EDGES_PER_BOX = 6
+
+#: :func:`simple_curves` takes curves in batches of about this many points (memory, not speed).
+SIMPLE_BATCH_POINTS = 50_000
 
 #: :func:`matched_hits` tests a segment of A changing sides against this many segments of B on
 #: either side of the matched one (the match is off by a few edges where the curves stray).
@@ -480,6 +483,17 @@ def simple_curves(curves, closed):
         tested only within one curve. A curve found to meet itself is searched no further.
     """
     closed = np.asarray(closed, dtype=bool).reshape(-1)
+    sizes = [len(curve) for curve in curves]
+    if sum(sizes) > SIMPLE_BATCH_POINTS:
+        # Curves a batch at a time (10,000 strokes at once held 150 MiB of segment boxes and
+        # candidate pairs): each curve's answer is its own.
+        runs = budget_slices(sizes, SIMPLE_BATCH_POINTS)
+        return np.concatenate([_simple_batch(curves[run], closed[run]) for run in runs])
+    return _simple_batch(curves, closed)
+
+
+def _simple_batch(curves, closed):
+    """:func:`simple_curves` of one batch of curves (list of ndarray, flags)."""
     parts = [_Prepared(curve, bool(loop)) for curve, loop in zip(curves, closed)]
     simple = np.ones(len(parts), dtype=bool)
     if not parts:

@@ -59,6 +59,10 @@ OVERLAPPING = 0.5
 DISTANCE_SAMPLES = 128
 
 
+#: Pairs measured at a time by :func:`closest_distance`.
+CLOSEST_BATCH = 256
+
+
 def handled_directly(P, Q, scale):
     """Pairs the ball-morph follows as they are drawn: strokes sharing both endpoints, loops
     one inside the other without crossing (paper configurations 2 and 1), shape (C,) of bool.
@@ -101,6 +105,11 @@ def closest_distance(P, Q):
         Same number of curves.
     """
     n = len(P)
+    if n > CLOSEST_BATCH:
+        # A few hundred pairs at a time: the projection's tables grow with the batch (5,000
+        # strokes at once held 110 MiB); each pair's distance is its own.
+        parts = [np.arange(start, min(start + CLOSEST_BATCH, n)) for start in range(0, n, CLOSEST_BATCH)]
+        return np.concatenate([closest_distance(P.take(rows), Q.take(rows)) for rows in parts])
     total = np.zeros(n)
     for a, b in ((P, Q), (Q, P)):
         samples = a.resample(np.full(n, DISTANCE_SAMPLES), smooth=False)

@@ -68,6 +68,9 @@ NEARLY_CLOSED = 0.25
 #: the similarity's, and its stretch ratio within ``1 / tol.MAX_STRETCH .. tol.MAX_STRETCH``.
 AFFINE_GAIN = 0.5
 
+#: Pairs of strokes fitted sliding along each other at a time (:func:`.sliding.slide`).
+SLIDE_BATCH = 256
+
 #: The fixed point of a registration is the carrier's pivot when it lies within this many sizes
 #: (bounding-box diagonal of the pair) of the stroke's centroid; beyond twice that, the
 #: centroid is; in between, a blend.
@@ -331,7 +334,11 @@ def _open_fits(P, Q, index, k, turn, scale):
         better = lr < residual[round_] - tol.EQUAL_FIT * size[round_]
         rows = np.flatnonzero(round_)[better]
         a[rows], b[rows], residual[rows] = la[better], lb[better], lr[better]
-    slide(xp, Q, index, size, a, b, residual, scale)
+    # A few hundred pairs at a time: the sliding fit's projection tables grow with the pairs it
+    # holds (5,000 strokes at once peaked at 390 MiB); each pair's fit is its own.
+    for start in range(0, len(index), SLIDE_BATCH):
+        rows = slice(start, start + SLIDE_BATCH)  # views: slide updates a, b, residual in place
+        slide(xp[rows], Q, index[rows], size[rows], a[rows], b[rows], residual[rows], scale)
     return a, b, residual
 
 

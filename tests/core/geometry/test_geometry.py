@@ -909,3 +909,15 @@ def test_coarsen_skips_only_curves_no_default_spacing_finds_dense(seed):
     assert coarsen(batch) is batch
     dense = Ragged.from_list([circle(1.0, 40_000)], [True])
     assert len(coarsen(dense).pts) < 40_000
+
+
+def test_simple_curves_in_batches_answer_as_all_at_once(monkeypatch):
+    # Many curves are searched a batch at a time (memory): each curve's answer is its own.
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    curves = [np.c_[np.sin(t), np.sin(k % 3 * t)] + rng.normal(0, 0.01, (40, 2)) for k in range(30)]
+    closed = np.arange(30) % 2 == 0
+    whole = intersections.simple_curves(curves, closed)
+    assert 0 < whole.sum() < 30  # both answers occur
+    monkeypatch.setattr(intersections, "SIMPLE_BATCH_POINTS", 90)
+    np.testing.assert_array_equal(intersections.simple_curves(curves, closed), whole)

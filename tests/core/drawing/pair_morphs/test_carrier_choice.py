@@ -133,3 +133,14 @@ def test_handled_directly_are_nested_loops_and_strokes_sharing_their_ends():
     got = carrier_choice.handled_directly(P, Q, np.ones(6))
     # Inside either way; crossing; side by side; sharing both ends; sharing none.
     np.testing.assert_array_equal(got, [True, True, False, False, True, False])
+
+
+def test_closest_distance_in_batches_is_the_same(monkeypatch):
+    # Pairs are measured a few hundred at a time (memory): each pair's distance is its own, up to
+    # round-off (the projection's search takes another path for a smaller batch: 4e-15 here).
+    loops = [circle(1.0 + 0.1 * k, 40) for k in range(7)]
+    P = Ragged.from_list(loops, [True] * 7)
+    Q = Ragged.from_list([loop * (1.2, 0.9) + (0.05 * k, 0.0) for k, loop in enumerate(loops)], [True] * 7)
+    whole = carrier_choice.closest_distance(P, Q)
+    monkeypatch.setattr(carrier_choice, "CLOSEST_BATCH", 3)
+    np.testing.assert_allclose(carrier_choice.closest_distance(P, Q), whole, rtol=1e-12, atol=0)

@@ -4,6 +4,7 @@ import numpy as np
 
 from ballmorph_core.drawing.frames.layout import _carry
 from ballmorph_core.drawing.pair_morphs import registration
+from ballmorph_core.geometry.ragged import Ragged
 
 
 def test_the_carriers_closed_form_inverses_are_inverses():
@@ -74,3 +75,16 @@ def test_similarity_matrices_multiply_as_complex_numbers():
     got = np.einsum("kij,kj->ki", registration.similarity_matrices(a), z)
     np.testing.assert_allclose(got[:, 0] + 1j * got[:, 1], a * (z[:, 0] + 1j * z[:, 1]), atol=1e-12)
     assert registration.similarity_matrices(1j).shape == (2, 2)
+
+
+def test_open_strokes_slide_in_batches_to_the_same_fits(monkeypatch):
+    # Strokes are fitted sliding along each other a few hundred pairs at a time (memory).
+    x = np.linspace(0.0, 1.0, 30)
+    P = [np.c_[x, 0.2 * np.sin(3 * x + k)] for k in range(9)]
+    Q = [np.c_[x * 0.8 + 0.3, 0.2 * np.sin(3 * x + k + 0.5)] for k in range(9)]  # slid along, reshaped
+    rp, rq = (Ragged.from_list(side, [False] * 9) for side in (P, Q))
+    whole = registration.fit_pairs(rp, rq)
+    monkeypatch.setattr(registration, "SLIDE_BATCH", 2)
+    batched = registration.fit_pairs(rp, rq)
+    np.testing.assert_array_equal(batched.A, whole.A)
+    np.testing.assert_array_equal(batched.b, whole.b)
