@@ -5,7 +5,7 @@ of what it rides: :mod:`ballmorph_core.drawing.pair_morphs.riding`)."""
 import numpy as np
 
 from .. import tolerances as tol
-from .similarity import as_complex
+from .procrustes import uniform_samples
 
 __all__ = ["NO_ORIENTATION", "ORIENTATION_SAMPLES", "orientation_free"]
 
@@ -34,10 +34,7 @@ def orientation_free(P, k=ORIENTATION_SAMPLES):
     loops = np.flatnonzero(P.closed)
     if not len(loops):
         return free
-    # Every curve, in order (all loops of a drawing of loops): no copy of the batch first.
-    whole = len(loops) == len(P) and np.array_equal(loops, np.arange(len(P)))
-    sub = P if whole else P.take(loops)
-    x = as_complex(sub.resample(np.full(len(loops), k), smooth=False).pts).reshape(len(loops), k)
+    x = uniform_samples(P, loops, k)
     x = x - x.mean(axis=1, keepdims=True)
     norm = np.maximum(np.sum(np.abs(x) ** 2, axis=1), tol.TINY)
     spectrum = np.fft.fft(x, axis=1)

@@ -9,7 +9,18 @@ the matching's shape fits and the comparison morphs' start alignment all fit thi
 
 import numpy as np
 
-__all__ = ["cyclic_correlation", "similarity_fit", "similarity_fits"]
+from .similarity import as_complex
+
+__all__ = ["cyclic_correlation", "similarity_fit", "similarity_fits", "uniform_samples"]
+
+
+def uniform_samples(rg, index, k):
+    """The samples the fits take: ``k`` uniform arc-length samples (on the chords) of the curves
+    ``index`` of ``rg`` (Ragged), complex, shape (len(index), k)."""
+    # Every curve, in order (all loops of a drawing of loops): no copy of the batch first.
+    whole = len(index) == len(rg) and np.array_equal(index, np.arange(len(rg)))
+    sub = rg if whole else rg.take(index)
+    return as_complex(sub.resample(np.full(len(index), k), smooth=False).pts).reshape(len(index), k)
 
 
 def cyclic_correlation(p, q):

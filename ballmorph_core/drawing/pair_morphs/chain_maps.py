@@ -38,6 +38,10 @@ class ChainMaps:
     lengths: np.ndarray
     reports: list
 
+    def held(self):
+        """The chains whose ball-map holds (mapped and b-compatible), shape (H,) of bool."""
+        return np.array([r is not None and not r.violations for r in self.reports], dtype=bool)
+
     def keeping(self, keep):
         """The maps of the chains ``keep`` (shape (H,) of bool) marks, numbered as
         :meth:`.crossings.Chains.keeping` numbers them (a ChainMaps)."""

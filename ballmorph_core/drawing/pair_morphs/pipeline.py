@@ -76,7 +76,6 @@ from .fallbacks import (
     chain_fallbacks,
     comparison_morph,
     linear_fallback,
-    point_motion,
     unsplittable,
 )
 from .pair_plans import PairNote, PairPlans, Planned, whole_segment
@@ -160,7 +159,7 @@ def _fall_back(chains, maps, events, index, kind, spacing, ends):
     """Step 10 for chains that are not b-compatible: composite, then aligned interpolation (the
     notes say which); a _FellBack."""
     counts = np.bincount(chains.pair, minlength=len(index))
-    good = np.array([r is not None and not r.violations for r in maps.reports], dtype=bool)
+    good = maps.held()
     failing = np.flatnonzero(~good & ~chains.static)
     if not len(failing):
         return _FellBack(good, [], [])
@@ -309,7 +308,7 @@ def _loops_off_the_ball(chains, maps, closed):
     Open strokes keep the fallback: their ends settle first (:mod:`.ends`), and a failing lens
     of theirs is a local event.
     """
-    failing = np.array([r is not None and bool(r.violations) for r in maps.reports], dtype=bool) & ~chains.static
+    failing = ~maps.held() & ~chains.static
     off = np.zeros(len(closed), dtype=bool)
     off[chains.pair[failing]] = True
     off &= closed
@@ -447,18 +446,6 @@ def _comparison_route(pairs, ready, method, spacing):
     return Planned(np.asarray(ready), (Route.COMPARISON,) * len(ready), closed, lengths, tuple(segments), tuple(notes))
 
 
-def _point_motions(pairs, dots):
-    """The dots of a comparison morph: straight point motion, no carrier (a Planned)."""
-    segments = [
-        whole_segment(c, point_motion(pairs[c].xy_a, pairs[c].u_a, pairs[c].xy_b, pairs[c].u_b), (1.0, 1.0))
-        for c in dots
-    ]
-    n = len(dots)
-    return Planned(
-        np.asarray(dots, dtype=np.int64), (Route.DOT,) * n, np.zeros(n, bool), np.ones((n, 2)), tuple(segments)
-    )
-
-
 def _ride_notes(pairs, rides, moving):
     """Notes saying that a stroke without an orientation of its own rode its group's turn
     (PairNotes; ``moving``: each pair's carrier moves it, shape (C,) of bool)."""
@@ -495,7 +482,8 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     plans = PairPlans(pairs)
     dots = [c for c, pair in enumerate(pairs) if pair.P is None]
     if method not in BALL_METHODS:
-        plans.gather(_point_motions(pairs, dots))
+        # Their dots move straight, point by point, with no carrier (nothing to ride).
+        plans.gather(dot_route(pairs, dots, "none", None, None))
         plans.gather(_comparison_route(pairs, ready, method, spacing))
         return plans.finish()
     kind = method[: -len("-ball")]

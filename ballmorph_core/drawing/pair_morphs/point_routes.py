@@ -137,7 +137,8 @@ def dot_route(pairs, dots, carrier, drawing, rides):
     """Pairs with no shape to fit (strokes of fewer than two distinct points: dots): straight
     point motion, on the turn they ride (``rides``: their group's, or the drawing's when it
     turns and shows it; see :func:`.registration.riding_fits`; pivoting where the drawing or the
-    group does, a dot on a turning wheel rides its arc). What it planned (:class:`.Planned`)."""
+    group does, a dot on a turning wheel rides its arc; with carrier 'none', as the paper's
+    comparison morphs' dots, straight and ``rides`` unused). What it planned (:class:`.Planned`)."""
     if not dots:
         return Planned.nothing()
     xy = [pairs[c].xy_a for c in dots], [pairs[c].xy_b for c in dots]

@@ -33,7 +33,7 @@ import numpy as np
 
 from ... import tolerances as tol
 from ...geometry.polyline import signed_area
-from ...geometry.procrustes import cyclic_correlation, similarity_fits
+from ...geometry.procrustes import cyclic_correlation, similarity_fits, uniform_samples
 from ...geometry.ragged import Ragged
 from ...geometry.similarity import Similarity, as_complex, from_complex
 from .riding import Rides
@@ -105,14 +105,6 @@ def similarity_matrices(a):
     return out
 
 
-def _samples(rg, index, k):
-    """``k`` uniform arc-length samples (on the chords) of curves ``index``, complex, shape (len, k)."""
-    # Every curve, in order (all loops of a drawing of loops): no copy of the batch first.
-    whole = len(index) == len(rg) and np.array_equal(index, np.arange(len(rg)))
-    sub = rg if whole else rg.take(index)
-    return as_complex(sub.resample(np.full(len(index), k), smooth=False).pts).reshape(len(index), k)
-
-
 def _loop_fits(xp, xq, turn=0.0):
     """Best similarity over every cyclic shift of Q's samples: ``(a, b, residual)`` per row.
 
@@ -168,7 +160,7 @@ def identity_residual(P, Q):
     k, out = FIT_SAMPLES, np.zeros(len(P))
     for loop, index in ((True, np.flatnonzero(P.closed)), (False, np.flatnonzero(~P.closed))):
         if len(index):
-            xp, xq = _samples(P, index, k), _samples(Q, index, k)
+            xp, xq = uniform_samples(P, index, k), uniform_samples(Q, index, k)
             out[index] = shifted_distance(xp, xq) if loop else np.sqrt(np.mean(np.abs(xp - xq) ** 2, axis=1))
     return out
 
@@ -278,7 +270,7 @@ def stretch_fits(P, Q):
     _, inv_p = _sqrtm(np.where(ok[:, None, None], mp, np.eye(2)))
     A = root_q @ inv_p
     b = cq - np.einsum("lij,lj->li", A, cp)
-    xp, xq = _samples(P, index, FIT_SAMPLES), _samples(Q, index, FIT_SAMPLES)
+    xp, xq = uniform_samples(P, index, FIT_SAMPLES), uniform_samples(Q, index, FIT_SAMPLES)
     fitted = as_complex(np.einsum("lij,lkj->lki", A, from_complex(xp)) + b[:, None])
     return Fits(A, b, np.where(ok, shifted_distance(fitted, xq), np.inf))
 
@@ -307,7 +299,7 @@ def fit_pairs(P, Q, affine=True, turn=0.0, scale=1.0):
     residual = np.zeros(n)
     loops, opened = np.flatnonzero(P.closed), np.flatnonzero(~P.closed)
     if len(loops):
-        loop_samples = _samples(P, loops, k), _samples(Q, loops, k)
+        loop_samples = uniform_samples(P, loops, k), uniform_samples(Q, loops, k)
         a[loops], b[loops], residual[loops] = _loop_fits(*loop_samples, turn)
     if len(opened):
         a[opened], b[opened], residual[opened] = _open_fits(P, Q, opened, k, turn, scale)
@@ -321,7 +313,7 @@ def fit_pairs(P, Q, affine=True, turn=0.0, scale=1.0):
 def _open_fits(P, Q, index, k, turn, scale):
     """Strokes: end to end (about a shared endpoint when there is one), as loops when nearly
     closed, or sliding along each other, whichever fits clearly better."""
-    xp, xq = _samples(P, index, k), _samples(Q, index, k)
+    xp, xq = uniform_samples(P, index, k), uniform_samples(Q, index, k)
     size = np.maximum(np.abs(xp - xp.mean(axis=1, keepdims=True)).max(axis=1), tol.TINY)
     pin_start = np.abs(xp[:, 0] - xq[:, 0]) <= tol.SHARED_ENDPOINT * size
     pin_end = ~pin_start & (np.abs(xp[:, -1] - xq[:, -1]) <= tol.SHARED_ENDPOINT * size)

@@ -39,6 +39,7 @@ import numpy as np
 
 from ... import tolerances as tol
 from ...geometry.orientation import orientation_free
+from ...geometry.procrustes import uniform_samples
 from ...geometry.similarity import Similarity, as_complex
 from ...geometry.spatial import box_pairs
 from .assignment import solve_assignment
@@ -179,9 +180,8 @@ def _off_drawing(rg_a, rg_b, matched, drawing):
     ia = np.array([i for i, _, _ in matched], np.int64)
     jb = np.array([j for _, j, _ in matched], np.int64)
     flip = np.array([f for _, _, f in matched], bool)
-    k = np.full(len(ia), PAIR_SAMPLES)
-    xa = drawing.a * as_complex(rg_a.take(ia).resample(k, smooth=False).pts).reshape(len(ia), -1) + drawing.b
-    xb = as_complex(rg_b.take(jb).resample(k, smooth=False).pts).reshape(len(jb), -1)
+    xa = drawing.a * uniform_samples(rg_a, ia, PAIR_SAMPLES) + drawing.b
+    xb = uniform_samples(rg_b, jb, PAIR_SAMPLES)
     xb = np.where(flip[:, None], xb[:, ::-1], xb)
     loop = rg_a.closed[ia] & rg_b.closed[jb]
     shifts = np.arange(PAIR_SAMPLES) if loop.any() else np.zeros(1, np.int64)
@@ -274,9 +274,8 @@ def _repair(out, rg_a, rg_b, members, motion, fixed, loop):
         return
     ia = np.array([out.matched[k][0] for k in rows])
     jb = np.array([out.matched[k][1] for k in rows])
-    xa = motion.a * as_complex(rg_a.take(ia).resample(np.full(len(ia), PAIR_SAMPLES), smooth=False).pts) + motion.b
-    xb = as_complex(rg_b.take(jb).resample(np.full(len(jb), PAIR_SAMPLES), smooth=False).pts)
-    xa, xb = xa.reshape(len(ia), -1), xb.reshape(len(jb), -1)
+    xa = motion.a * uniform_samples(rg_a, ia, PAIR_SAMPLES) + motion.b
+    xb = uniform_samples(rg_b, jb, PAIR_SAMPLES)
     ahead = np.sqrt(np.mean(np.abs(xa[:, None] - xb[None]) ** 2, axis=2))
     back = np.sqrt(np.mean(np.abs(xa[:, None] - xb[None, :, ::-1]) ** 2, axis=2))
     cost = np.minimum(ahead, back)

@@ -36,5 +36,5 @@ def test_options_come_back_in_the_core_spelling():
         key, key, "Circular_Ball", "NONE", "auto", "hold", None
     )
     assert (method, carrier, spacing) == ("circular-ball", "none", None)
-    with pytest.raises(Exception, match="carrier"):
+    with pytest.raises(InvalidCurveError, match="carrier=.wobbly. is not valid"):
         check_inputs(key, key, "circular-ball", "wobbly", "auto", "hold", None)
