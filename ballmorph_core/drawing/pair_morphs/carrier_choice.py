@@ -36,6 +36,7 @@ __all__ = [
     "note_shape_changes",
     "handled_directly",
     "closest_distance",
+    "closest_distances",
     "inside_fraction",
     "shape_changes",
 ]
@@ -104,18 +105,45 @@ def closest_distance(P, Q):
     P, Q : Ragged
         Same number of curves.
     """
-    n = len(P)
+    return _distances_to(Q, (P,))[0]
+
+
+def closest_distances(P, M, Q):
+    """:func:`closest_distance` of P and of M (P registered) to the same Q, ``(before, after)``
+    shape (C,) each: Q's samples and edges made once for both."""
+    return _distances_to(Q, (P, M))
+
+
+def _distances_to(Q, curves):
+    """:func:`closest_distance` of each of ``curves`` (tuple of Ragged, as many curves as Q) to
+    Q, a tuple of arrays shape (C,)."""
+    n = len(Q)
     if n > CLOSEST_BATCH:
         # A few hundred pairs at a time: the projection's tables grow with the batch (5,000
         # strokes at once held 110 MiB); each pair's distance is its own.
         parts = [np.arange(start, min(start + CLOSEST_BATCH, n)) for start in range(0, n, CLOSEST_BATCH)]
-        return np.concatenate([closest_distance(P.take(rows), Q.take(rows)) for rows in parts])
-    total = np.zeros(n)
-    for a, b in ((P, Q), (Q, P)):
+        each = [_distances_to(Q.take(rows), tuple(a.take(rows) for a in curves)) for rows in parts]
+        return tuple(np.concatenate(x) for x in zip(*each))
+    q_samples = Q.resample(np.full(n, DISTANCE_SAMPLES), smooth=False)
+    on_q = NearestEdges(Q)
+    out = []
+    for a in curves:
         samples = a.resample(np.full(n, DISTANCE_SAMPLES), smooth=False)
-        dist, _, _ = NearestEdges(b).within(samples.pts, samples.owner, np.inf)
-        total += np.bincount(samples.owner, np.square(dist), minlength=n) / np.bincount(samples.owner, minlength=n)
-    return np.sqrt(total / 2.0)
+        to_q, _, _ = on_q.within(samples.pts, samples.owner, np.inf)
+        to_a, _, _ = NearestEdges(a).within(q_samples.pts, q_samples.owner, np.inf)
+        out.append(np.sqrt((_mean_square(to_q, samples.owner, n) + _mean_square(to_a, q_samples.owner, n)) / 2.0))
+    return tuple(out)
+
+
+def _mean_square(dist, owner, n):
+    """Mean square of the distances of each curve's samples, shape (n,)."""
+    return np.bincount(owner, np.square(dist), minlength=n) / np.bincount(owner, minlength=n)
+
+
+def _moved(P, A, b):
+    """The curves P under ``z -> A z + b`` (one map a curve; A (C, 2, 2), b (C, 2)), a Ragged."""
+    moved = np.einsum("kij,kj->ki", np.take(A, P.owner, axis=0), P.pts) + np.take(b, P.owner, axis=0)
+    return Ragged(moved, P.offsets, P.closed)
 
 
 def inside_fraction(P, Q):
@@ -154,15 +182,15 @@ def shape_changes(P, Q, fits, ask):
         tangled = ~simple_curves(curves, np.zeros(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)
         rows = np.setdiff1d(rows, strokes[tangled])
     # The cheap screen first: a fit that removes most of the samples' own distance explains
-    # the change (the closest-point ratio is then below SHAPE_CHANGE too).
-    if len(rows):
-        rows = rows[fits.residual[rows] > SCREEN * identity_residual(P.take(rows), Q.take(rows))]
+    # the change (the closest-point ratio is then below SHAPE_CHANGE too). The registered
+    # curve's own uniform samples, not P's moved: an affine fit shares arc length out anew.
     if len(rows):
         Pr, Qr = P.take(rows), Q.take(rows)
-        A, b = fits.A[rows], fits.b[rows]
-        moved = np.einsum("kij,kj->ki", np.take(A, Pr.owner, axis=0), Pr.pts) + np.take(b, Pr.owner, axis=0)
-        before = closest_distance(Pr, Qr)
-        after = closest_distance(Ragged(moved, Pr.offsets, Pr.closed), Qr)
+        Mr = _moved(Pr, fits.A[rows], fits.b[rows])
+        rows = rows[identity_residual(Mr, Qr) > SCREEN * identity_residual(Pr, Qr)]
+    if len(rows):
+        Pr, Qr = P.take(rows), Q.take(rows)
+        before, after = closest_distances(Pr, _moved(Pr, fits.A[rows], fits.b[rows]), Qr)
         kept[rows] = np.divide(after, before, out=np.zeros(len(rows)), where=before > 0)
         rows = rows[kept[rows] > SHAPE_CHANGE]
     # Loops side by side keep their carrier (the costliest test, for the few loops left).

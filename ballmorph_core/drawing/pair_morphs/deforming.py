@@ -91,11 +91,13 @@ def squashes_in_place(P, Q, motions, scale, drawing=None, rides=None):
 
     A tall dot that becomes a wide one fits a 90-degree turn; squashed in place each point
     travels less, and an animator squashes it. Asked of loops whose carrier turns by more than
-    ``LARGE_TURN``, neither crossing itself. The squash is a stretch without turn (:func:`~.registration.stretch_fits`)
-    when that explains the pair (its residual under ``SCREEN`` of their distance: ellipses,
-    exactly), else the tangent-aligned correspondence (a rounded rectangle's corners stay
-    corners). Travels are RMS over P's vertices (and, for the correspondence, Q's and their
-    matches).
+    ``LARGE_TURN``. Two squashes are weighed against the turn, the least travel winning: the
+    stretch without turn (:func:`~.registration.stretch_fits`, where it explains the pair: its
+    residual under ``SCREEN`` of their distance) and the tangent-aligned correspondence (where
+    neither loop crosses itself: a rounded rectangle's corners stay corners). A stretch as good
+    as exact (residual within ``EQUAL_FIT`` of the pair's size: an ellipse squashed, any loop
+    stretched along any axis) is the pair's own deformation, and no correspondence is sought.
+    Travels are RMS over P's vertices (and, for the correspondence, Q's and their matches).
 
     Parameters
     ----------
@@ -121,24 +123,31 @@ def squashes_in_place(P, Q, motions, scale, drawing=None, rides=None):
     """
     rows = np.flatnonzero(P.closed & motions.moving & (np.abs(motions.theta) > LARGE_TURN))
     none = np.zeros(0, dtype=np.int64)
-    if len(rows):
-        # A loop crossing itself (a figure eight) keeps its carrier and the fallback that says so.
-        curves = [c for k in rows for c in (P.curve(k), Q.curve(k))]
-        rows = rows[simple_curves(curves, np.ones(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)]
     if not len(rows):
         return none, Motions.identity(0, motions.kind), none, {}
     Pr, Qr = P.take(rows), Q.take(rows)
     turned = _carried_travel(Pr, motions.A[rows], motions.b[rows])
     fits = stretch_fits(Pr, Qr)
+    # The stretch is a carrier like the turn, weighed where it explains the pair: a loop
+    # crossing itself too (its moments are its lobes' signed areas'; the residual judges them).
     explains = fits.residual <= SCREEN * identity_residual(Pr, Qr)
-    by_stretch = explains & (_carried_travel(Pr, fits.A, fits.b) < turned)
-    ask = np.flatnonzero(~explains)
-    by_tangent = np.zeros(len(rows), dtype=bool)
+    stretched = np.where(explains, _carried_travel(Pr, fits.A, fits.b), np.inf)
+    # A stretch as good as exact is the pair's own deformation: no correspondence is sought.
+    exact = explains & (fits.residual <= tol.EQUAL_FIT * scale[rows])
+    matched = np.full(len(rows), np.inf)
+    ask = np.flatnonzero(~exact)
+    if len(ask):
+        # A loop crossing itself (a figure eight) keeps its carrier and the fallback that says so.
+        curves = [c for k in ask for c in (Pr.curve(k), Qr.curve(k))]
+        ask = ask[simple_curves(curves, np.ones(len(curves), dtype=bool)).reshape(-1, 2).all(axis=1)]
     warps = {}
     if len(ask):
-        travel, found = _matched_travel(Pr.take(ask), Qr.take(ask))
-        by_tangent[ask] = travel < turned[ask]
-        warps = {int(rows[k]): w for k, w in zip(ask, found) if by_tangent[k]}
+        matched[ask], found = _matched_travel(Pr.take(ask), Qr.take(ask))
+        warps = dict(zip(ask, found))
+    # The least travel of the three: turned by the registration, stretched, matched part to part.
+    by_stretch = (stretched < turned) & (stretched <= matched)
+    by_tangent = ~by_stretch & (matched < turned)
+    warps = {int(rows[k]): w for k, w in warps.items() if by_tangent[k]}
     keep = np.flatnonzero(by_stretch)
     stretch = Motions.identity(0, motions.kind)
     if len(keep):

@@ -245,8 +245,10 @@ def _affine_loops(P, Q, index, res_sim, xp, xq):
 
 def stretch_fits(P, Q):
     """The squash or stretch without turn that takes each loop P onto its Q (the issue-38
-    alternative to a large turn): ``A = C_Q^(1/2) C_P^(-1/2)`` from the loops' second moments
-    of area (exact between ellipses), about their area centroids.
+    alternative to a large turn): the symmetric positive ``A`` with ``A C_P A = C_Q`` from the
+    loops' second moments of area, about their area centroids (the least-travel map between
+    their moment ellipses; exact for any loop stretched along any axis). Its residual is that
+    of the stretched loop's own uniform samples against Q's.
 
     Parameters
     ----------
@@ -266,13 +268,18 @@ def stretch_fits(P, Q):
         m[~ok] = np.eye(2)
         w = np.linalg.eigvalsh(m)
         ok &= w[:, 0] > tol.ROUNDOFF * np.maximum(np.abs(w[:, 1]), tol.TINY)
-    root_q, _ = _sqrtm(np.where(ok[:, None, None], mq, np.eye(2)))
-    _, inv_p = _sqrtm(np.where(ok[:, None, None], mp, np.eye(2)))
-    A = root_q @ inv_p
+    root_p, inv_p = _sqrtm(np.where(ok[:, None, None], mp, np.eye(2)))
+    # The one symmetric positive map with A C_P A = C_Q: the least-travel map between the
+    # loops' moment ellipses (Gaussian optimal transport). C_Q^(1/2) C_P^(-1/2) also takes
+    # one ellipse onto the other, but turns it unless both share their axes.
+    root_mid, _ = _sqrtm(root_p @ np.where(ok[:, None, None], mq, np.eye(2)) @ root_p)
+    A = inv_p @ root_mid @ inv_p
     b = cq - np.einsum("lij,lj->li", A, cp)
-    xp, xq = uniform_samples(P, index, FIT_SAMPLES), uniform_samples(Q, index, FIT_SAMPLES)
-    fitted = as_complex(np.einsum("lij,lkj->lki", A, from_complex(xp)) + b[:, None])
-    return Fits(A, b, np.where(ok, shifted_distance(fitted, xq), np.inf))
+    # The stretched loop's own uniform samples: a stretch shares arc length out anew, so the
+    # stretched samples of P would sit off Q's even where the stretch is exact.
+    moved = np.einsum("kij,kj->ki", np.take(A, P.owner, axis=0), P.pts) + np.take(b, P.owner, axis=0)
+    residual = identity_residual(Ragged(moved, P.offsets, P.closed), Q)
+    return Fits(A, b, np.where(ok, residual, np.inf))
 
 
 def fit_pairs(P, Q, affine=True, turn=0.0, scale=1.0):

@@ -53,10 +53,26 @@ def test_only_overlapping_loops_count_as_changing_shape(apart, changed):
     assert kept[0] == pytest.approx(1.0)
 
 
-def test_a_registration_that_explains_the_change_is_screened_out_before_any_distance():
-    P = Ragged.from_list([circle(1.0, 300)], [True])
-    Q = Ragged.from_list([_lumpy() + [0.2, 0.0]], [True])
-    fits = Fits(np.eye(2)[None], np.zeros((1, 2)), np.array([0.0]))
+def _oblique_stretch(factor, degrees):
+    """The symmetric map stretching by ``factor`` along the axis at ``degrees``, shape (2, 2)."""
+    a = np.radians(degrees)
+    axis = np.array([np.cos(a), np.sin(a)])
+    return np.eye(2) + (factor - 1.0) * np.outer(axis, axis)
+
+
+def test_a_registration_that_explains_the_change_is_screened_out_before_any_distance(monkeypatch):
+    # An affine fit that is exact: the registered loop is Q. P's uniform samples moved by it
+    # sit off Q's (the stretch shares arc length out anew: 30 % of the distance as drawn),
+    # the registered loop's own do not; no closest-point distance is measured.
+    A = _oblique_stretch(1.6, 35.0)
+    P = Ragged.from_list([_lumpy()], [True])
+    Q = Ragged.from_list([_lumpy() @ A.T + [0.2, 0.0]], [True])
+    fits = Fits(A[None], np.array([[0.2, 0.0]]), np.array([np.inf]))
+
+    def measured(*args):
+        raise AssertionError("the screen let an exact fit through")
+
+    monkeypatch.setattr(carrier_choice, "closest_distances", measured)
     got, kept = carrier_choice.shape_changes(P, Q, fits, np.array([True]))
     assert not got[0] and np.isnan(kept[0])
 

@@ -88,3 +88,32 @@ def test_open_strokes_slide_in_batches_to_the_same_fits(monkeypatch):
     batched = registration.fit_pairs(rp, rq)
     np.testing.assert_array_equal(batched.A, whole.A)
     np.testing.assert_array_equal(batched.b, whole.b)
+
+
+def _blob(n=240):
+    """A star-shaped loop, longer along x than along y (no symmetry of an ellipse), shape (n, 2)."""
+    t = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+    r = 0.3 * (1.0 + 0.12 * np.cos(2.0 * t) + 0.05 * np.cos(3.0 * t + 0.4))
+    return np.c_[1.1 * r * np.cos(t), r * np.sin(t)]
+
+
+def _oblique_stretch(factor, degrees):
+    """The symmetric map stretching by ``factor`` along the axis at ``degrees``, shape (2, 2)."""
+    a = np.radians(degrees)
+    axis = np.array([np.cos(a), np.sin(a)])
+    return np.eye(2) + (factor - 1.0) * np.outer(axis, axis)
+
+
+def test_the_stretch_fit_finds_a_loop_stretched_along_any_axis():
+    # Issue 38: a squash along the motion's diagonal. C_Q^(1/2) C_P^(-1/2) takes the moment
+    # ellipses onto each other too, but turns the loop unless both share their axes; the
+    # symmetric map with A C_P A = C_Q is the stretch itself, and its residual (the stretched
+    # loop's own samples against Q's) nothing.
+    P = _blob()
+    S = _oblique_stretch(1.25, 60.0)
+    centre = P.mean(axis=0) + (2.0, 1.0)
+    Q = (P - P.mean(axis=0)) @ S.T + centre
+    fits = registration.stretch_fits(Ragged.from_list([P], [True]), Ragged.from_list([Q], [True]))
+    np.testing.assert_allclose(fits.A[0], S, atol=1e-12)
+    np.testing.assert_allclose(fits.A[0] @ P.mean(axis=0) + fits.b[0], centre, atol=1e-12)
+    assert fits.residual[0] < 1e-9 * 0.3, fits.residual
