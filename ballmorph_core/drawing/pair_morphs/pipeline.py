@@ -265,7 +265,7 @@ def _ball_route(pairs, index, kind, carrier, spacing, drawing=None, rides=None):
     in_place = similar_in_place(P, Q, (routes.route == Route.WHOLE) & ~motions.moving & closed & (carrier != "none"))
     routes = _Routes(np.where(deforming | in_place, Route.TANGENT, routes.route), routes.reason)
     lensed = routes.route == Route.LENSES
-    whole = np.flatnonzero((routes.route == Route.WHOLE) | (routes.route == Route.CARRIER))
+    whole = np.flatnonzero(routes.route == Route.WHOLE)
     chains = cut_chains(Rc, Qc, events, lensed, whole, coincident, scale)
     maps = map_chains(chains, h, tol.COINCIDENT * scale)
     off_ball, why = _loops_off_the_ball(chains, maps, closed)
@@ -352,7 +352,7 @@ def _direct_routes(ends, index, routes, curves, h, said=None):
         morphs = tangent_morphs(pairs, [warps.get(int(c)) for c in tangent])
         notes += [PairNote(int(index[c]), (said or {}).get(int(c), DEFORMING_NOTE)) for c in tangent]
         segments += placed(ends, index, tangent, morphs, np.zeros(len(tangent)), ranges[tangent])
-    near = np.flatnonzero(routes.route == Route.NEAR)
+    near = np.flatnonzero((routes.route == Route.NEAR) | (routes.route == Route.CARRIER))
     if len(near):
         morphs = arc_length_morphs(R.take(near), Q.take(near), h[near])
         segments += placed(ends, index, near, morphs, np.zeros(len(near)), ranges[near])

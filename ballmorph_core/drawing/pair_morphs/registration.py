@@ -219,15 +219,7 @@ def _affine_loops(P, Q, index, res_sim, xp, xq):
     b : ndarray, shape (L, 2)
     residual : ndarray, shape (L,)
     """
-    cp, mp = _area_moments(P, index)
-    cq, mq = _area_moments(Q, index)
-    ok = np.all(np.isfinite(mp), axis=(1, 2)) & np.all(np.isfinite(mq), axis=(1, 2))
-    mp, mq = np.where(ok[:, None, None], mp, np.eye(2)), np.where(ok[:, None, None], mq, np.eye(2))
-    # A sliver (second moments of rank one) has no affine shape to fit.
-    for m in (mp, mq):
-        w = np.linalg.eigvalsh(m)
-        ok &= w[:, 0] > tol.ROUNDOFF * np.maximum(np.abs(w[:, 1]), tol.TINY)
-    mp, mq = np.where(ok[:, None, None], mp, np.eye(2)), np.where(ok[:, None, None], mq, np.eye(2))
+    (cp, mp), (cq, mq), ok = _loop_moments(P, Q, index)
     root_q, inv_q = _sqrtm(mq)
     _, inv_p = _sqrtm(mp)
     wp = as_complex(np.einsum("lij,lkj->lki", inv_p, from_complex(xp) - cp[:, None]))
@@ -247,8 +239,8 @@ def stretch_fits(P, Q):
     """The squash or stretch without turn that takes each loop P onto its Q (the issue-38
     alternative to a large turn): the symmetric positive ``A`` with ``A C_P A = C_Q`` from the
     loops' second moments of area, about their area centroids (the least-travel map between
-    their moment ellipses; exact for any loop stretched along any axis). Its residual is that
-    of the stretched loop's own uniform samples against Q's.
+    their moment ellipses; exact for any loop stretched along any axis). Its residual is the
+    stretched loop's own uniform samples' against Q's.
 
     Parameters
     ----------
@@ -260,26 +252,41 @@ def stretch_fits(P, Q):
     Fits
         Residual inf where a loop has no area to fit (a sliver).
     """
-    index = np.arange(len(P))
-    cp, mp = _area_moments(P, index)
-    cq, mq = _area_moments(Q, index)
+    (cp, mp), (cq, mq), ok = _loop_moments(P, Q, np.arange(len(P)))
+    A = _stretch_maps(mp, mq)
+    b = cq - np.einsum("lij,lj->li", A, cp)
+    return Fits(A, b, np.where(ok, _registered_residual(P, Q, A, b), np.inf))
+
+
+def _loop_moments(P, Q, index):
+    """Both loops' area centroids and second moments (:func:`_area_moments`) of pairs ``index``,
+    and which pairs have an area to fit: ``(cp, mp), (cq, mq), ok``; the moments of the others
+    (slivers: second moments of rank one) are the identity."""
+    (cp, mp), (cq, mq) = _area_moments(P, index), _area_moments(Q, index)
     ok = np.all(np.isfinite(mp), axis=(1, 2)) & np.all(np.isfinite(mq), axis=(1, 2))
     for m in (mp, mq):
         m[~ok] = np.eye(2)
         w = np.linalg.eigvalsh(m)
         ok &= w[:, 0] > tol.ROUNDOFF * np.maximum(np.abs(w[:, 1]), tol.TINY)
-    root_p, inv_p = _sqrtm(np.where(ok[:, None, None], mp, np.eye(2)))
-    # The one symmetric positive map with A C_P A = C_Q: the least-travel map between the
-    # loops' moment ellipses (Gaussian optimal transport). C_Q^(1/2) C_P^(-1/2) also takes
-    # one ellipse onto the other, but turns it unless both share their axes.
-    root_mid, _ = _sqrtm(root_p @ np.where(ok[:, None, None], mq, np.eye(2)) @ root_p)
-    A = inv_p @ root_mid @ inv_p
-    b = cq - np.einsum("lij,lj->li", A, cp)
-    # The stretched loop's own uniform samples: a stretch shares arc length out anew, so the
-    # stretched samples of P would sit off Q's even where the stretch is exact.
+    eye = np.eye(2)
+    return (cp, np.where(ok[:, None, None], mp, eye)), (cq, np.where(ok[:, None, None], mq, eye)), ok
+
+
+def _stretch_maps(mp, mq):
+    """The one symmetric positive ``A`` with ``A C_P A = C_Q`` for each pair of second moments
+    (L, 2, 2): the least-travel map between the moment ellipses (Gaussian optimal transport),
+    shape (L, 2, 2). ``C_Q^(1/2) C_P^(-1/2)`` also takes one ellipse onto the other, but turns
+    it unless both share their axes."""
+    root_p, inv_p = _sqrtm(mp)
+    root_mid, _ = _sqrtm(root_p @ mq @ root_p)
+    return inv_p @ root_mid @ inv_p
+
+
+def _registered_residual(P, Q, A, b):
+    """The residual of affine fits ``z -> A z + b`` (A (C, 2, 2), b (C, 2)) of curves P onto Q:
+    the registered curves' own uniform samples against Q's (:func:`identity_residual`), shape (C,)."""
     moved = np.einsum("kij,kj->ki", np.take(A, P.owner, axis=0), P.pts) + np.take(b, P.owner, axis=0)
-    residual = identity_residual(Ragged(moved, P.offsets, P.closed), Q)
-    return Fits(A, b, np.where(ok, residual, np.inf))
+    return identity_residual(Ragged(moved, P.offsets, P.closed), Q)
 
 
 def fit_pairs(P, Q, affine=True, turn=0.0, scale=1.0):

@@ -19,7 +19,7 @@ _CASES = {name: (a, b, options) for name, a, b, options in cases()}
         "head-turn",  # ball rows with end gaps, joined routes, gathered, on carriers
         "mixed-index-hold",  # joined straight paths with end gaps
         "mixed-curvature-interpolation",  # morphs that are not joined
-        "squash-fall",  # frame order as evaluated: nothing gathered
+        "crossing-loops",  # frame order as evaluated: nothing gathered
     ],
 )
 def test_frames_do_not_depend_on_what_was_evaluated_before(name):
@@ -48,12 +48,12 @@ def test_the_cases_above_take_every_branch():
     """The routes the test above relies on are there (a change of the pipeline could drop one)."""
     layouts = {
         name: bm.plan_inbetween(*_CASES[name][:2], **_CASES[name][2]).pairs.layout
-        for name in ("head-turn", "mixed-index-hold", "mixed-curvature-interpolation", "squash-fall")
+        for name in ("head-turn", "mixed-index-hold", "mixed-curvature-interpolation", "crossing-loops")
     }
     assert layouts["head-turn"]._gather is not None and layouts["head-turn"]._ball_shift is not None
     assert any(j.shift is not None for j in layouts["mixed-index-hold"]._joined)
     assert layouts["mixed-curvature-interpolation"]._morphs
-    assert layouts["squash-fall"]._gather is None
+    assert layouts["crossing-loops"]._gather is None
 
 
 def test_a_plan_stages_every_chunk_in_one_buffer_and_its_frames_own_their_memory(monkeypatch):
