@@ -255,6 +255,9 @@ def test_a_loop_stretched_in_place_along_a_diagonal_rides_its_stretch(monkeypatc
     morph = PairMorph(P, Q, True)
     motion = morph.plans.motions
     assert motion.moving[0] and abs(motion.theta[0]) < 1e-9, (morph.used, morph.notes)
+    # The stretched P coincides with Q: the carrier alone, samples matched by arc length (no
+    # ball-map between coincident curves).
+    assert morph.used.route == Route.CARRIER and morph.used.morphs == ("arc-length",), morph.used
     for time in (0.25, 0.5, 0.75):
         off = hausdorff(morph(time), (1.0 - time) * P + time * Q)
         # Within the sampling's own chord error (a turned carrier's middle is 1e-2 off).
