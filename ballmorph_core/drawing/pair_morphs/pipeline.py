@@ -504,6 +504,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     for planned in _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing, rides) if ready else ():
         plans.gather(planned)
     plans.gather(Planned.nothing(notes=_ride_notes(pairs, rides, plans.motions.moving)))
+    del prepared, pairs, planned  # their curves are not needed to lay the samples out (held while it runs)
     return plans.finish(kind)
 
 
