@@ -133,8 +133,14 @@ class ProjectedKey:
 
     def sample(self, stroke, u):
         """Per-point values at fractions ``u`` of given strokes (vectorised), shape (K, 7 + F)."""
+        return np.column_stack(list(self.sampled(stroke, u)))
+
+    def sampled(self, stroke, u):
+        """:meth:`sample`'s columns one at a time, each made when it is asked for (a caller that
+        keeps some never holds them all): an iterator of ``width`` arrays of shape (K,)."""
         x = np.clip(u, 0.0, 1.0) + 2.0 * stroke
-        return np.column_stack([np.interp(x, self._x, column) for column in self._columns])
+        for column in self._columns:
+            yield np.interp(x, self._x, column)
 
     def values(self, points):
         """The values of some of the key's points (an index or a slice), shape (K, 7 + F)."""
