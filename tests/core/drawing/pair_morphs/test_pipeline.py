@@ -151,3 +151,28 @@ def test_the_ball_route_runs_cover_the_ready_pairs_in_order(monkeypatch):
     monkeypatch.setattr(pipeline, "BALL_ROUTE_POINTS", 40)
     runs = pipeline._ball_runs(pairs, [0, 1, 2, 3, 4, 5, 6])
     assert [r.tolist() for r in runs] == [[0, 1], [2], [3], [4, 5], [6]]
+
+
+def test_a_failing_run_of_pairs_goes_pair_by_pair_and_the_other_runs_are_untouched(monkeypatch):
+    """A bug in the ball route with a run of pairs: that run's pairs are planned one by one (a
+    pair failing alone takes linear interpolation and says why); the other runs as they were."""
+    key_a, key_b = _bench_keys("open", 12, 30)
+    times = [0.5]
+    monkeypatch.setattr(pipeline, "BALL_ROUTE_POINTS", 4 * 60)  # runs of 4 pairs
+    want = bm.inbetween(key_a, key_b, times)
+    real, calls = pipeline._ball_route, []
+
+    def buggy(pairs, index, *args):
+        calls.append(index.tolist())
+        if 5 in index.tolist():
+            raise ZeroDivisionError("simulated core bug")
+        return real(pairs, index, *args)
+
+    monkeypatch.setattr(pipeline, "_ball_route", buggy)
+    got = bm.inbetween(key_a, key_b, times)
+    assert calls == [[0, 1, 2, 3], [4, 5, 6, 7], [4], [5], [6], [7], [8, 9, 10, 11]]
+    for c, (g, w) in enumerate(zip(got.pairs, want.pairs)):
+        if c == 5:
+            assert g.used.route == Route.LINEAR and "with the others: ZeroDivisionError" in g.reason, g
+        else:
+            assert (g.used, g.reason) == (w.used, w.reason), c
