@@ -123,6 +123,9 @@ class InbetweenPlan:
         self.method, self.unmatched = method, unmatched
         points = np.concatenate([key_a.positions, key_b.positions])
         self.plane = plane = fit_plane(points)
+        # Said now: both keys' points together are not kept through the planning.
+        self.planarity = _planarity_messages(points, plane)
+        del points
         self.extras = extras = Extras.of(key_a, key_b)
         ka = ProjectedKey(key_a, plane, extras.point_columns(key_a))
         kb = ProjectedKey(key_b, plane, extras.point_columns(key_b))
@@ -145,7 +148,6 @@ class InbetweenPlan:
             curves[k].group = group
         self.pieces = Pieces(curves, self.strokes, hinted, carrier, drawing, _curves)
         self.pairs = plan_pairs(self.pieces.curves, method, carrier, spacing, drawing)
-        self.planarity = _planarity_messages(points, plane)
         self._samples = None  # _Samples, from the first evaluation
         self._staged = np.empty((0, 0, 2))  # the pairs' frames of a chunk of times (see _frames)
         self._recycled = Recycled()  # the arrays of the last evaluation's in-betweens

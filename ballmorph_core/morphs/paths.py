@@ -298,11 +298,11 @@ class BallPaths(_Endpoints):
             self._u = np.divide(u, size, out=np.zeros_like(u), where=size > 0)
             self._phi = np.arctan2(_cross(self._u, d), np.einsum("ij,ij->i", self._u, d))
             self._phi = np.where(self._chord > 0, self._phi, 0.0)
-            self._chord_per_sinc = self._chord / np.sinc(self._phi / np.pi)
+            chord_per_sinc = self._chord / np.sinc(self._phi / np.pi)
             # The chord reached at time t is |d| sin(phi t) / sin(phi) long (|d| t on a straight
             # path): at() needs its two coefficients every frame, and the sine it computes anyway.
             turning = self._phi != 0
-            self._per_sin = np.divide(self._chord_per_sinc, self._phi, out=np.zeros_like(self._phi), where=turning)
+            self._per_sin = np.divide(chord_per_sinc, self._phi, out=np.zeros_like(self._phi), where=turning)
             self._straight = np.where(turning, 0.0, self._chord)
         elif kind == "tangent":
             self._beta = self._tangent_turns()
@@ -423,6 +423,8 @@ class BallPaths(_Endpoints):
         if self._work is None:
             self._work = np.empty((5, len(self.p)))
             self._columns = tuple(np.ascontiguousarray(a.T) for a in (self._u, self.p))
+            # Held once: u only as these columns, p as a view of its own (the same values).
+            self._u, self.p = None, self._columns[1].T
             # Every angle phi t lies within the largest |phi| (at most pi: phi is an arctan2).
             largest = float(np.max(np.abs(self._phi), initial=0.0))
             self._bound = largest if largest <= np.pi else np.pi
@@ -477,7 +479,7 @@ class BallPaths(_Endpoints):
         circular paths write them into ``out`` (any (K, 2) array) when given."""
         t = float(np.clip(t, 0.0, 1.0))
         if self.kind == "circular":
-            return self._circular_at(t, np.empty_like(self.p) if out is None else out)
+            return self._circular_at(t, np.empty(self.p.shape) if out is None else out)
         p, m, q = self.p, self.m, self.q
         if out is not None:
             out[:] = self.at(t)

@@ -109,13 +109,14 @@ class Extras:
 
 
 def _pair_values(parts, strokes_a, strokes_b, ka, kb):
-    """Per sample: the values (plane offset, radius, opacity, colour, extras) on both keys."""
+    """Per sample: the values (plane offset, radius, opacity, colour, extras) on both keys,
+    column by column: two iterators of ``ka.width`` arrays of shape (K,), each column read
+    when it is asked for (:meth:`ProjectedKey.sampled <..keys.projected.ProjectedKey.sampled>`)."""
     sizes = np.diff(parts.offsets)
-    width = ka.width
     if not sizes.sum():
-        return np.zeros((0, width)), np.zeros((0, width))
-    va = ka.sample(np.repeat(strokes_a, sizes) if parts.stroke_a is None else parts.stroke_a, parts.u_a)
-    vb = kb.sample(np.repeat(strokes_b, sizes) if parts.stroke_b is None else parts.stroke_b, parts.u_b)
+        return (iter([np.zeros(0)] * ka.width) for _ in "ab")
+    va = ka.sampled(np.repeat(strokes_a, sizes) if parts.stroke_a is None else parts.stroke_a, parts.u_a)
+    vb = kb.sampled(np.repeat(strokes_b, sizes) if parts.stroke_b is None else parts.stroke_b, parts.u_b)
     return va, vb
 
 
@@ -179,24 +180,36 @@ class _Mix:
 
     Each block is kept contiguous, and each differing column as its two keys' columns (mixing
     the strided columns of the samples' values every frame was most of a redo's attribute
-    time); the samples' values themselves are not kept.
+    time); the samples' values themselves are not kept, nor all read at once: the columns are
+    taken one pair at a time (at 260,000 samples, both keys' seven columns held together
+    were 29 MiB of an evaluation's peak).
 
     Parameters
     ----------
-    va, vb : ndarray, shape (K, W)
+    va, vb : iterable of ndarray, shape (K,)
+        The W columns of the samples' values on each key, in order.
     blocks : sequence of (int, int)
-        The column ranges ``(lo, hi)`` asked for.
+        The column ranges ``(lo, hi)`` asked for, in order, covering ``0..W``.
+    size : int
+        K.
     """
 
-    def __init__(self, va, vb, blocks):
-        self.differ = np.any(va != vb, axis=0)
-        self._blocks = {}
+    def __init__(self, va, vb, blocks, size):
+        columns, differ, self._blocks = zip(va, vb), [], {}
         for lo, hi in blocks:
-            mixed = {j: (va[:, lo + j].copy(), vb[:, lo + j].copy()) for j in np.flatnonzero(self.differ[lo:hi])}
-            shared = None if len(mixed) == hi - lo == 1 else va[:, lo:hi].copy()
-            self._blocks[lo] = shared, mixed
+            shared, mixed = None, {}
+            for j in range(hi - lo):
+                a, b = next(columns)
+                differ.append(bool(np.any(a != b)))
+                if differ[-1]:
+                    mixed[j] = a, b
+                if hi - lo > 1 or not differ[-1]:
+                    shared = np.empty((size, hi - lo)) if shared is None else shared
+                    shared[:, j] = a
+            self._blocks[lo] = (np.empty((size, 0)) if hi == lo else shared), mixed
+        self.differ = np.array(differ, dtype=bool)
         # t b's work column, kept: a fresh one each frame is page-faulted anew in a bpy process.
-        self._term = np.empty(len(va)) if self.differ.any() else None
+        self._term = np.empty(size) if self.differ.any() else None
 
     def block(self, lo, t, out=None):
         """The block starting at column ``lo`` at time ``t``, shape (K, hi - lo); a mixed block
@@ -296,8 +309,9 @@ class FrameValues:
         # the plane) are shared by every frame, not mixed: a redo of a big drawing is mostly
         # the frames' loop. Each block (depth, radius, opacity, colour, extras) is mixed only
         # where it differs.
-        self.mix = _Mix(va, vb, ((0, 1), (1, 2), (2, 3), (3, _BASE), (_BASE, va.shape[1])))
-        self.depth = None if self.mix.differ[0] or not np.any(va[:, 0]) else self.mix.block(0, 0.0)[:, 0]
+        blocks = ((0, 1), (1, 2), (2, 3), (3, _BASE), (_BASE, plan.ka.width))
+        self.mix = _Mix(va, vb, blocks, len(parts.u_a))
+        self.depth = None if self.mix.differ[0] or not np.any(self.mix.block(0, 0.0)) else self.mix.block(0, 0.0)[:, 0]
 
     def frames(self, parts, plan, times, recycled=None):
         """One StrokeSet per time (:func:`assemble_frames`)."""

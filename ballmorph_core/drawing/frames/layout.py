@@ -312,6 +312,8 @@ class Layout:
         loop = self.closed[owner]
         self.u_a = _fractions(u_p, range_p, lengths[:, 0], c, owner, loop)
         self.u_b = _fractions(u_q, range_q, lengths[:, 1], c, owner, loop)
+        # A sample's worth each, not needed by the routes: let go before they are made.
+        del chain, local, block, along, rows, c, owner, u_p, u_q, loop
         self._routes(ball, segments, keep, position, kind)
         self._work = self._carrier = None
 

@@ -60,7 +60,9 @@ class ProjectedKey:
         The strokes' 2D points (arc lengths and fractions come from it).
     width : int
         Values per point (7 + F): offset from the plane, radius, opacity, vertex colour (RGBA),
-        the extra values (:meth:`values` reads them).
+        the extra values (:meth:`values` reads them). A key whose strokes are all open is read
+        from its own arrays (``strokes``: not to be modified while the key is in use); a key
+        with loops from a table that closes them.
     """
 
     def __init__(self, strokes, plane, extra_values=None):
@@ -78,15 +80,23 @@ class ProjectedKey:
         owner = np.concatenate([self.rg.owner, self.rg.owner[closing]])
         x = np.concatenate([self.u, np.ones(len(closing))]) + 2.0 * owner
         order = np.argsort(x, kind="stable")
+        if len(closing) == 0 and np.array_equal(order, np.arange(len(order))):
+            # Every stroke open (each point its own row, in order, the table the key itself):
+            # the values are read from the key's own arrays, not copied (at 250,000 points, 17
+            # MiB a key that a plan would keep until it is dropped).
+            self._x, self._point, self._row = x, None, None
+            self._columns = [np.asarray(column, dtype=np.float64) for column in columns]
+            return
         self._x = x[order]
         self._point = np.concatenate([np.arange(len(xy)), closing])[order]
         # The values are kept once, in this table: a contiguous row per value (np.interp reads
         # one at a time), and each point's row in it (its first: a loop's closing copy follows).
         # Gathered value by value straight into it (no (N, width) stack, gather and transpose);
         # the points are in range: mode="wrap" skips take's bounds checks.
-        self._v = np.empty((self.width, len(order)))
-        for column, row in zip(columns, self._v):
+        table = np.empty((self.width, len(order)))
+        for column, row in zip(columns, table):
             np.take(np.asarray(column, dtype=np.float64), self._point, out=row, mode="wrap")
+        self._columns = list(table)
         self._row = np.empty(len(xy), dtype=np.int64)
         own = np.flatnonzero(order < len(xy))
         self._row[order[own]] = own
@@ -119,13 +129,20 @@ class ProjectedKey:
         right = np.clip(np.searchsorted(self._x, x), 0, len(self._x) - 1)
         left = np.maximum(right - 1, 0)
         pick = np.where(np.abs(self._x[left] - x) <= np.abs(self._x[right] - x), left, right)
-        return self._point[pick]
+        return pick if self._point is None else self._point[pick]
 
     def sample(self, stroke, u):
         """Per-point values at fractions ``u`` of given strokes (vectorised), shape (K, 7 + F)."""
+        return np.column_stack(list(self.sampled(stroke, u)))
+
+    def sampled(self, stroke, u):
+        """:meth:`sample`'s columns one at a time, each made when it is asked for (a caller that
+        keeps some never holds them all): an iterator of ``width`` arrays of shape (K,)."""
         x = np.clip(u, 0.0, 1.0) + 2.0 * stroke
-        return np.column_stack([np.interp(x, self._x, column) for column in self._v])
+        for column in self._columns:
+            yield np.interp(x, self._x, column)
 
     def values(self, points):
         """The values of some of the key's points (an index or a slice), shape (K, 7 + F)."""
-        return self._v[:, self._row[points]].T
+        rows = points if self._row is None else self._row[points]
+        return np.array([column[rows] for column in self._columns]).T

@@ -133,7 +133,7 @@ class PairPlans:
 
     def finish(self, kind="circular"):
         """Name each pair's morphs and lay the segments out (step 11)."""
-        ball = _joined(self.ball)
+        ball, self.ball = _joined(self.ball), None
         methods = [set() for _ in self.used]
         for seg in self.segments:
             methods[seg.pair].add(seg.morph.method)
@@ -142,8 +142,8 @@ class PairPlans:
         for c, names in enumerate(methods):
             moving = self.motions is not None and self.motions.moving[c]
             self.used[c] = PairMorphs(tuple(sorted(names)), self.motions.kind if moving else "", self.routes[c])
-        self.layout = Layout(ball, self.segments, self.closed, self.joined, self.lengths, kind)
-        self.segments = self.ball = None
+        segments, self.segments = self.segments, None
+        self.layout = Layout(ball, segments, self.closed, self.joined, self.lengths, kind)
         return self
 
     def frames(self, times, out=None):
@@ -157,7 +157,17 @@ class PairPlans:
 
 
 def _joined(parts):
-    """One BallRows from several (the ball route's batches)."""
+    """One BallRows from several (the ball route's runs of pairs), the list emptied: each
+    part's arrays are let go field by field as they are joined (a drawing's ball rows are not
+    held twice while the layout is made); one part is itself."""
     if not parts:
         return BallRows.empty()
-    return BallRows(*(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(BallRows)))
+    if len(parts) == 1:
+        return parts.pop()
+    joined = {}
+    for f in fields(BallRows):
+        joined[f.name] = np.concatenate([getattr(p, f.name) for p in parts])
+        for p in parts:
+            setattr(p, f.name, None)
+    parts.clear()
+    return BallRows(**joined)

@@ -41,7 +41,8 @@ Each step returns what it planned for the pairs it took (:class:`.pair_plans.Pla
 routes, segments, notes, carriers) and :func:`plan_pairs` gathers it into the plans; no step
 writes into another's results. The paper's comparison morphs take *prepare*, then their own
 morph with its fallback. Every step works on all pairs at once (a single pair is a batch of
-one), and nothing here depends on the in-between times: :class:`PairPlans` is the plan,
+one; the ball route, steps 4-10, on runs of about ``BALL_ROUTE_POINTS`` points, one after
+another), and nothing here depends on the in-between times: :class:`PairPlans` is the plan,
 :meth:`PairPlans.frames` its evaluation.
 """
 
@@ -58,7 +59,7 @@ from ...geometry.polyline import (
     pair_scales,
     resolve_spacing,
 )
-from ...geometry.ragged import Ragged
+from ...geometry.ragged import Ragged, budget_slices
 from ...geometry.similarity import Similarity
 from ..frames.layout import Segment
 from ..strokes import Route, as_written
@@ -400,20 +401,50 @@ def _piece(curves, c, s0, s1):
 
 
 def _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing=None, rides=None):
-    """The ball route for every ready pair at once; should it fail (a bug), pair by pair, so one
-    pair never stops the others: a failing pair takes linear interpolation and says why.
+    """The ball route for the ready pairs, run of pairs after run of pairs (about
+    ``BALL_ROUTE_POINTS`` points each, see :func:`_ball_runs`); should a run fail (a bug), pair
+    by pair, so one pair never stops the others: a failing pair takes linear interpolation and
+    says why.
 
     Returns
     -------
     list of Planned
-        What the route planned: one for the batch, or one per pair.
+        What the route planned: one per run, or one per pair of a failing run.
     """
+    parts = []
+    for run in _ball_runs(pairs, ready):
+        parts += _guarded_ball_route(pairs, run, kind, carrier, spacing, drawing, rides)
+    return parts
+
+
+#: The ball route takes the ready pairs in runs of about this many points (both curves', as
+#: drawn), one run after another: every step of the route holds arrays over the points of the
+#: pairs it takes (samples, lens pieces, ball-map rows), so only one run's are held at once (the
+#: plan's traced peak at 5,000 pairs of 50-point strokes: 318 MiB in one run, 233 MiB in runs).
+#: Each pair's answer is its own up to round-off: a batch's arc lengths are sums along every
+#: curve before a pair's (``Ragged.s``, ``Ragged.global_s``), so where a pair sits in its run
+#: moves its samples by round-off (at most 7e-11 on the benchmark's 5,000 strokes, 0.5-0.8
+#: long; the same routes, morphs, reports and sample counts).
+BALL_ROUTE_POINTS = 50_000
+
+
+def _ball_runs(pairs, ready):
+    """The ready pairs (sorted ints) cut into consecutive runs of about ``BALL_ROUTE_POINTS``
+    points (a pair with more takes a run of its own): list of ndarray of int."""
+    ready = np.asarray(ready, dtype=np.int64)
+    sizes = [len(pairs[c].P) + len(pairs[c].Q) for c in ready]
+    return [ready[run] for run in budget_slices(sizes, BALL_ROUTE_POINTS)]
+
+
+def _guarded_ball_route(pairs, run, kind, carrier, spacing, drawing=None, rides=None):
+    """:func:`_ball_route` for the pairs ``run`` at once, else pair by pair (a failing pair
+    takes linear interpolation and says why): list of Planned."""
     try:
-        return [_ball_route(pairs, np.asarray(ready), kind, carrier, spacing, drawing, rides)]
+        return [_ball_route(pairs, run, kind, carrier, spacing, drawing, rides)]
     except Exception as exc:  # reported below, pair by pair
         batch_error = f"{type(exc).__name__}: {exc}"
     parts = []
-    for c in ready:
+    for c in run.tolist():
         try:
             parts.append(_ball_route(pairs, np.array([c]), kind, carrier, spacing, drawing, rides))
         except Exception as exc:
@@ -504,6 +535,7 @@ def plan_pairs(pairs, method="circular-ball", carrier="similarity", spacing=None
     for planned in _isolated_ball_route(pairs, ready, kind, carrier, spacing, drawing, rides) if ready else ():
         plans.gather(planned)
     plans.gather(Planned.nothing(notes=_ride_notes(pairs, rides, plans.motions.moving)))
+    del prepared, pairs, planned  # their curves are not needed to lay the samples out (held while it runs)
     return plans.finish(kind)
 
 

@@ -238,3 +238,21 @@ def test_frames_at_many_times_are_those_of_each_time(seed, kind):
     np.testing.assert_array_equal(morph.frames(ts), want)
     np.testing.assert_array_equal(morph.frames(0.25), morph(0.25)[None])
     assert morph.frames([]).shape == (0, k, 2)
+
+
+def test_circular_paths_hold_their_points_once_after_the_first_evaluation():
+    """Evaluated, the circular paths keep u and p as the contiguous columns every frame reads
+    and p as a view of them (not a second copy): the same positions, start and lengths."""
+    rng = np.random.default_rng(5)
+    p, m, q = rng.normal(size=(3, 40, 2))
+    paths = BallPaths(p, m, q, "circular")
+    lengths = paths.lengths()
+    first = [paths.at(t) for t in (0.0, 0.3, 1.0)]
+    assert np.shares_memory(paths.p, paths._columns[1]) and paths._u is None
+    np.testing.assert_array_equal(paths.start, p)
+    np.testing.assert_array_equal(paths.lengths(), lengths)
+    for t, want in zip((0.0, 0.3, 1.0), first):
+        got = paths.at(t)
+        np.testing.assert_array_equal(got, want)
+        assert got.flags.c_contiguous
+    np.testing.assert_array_equal(paths.at_times([0.0, 0.3, 1.0]), np.stack(first))

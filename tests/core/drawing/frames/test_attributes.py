@@ -12,7 +12,7 @@ def test_mixed_blocks_are_the_blend_bit_for_bit_into_a_buffer_or_not():
     vb = va.copy()
     vb[:, 1] += rng.normal(size=30)  # radius differs
     vb[:, 4] += rng.normal(size=30)  # one colour channel differs
-    mix = _Mix(va, vb, ((0, 1), (1, 2), (2, 3), (3, 7)))
+    mix = _Mix(iter(va.T.copy()), iter(vb.T.copy()), ((0, 1), (1, 2), (2, 3), (3, 7), (7, 7)), 30)
     out = np.empty(30)
     for t in (0.3, 0.0, 1.0, 0.3):
         blend = (1 - t) * va + t * vb
@@ -21,6 +21,25 @@ def test_mixed_blocks_are_the_blend_bit_for_bit_into_a_buffer_or_not():
         assert np.shares_memory(mix.block(1, t, out=out), out)
         np.testing.assert_array_equal(out, blend[:, 1])
         np.testing.assert_array_equal(mix.block(3, t), np.c_[va[:, 3], blend[:, 4], va[:, 5:7]])
+        assert mix.block(7, t).shape == (30, 0)
+    assert mix.differ.tolist() == [False, True, False, False, True, False, False]
+
+
+def test_the_mix_takes_one_pair_of_columns_at_a_time():
+    """The samples' values are read column by column as the blocks are made, never all of
+    them at once: at any time at most the current block's columns are held beside the kept
+    blocks."""
+    rng = np.random.default_rng(8)
+    va, vb = rng.normal(size=(20, 7)), rng.normal(size=(20, 7))
+    read = []
+
+    def columns(values, name):
+        for j, column in enumerate(values.T):
+            read.append((name, j))
+            yield column.copy()
+
+    _Mix(columns(va, "a"), columns(vb, "b"), ((0, 1), (1, 2), (2, 3), (3, 7), (7, 7)), 20)
+    assert read == [(name, j) for j in range(7) for name in "ab"]
 
 
 def test_recycled_arrays_are_given_again_only_when_nothing_refers_to_them():

@@ -2,11 +2,13 @@
 field of its report (``PairReport.used.route``), never parsed from the report's words; steps
 return what they planned (Planned) and the pipeline gathers it."""
 
+import bench_drawings
 import numpy as np
 import pytest
 from shapes import circle
 
 import ballmorph_core as bm
+from ballmorph_core.drawing.pair_morphs import pipeline
 from ballmorph_core.drawing.pair_morphs.curves import PairCurves, prepare_pairs
 from ballmorph_core.drawing.pair_morphs.fallbacks import point_motion
 from ballmorph_core.drawing.pair_morphs.pair_plans import PairNote, PairPlans, Planned, whole_segment
@@ -111,3 +113,66 @@ def test_a_step_s_plan_is_gathered_in_order():
     np.testing.assert_array_equal(plans.closed, [False, False, True])
     np.testing.assert_array_equal(plans.lengths, [[1.0, 2.0], [1.0, 1.0], [3.0, 4.0]])
     assert [s.pair for s in plans.segments] == [2, 0] and plans.segments[0].range_q == (0.0, 4.0)
+
+
+def _bench_keys(kind, strokes, points):
+    key_a, key_b = bench_drawings.make_keys(kind, strokes, points)
+    closed = kind in ("loops", "deforming")
+    return [
+        bm.StrokeSet.from_strokes([np.c_[p[:, 0], np.zeros(len(p)), p[:, 1]] for p in key], cyclic=[closed] * len(key))
+        for key in (key_a, key_b)
+    ]
+
+
+@pytest.mark.parametrize(("kind", "strokes", "points"), [("open", 120, 30), ("loops", 80, 30), ("jagged", 24, 40)])
+def test_the_ball_route_in_runs_of_pairs_gives_each_pair_its_own_answer(monkeypatch, kind, strokes, points):
+    """Runs of a few pairs plan every pair as one run of all does: the same routes, morphs,
+    reports and samples, frames within 1e-9 (the strokes are on a unit grid). Not bit for bit:
+    a batch's arc lengths are sums along every curve before a pair's (``Ragged.s``), so a pair's
+    round-off depends on where it sits in its run."""
+    key_a, key_b = _bench_keys(kind, strokes, points)
+    times = [0.25, 0.5, 0.75]
+    monkeypatch.setattr(pipeline, "BALL_ROUTE_POINTS", 10**12)
+    whole = bm.inbetween(key_a, key_b, times)
+    monkeypatch.setattr(pipeline, "BALL_ROUTE_POINTS", 20 * points)
+    runs = bm.inbetween(key_a, key_b, times)
+    assert [(p.used, p.reason) for p in runs.pairs] == [(p.used, p.reason) for p in whole.pairs]
+    assert [m.text for m in runs.messages] == [m.text for m in whole.messages]
+    for got, want in zip(runs.frames, whole.frames):
+        np.testing.assert_array_equal(got.offsets, want.offsets)
+        np.testing.assert_allclose(got.positions, want.positions, rtol=0.0, atol=1e-9)
+
+
+def test_the_ball_route_runs_cover_the_ready_pairs_in_order(monkeypatch):
+    """Each run holds about BALL_ROUTE_POINTS points of both curves; a pair with more runs alone."""
+    line = np.c_[np.linspace(0.0, 1.0, 10), np.zeros(10)]
+    pairs = [PairCurves(line, None, False, line, None, False, line, line) for _ in range(7)]
+    pairs[3] = PairCurves(line, None, False, line, None, False, np.repeat(line, 5, 0), line)
+    monkeypatch.setattr(pipeline, "BALL_ROUTE_POINTS", 40)
+    runs = pipeline._ball_runs(pairs, [0, 1, 2, 3, 4, 5, 6])
+    assert [r.tolist() for r in runs] == [[0, 1], [2], [3], [4, 5], [6]]
+
+
+def test_a_failing_run_of_pairs_goes_pair_by_pair_and_the_other_runs_are_untouched(monkeypatch):
+    """A bug in the ball route with a run of pairs: that run's pairs are planned one by one (a
+    pair failing alone takes linear interpolation and says why); the other runs as they were."""
+    key_a, key_b = _bench_keys("open", 12, 30)
+    times = [0.5]
+    monkeypatch.setattr(pipeline, "BALL_ROUTE_POINTS", 4 * 60)  # runs of 4 pairs
+    want = bm.inbetween(key_a, key_b, times)
+    real, calls = pipeline._ball_route, []
+
+    def buggy(pairs, index, *args):
+        calls.append(index.tolist())
+        if 5 in index.tolist():
+            raise ZeroDivisionError("simulated core bug")
+        return real(pairs, index, *args)
+
+    monkeypatch.setattr(pipeline, "_ball_route", buggy)
+    got = bm.inbetween(key_a, key_b, times)
+    assert calls == [[0, 1, 2, 3], [4, 5, 6, 7], [4], [5], [6], [7], [8, 9, 10, 11]]
+    for c, (g, w) in enumerate(zip(got.pairs, want.pairs)):
+        if c == 5:
+            assert g.used.route == Route.LINEAR and "with the others: ZeroDivisionError" in g.reason, g
+        else:
+            assert (g.used, g.reason) == (w.used, w.reason), c
