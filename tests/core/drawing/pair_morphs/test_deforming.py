@@ -119,6 +119,26 @@ def test_a_ball_stretching_into_a_smear_stays_an_ellipse(move):
         assert gap <= ELLIPSE_TOLERANCE, f"move {move}, t={t:.1f}: {gap:.4%} off an ellipse ({morph.used})"
 
 
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="a known limit (issue 38): in place, a loop drawn with other points than its key's "
+    "takes the tangent-aligned route, whose straight paths between parts of equal direction "
+    "leave an ellipse by up to 1.2 %; the stretch would keep ellipses, but taken for every "
+    "loop a stretch explains it moved glyph counters off their designers' in-betweens "
+    "(League Spartan's median Hausdorff 1.54 -> 1.63/1000 em)",
+)
+def test_a_ball_squashed_in_place_drawn_with_other_points_stays_an_ellipse():
+    ball = circle(0.25, 120)
+    t = np.linspace(0.0, 2.0 * np.pi, 173, endpoint=False)
+    a = 0.5  # the squash's axis, radians
+    squashed = np.c_[0.75 * np.cos(t), 0.25 * np.sin(t)] @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+    morph = PairMorph(ball, squashed, True)
+    for time in np.linspace(0.1, 0.9, 9):
+        gap = ellipse_gap(morph(time))
+        assert gap <= ELLIPSE_TOLERANCE, f"t={time:.1f}: {gap:.4%} off an ellipse ({morph.used})"
+
+
 def _box_excess(frame, keys):
     lo, hi = np.min([k.min(axis=0) for k in keys], axis=0), np.max([k.max(axis=0) for k in keys], axis=0)
     out = np.maximum(lo - frame, 0.0) + np.maximum(frame - hi, 0.0)
