@@ -25,9 +25,8 @@ import numpy as np
 from ... import tolerances as tol
 from ...geometry.intersections import batch_crossings, simple_curves
 from ...geometry.projection import NearestEdges
-from ...geometry.ragged import Ragged
 from .pair_plans import PairNote
-from .registration import Motions, fit_pairs, identity_residual, motions
+from .registration import Motions, fit_pairs, identity_residual, motions, moved_curves
 
 __all__ = [
     "SHAPE_CHANGE",
@@ -140,12 +139,6 @@ def _mean_square(dist, owner, n):
     return np.bincount(owner, np.square(dist), minlength=n) / np.bincount(owner, minlength=n)
 
 
-def _moved(P, A, b):
-    """The curves P under ``z -> A z + b`` (one map a curve; A (C, 2, 2), b (C, 2)), a Ragged."""
-    moved = np.einsum("kij,kj->ki", np.take(A, P.owner, axis=0), P.pts) + np.take(b, P.owner, axis=0)
-    return Ragged(moved, P.offsets, P.closed)
-
-
 def inside_fraction(P, Q):
     """Fraction of each loop P's outline (uniform samples) inside its loop Q, shape (C,)."""
     samples = P.resample(np.full(len(P), DISTANCE_SAMPLES), smooth=False)
@@ -177,10 +170,10 @@ def shape_changes(P, Q, fits, ask):
     # The cheap screen first: a fit that removes most of the samples' own distance explains
     # the change (the closest-point ratio is then below SHAPE_CHANGE too). The registered
     # curve's own uniform samples, not P's moved: an affine fit shares arc length out anew.
+    M = moved_curves(P, fits.A, fits.b)  # the registered curves, for the screen and the distances
     if len(rows):
         Pr, Qr = P.take(rows), Q.take(rows)
-        Mr = _moved(Pr, fits.A[rows], fits.b[rows])
-        rows = rows[identity_residual(Mr, Qr) > SCREEN * identity_residual(Pr, Qr)]
+        rows = rows[identity_residual(M.take(rows), Qr) > SCREEN * identity_residual(Pr, Qr)]
     # Open strokes asked only when neither crosses itself: such a pair keeps its carrier and
     # the fallback that says so (asked after the screen: the test of every curve's edges
     # against each other took half the planning of 400 open strokes of 500 points).
@@ -191,7 +184,7 @@ def shape_changes(P, Q, fits, ask):
         rows = np.setdiff1d(rows, strokes[tangled])
     if len(rows):
         Pr, Qr = P.take(rows), Q.take(rows)
-        before, after = closest_distances(Pr, _moved(Pr, fits.A[rows], fits.b[rows]), Qr)
+        before, after = closest_distances(Pr, M.take(rows), Qr)
         kept[rows] = np.divide(after, before, out=np.zeros(len(rows)), where=before > 0)
         rows = rows[kept[rows] > SHAPE_CHANGE]
     # Loops side by side keep their carrier (the costliest test, for the few loops left).

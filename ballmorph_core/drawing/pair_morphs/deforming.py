@@ -29,7 +29,7 @@ from ...geometry.intersections import simple_curves
 from ...morphs.tangent_aligned import METHOD, tangent_morphs
 from ...morphs.tangent_dp import tangent_warps
 from .carrier_choice import SCREEN
-from .registration import Fits, Motions, fit_pairs, identity_residual, stretch_fits
+from .registration import Fits, Motions, fit_pairs, identity_residual, moved_curves, stretch_fits
 from .registration import motions as registered_motions
 
 __all__ = [
@@ -160,7 +160,7 @@ def squashes_in_place(P, Q, motions, scale, drawing=None, rides=None):
 
 def _carried_travel(P, A, b):
     """RMS distance each vertex of the curves P travels under ``z -> A z + b``, shape (C,)."""
-    moved = np.einsum("kij,kj->ki", np.take(A, P.owner, axis=0), P.pts) + np.take(b, P.owner, axis=0)
+    moved = moved_curves(P, A, b).pts
     return np.sqrt(np.bincount(P.owner, np.sum(np.square(moved - P.pts), axis=1)) / np.maximum(P.n, 1))
 
 

@@ -81,7 +81,7 @@ from .fallbacks import (
 )
 from .pair_plans import PairNote, PairPlans, Planned, whole_segment
 from .point_routes import dot_route, guarded, own_points_route, polyline_route
-from .registration import Motions, identity_residual
+from .registration import Motions, identity_residual, moved_curves
 from .riding import Rides
 
 __all__ = ["PairCurves", "PairPlans", "PairMorph", "plan_pairs", "BALL_METHODS"]
@@ -224,7 +224,7 @@ def register(P, Q, carrier, scale, drawing=None, given=None, rides=None):
     for c, own in enumerate(given or []):
         if own is not None:
             motion.put(np.array([c]), own)
-    pts = np.einsum("kij,kj->ki", np.take(motion.A, P.owner, axis=0), P.pts) + np.take(motion.b, P.owner, axis=0)
+    pts = moved_curves(P, motion.A, motion.b).pts
     R = Ragged(np.where(motion.moving[P.owner][:, None], pts, P.pts), P.offsets, P.closed)
     return Registered(motion, R, identity_residual(R, Q), kept, warps)
 

@@ -45,6 +45,7 @@ __all__ = [
     "fit_pairs",
     "stretch_fits",
     "identity_residual",
+    "moved_curves",
     "Motions",
     "motions",
     "riding_fits",
@@ -282,11 +283,16 @@ def _stretch_maps(mp, mq):
     return inv_p @ root_mid @ inv_p
 
 
+def moved_curves(P, A, b):
+    """The curves P, each under its own map ``z -> A z + b`` (A (C, 2, 2), b (C, 2)), a Ragged."""
+    moved = np.einsum("kij,kj->ki", np.take(A, P.owner, axis=0), P.pts) + np.take(b, P.owner, axis=0)
+    return Ragged(moved, P.offsets, P.closed)
+
+
 def _registered_residual(P, Q, A, b):
     """The residual of affine fits ``z -> A z + b`` (A (C, 2, 2), b (C, 2)) of curves P onto Q:
     the registered curves' own uniform samples against Q's (:func:`identity_residual`), shape (C,)."""
-    moved = np.einsum("kij,kj->ki", np.take(A, P.owner, axis=0), P.pts) + np.take(b, P.owner, axis=0)
-    return identity_residual(Ragged(moved, P.offsets, P.closed), Q)
+    return identity_residual(moved_curves(P, A, b), Q)
 
 
 def fit_pairs(P, Q, affine=True, turn=0.0, scale=1.0):
